@@ -1,0 +1,216 @@
+# The literate ray tracer: one non-recursive Makefile.
+#
+#   make              install missing packages (as root), tangle, build every
+#                     bin/chNN, render the figures, build build/book.html
+#   make test         every test: the tangler suite, each chapter's suites
+#                     against every later chapter, src/ and figures up to date,
+#                     the book's links, images and math
+#   make chNN         build bin/chNN           make test-chNN  its suites
+#   make run-chNN     render its own scene     make diff-chNN  what it adds
+#   make src          rewrite the committed plain tangle src/chNN
+#   make figures      render figures/chNN-*.png
+#   make charts       run bench/ and redraw figures/chNN-*.svg
+#   make book         build/book.html          make clean
+#   make SAN=1 test   the same with AddressSanitizer and UBSan
+#   make WERROR=1     warnings are errors (CI)
+
+.DELETE_ON_ERROR:
+.SECONDARY:
+.SUFFIXES:
+.DEFAULT_GOAL := all
+
+CC      ?= cc
+CSTD    := -std=c11 -D_POSIX_C_SOURCE=200809L
+WARN    := -Wall -Wextra $(if $(WERROR),-Werror)
+SANFLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
+OPT     := $(if $(SAN),$(SANFLAGS),-O2 -g)
+CFLAGS  ?=
+LDFLAGS ?=
+ALL_CFLAGS = $(CSTD) $(WARN) $(OPT) $(CFLAGS) -MMD -MP
+
+# Evaluated when a recipe runs, after `deps` has had its chance to install them.
+PNG_CFLAGS   = $(shell pkg-config --cflags libpng)
+PNG_LIBS     = $(shell pkg-config --libs libpng)
+CHECK_CFLAGS = $(shell pkg-config --cflags check)
+CHECK_LIBS   = $(shell pkg-config --libs check)
+
+# Sanitized builds live apart so that they never mix with normal objects.
+B       := build/$(if $(SAN),san,rel)
+BIN     := $(if $(SAN),$(B)/bin,bin)
+TANGLE  := $(B)/tools/tangle
+
+CHAPTERS := $(sort $(wildcard chapters/[0-9][0-9]-*.md))
+NUMS     := $(foreach c,$(CHAPTERS),$(firstword $(subst -, ,$(notdir $(c)))))
+
+# chapters_upto NN: the Markdown of chapters 01..NN (chapters are numbered 01, 02, ...)
+chapters_upto = $(wordlist 1,$(patsubst 0%,%,$(1)),$(CHAPTERS))
+# c_files NN: the .c files that chapters 01..NN declare with file="..."
+c_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\([^"]*\.c\)".*/\1/p' $(call chapters_upto,$(1))))
+# scene_files NN: scenes declared by chapter NN itself, one figure each
+scene_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\(scenes\/ch$(1)-[^"]*\.scene\)".*/\1/p' $(word $(patsubst 0%,%,$(1)),$(CHAPTERS))))
+# suites_upto NN: the Check suites of chapters 01..NN
+suites_upto = $(foreach n,$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS)),$(wildcard tests/ch$(n)_*.c))
+# previous NN: the chapter before NN, empty for the first
+previous = $(lastword $(filter-out $(1),$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS))))
+
+.PHONY: all test deps src figures charts book clean check-src check-figures \
+        check-book test-tangle tools benches
+
+all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures benches book
+
+deps:
+	@sh tools/deps.sh
+
+# ---------------------------------------------------------------- tools
+$(B)/tools/%: tools/%.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(LDFLAGS)
+
+$(B)/tools/pngdiff: tools/pngdiff.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(PNG_CFLAGS) -o $@ $< $(LDFLAGS) $(PNG_LIBS)
+
+tools: $(TANGLE) $(B)/tools/check_book $(B)/tools/pngdiff
+
+-include $(wildcard $(B)/tools/*.d)
+
+# ---------------------------------------------------------------- chapters
+# One template, instantiated for every chapter NN.
+define chapter_rules
+T$(1)   := build/tangle/ch$(1)
+O$(1)   := $(B)/obj/ch$(1)
+SRC$(1) := $$(call c_files,$(1))
+OBJ$(1) := $$(patsubst %.c,$$(O$(1))/%.o,$$(SRC$(1)))
+LIB$(1) := $$(filter-out $$(O$(1))/main.o,$$(OBJ$(1)))
+SUITES$(1) := $$(call suites_upto,$(1))
+FIGS$(1) := figures/ch$(1)-default.png $$(patsubst scenes/%.scene,figures/%.png,$$(call scene_files,$(1)))
+
+# The --line tangle is what gets compiled: errors point at the chapter.
+$$(T$(1))/.stamp: $$(call chapters_upto,$(1)) $(TANGLE)
+	@mkdir -p $$(@D)
+	$(TANGLE) --line --strict -o $$(@D) $$(call chapters_upto,$(1))
+	@touch $$@
+
+$$(T$(1))/%.c $$(T$(1))/%.h $$(T$(1))/%.scene: $$(T$(1))/.stamp ;
+
+$$(O$(1))/%.o: $$(T$(1))/%.c | deps
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) $$(PNG_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
+
+$(BIN)/ch$(1): $$(OBJ$(1))
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
+
+ch$(1): deps $(BIN)/ch$(1)
+
+# The suites of chapters 01..NN, compiled against chapter NN's program.
+$$(O$(1))/tests/%.o: tests/%.c $$(T$(1))/.stamp | deps
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) $$(PNG_CFLAGS) $$(CHECK_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
+
+$$(O$(1))/tests/runner.o: tests/runner.c | deps
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) $$(CHECK_CFLAGS) \
+	  '-DSUITE_LIST=$$(foreach s,$$(SUITES$(1)),X($$(basename $$(notdir $$(s)))))' -c -o $$@ $$<
+
+$(B)/test/ch$(1): $$(O$(1))/tests/runner.o $$(patsubst tests/%.c,$$(O$(1))/tests/%.o,$$(SUITES$(1))) $$(LIB$(1))
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
+
+test-ch$(1): deps $(B)/test/ch$(1) $(BIN)/ch$(1)
+	@echo "== suites 01..$(1) against the program of chapter $(1)"
+	CHAPTER_BIN=$(BIN)/ch$(1) CK_DEFAULT_TIMEOUT=60 $(B)/test/ch$(1)
+
+run-ch$(1): $(BIN)/ch$(1)
+	@mkdir -p build
+	$(BIN)/ch$(1) -o build/ch$(1).png
+	@echo "wrote build/ch$(1).png"
+
+diff-ch$(1):
+	@mkdir -p build/empty
+	-diff -ruN $$(if $$(call previous,$(1)),src/ch$$(call previous,$(1)),build/empty) src/ch$(1)
+
+# The committed plain tangle, for reading and diffing.
+src-ch$(1): $(TANGLE)
+	rm -rf src/ch$(1)
+	$(TANGLE) --strict -o src/ch$(1) $$(call chapters_upto,$(1))
+
+check-src-ch$(1): $(TANGLE)
+	@rm -rf build/srccheck/ch$(1)
+	@$(TANGLE) --strict -o build/srccheck/ch$(1) $$(call chapters_upto,$(1))
+	@diff -r src/ch$(1) build/srccheck/ch$(1) >/dev/null || \
+	  { echo "src/ch$(1) is not what the chapters tangle to: run 'make src' and commit"; \
+	    diff -ru src/ch$(1) build/srccheck/ch$(1) | head -40; exit 1; }
+	@echo "src/ch$(1): up to date"
+
+# Figures: the default scene, and one per scenes/chNN-*.scene of the chapter.
+figures/ch$(1)-default.png: $(BIN)/ch$(1)
+	$(BIN)/ch$(1) -o $$@
+
+figures/ch$(1)-%.png: $$(T$(1))/scenes/ch$(1)-%.scene $(BIN)/ch$(1)
+	$(BIN)/ch$(1) $$< -o $$@
+
+check-figures-ch$(1): $(BIN)/ch$(1) $(B)/tools/pngdiff $$(T$(1))/.stamp
+	@sh tools/check_figures.sh $(BIN)/ch$(1) $(B)/tools/pngdiff $$(T$(1)) $$(FIGS$(1))
+
+# Benchmarks link the chapter's program (all but main) like the tests do.
+$$(O$(1))/bench/%.o: bench/%.c $$(T$(1))/.stamp | deps
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) $$(PNG_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
+
+$(B)/bench/ch$(1)_%: $$(O$(1))/bench/ch$(1)_%.o $$(LIB$(1))
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
+
+-include $$(wildcard $$(O$(1))/*.d $$(O$(1))/tests/*.d $$(O$(1))/bench/*.d)
+endef
+
+$(foreach n,$(NUMS),$(eval $(call chapter_rules,$(n))))
+
+.PHONY: $(foreach n,$(NUMS),ch$(n) test-ch$(n) run-ch$(n) diff-ch$(n) src-ch$(n) \
+          check-src-ch$(n) check-figures-ch$(n))
+
+ALL_FIGS := $(foreach n,$(NUMS),$(FIGS$(n)))
+BENCHES  := $(patsubst bench/%.c,$(B)/bench/%,$(wildcard bench/ch[0-9][0-9]_*.c))
+
+src: $(foreach n,$(NUMS),src-ch$(n))
+figures: $(ALL_FIGS)
+benches: $(BENCHES)
+check-src: $(foreach n,$(NUMS),check-src-ch$(n))
+check-figures: $(foreach n,$(NUMS),check-figures-ch$(n))
+
+# ---------------------------------------------------------------- charts
+# bench/chNN_x.c writes CSV; bench/chNN_x.gp draws figures/chNN-x.svg from it.
+charts: deps $(BENCHES)
+	@for b in $(BENCHES); do \
+	  name=$$(basename $$b); csv=figures/$$(echo $$name | sed 's/_/-/').csv; \
+	  echo "$$b > $$csv"; $$b > $$csv.tmp && mv $$csv.tmp $$csv || exit 1; \
+	  gnuplot -e "csv='$$csv'; out='$${csv%.csv}.svg'" bench/$$name.gp || exit 1; \
+	  echo "wrote $${csv%.csv}.svg"; \
+	done
+
+# ---------------------------------------------------------------- book
+CHARTS := $(wildcard figures/ch[0-9][0-9]-*.svg)
+
+book: build/book.html
+build/book.html: book.md $(CHAPTERS) tools/weave.lua tools/weave.sh tools/book.css $(ALL_FIGS) $(CHARTS) | deps
+	@mkdir -p $(@D)
+	sh tools/weave.sh book.md $@ $(CHAPTERS)
+
+check-book: build/book.html $(B)/tools/check_book
+	$(B)/tools/check_book build/book.html
+
+# ---------------------------------------------------------------- tests
+$(B)/test/tangle: tests/runner.c tests/tangle_test.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) $(CHECK_CFLAGS) '-DSUITE_LIST=X(tangle)' -o $@ $^ $(LDFLAGS) $(CHECK_LIBS)
+
+test-tangle: $(B)/test/tangle $(TANGLE)
+	@echo "== the tangler's suite"
+	TANGLE=$(TANGLE) CK_DEFAULT_TIMEOUT=60 $(B)/test/tangle
+
+test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures check-book
+	@echo "make test: all passed"
+
+clean:
+	rm -rf build bin

@@ -1,0 +1,566 @@
+/*
+ * check_book.c -- check that the woven HTML book is whole and works offline.
+ *
+ * Build: gcc -std=c11 -Wall -Wextra -Werror -O2 -o build/check_book tools/check_book.c
+ * Run:   build/check_book build/book.html
+ *
+ * It reads the page with a small tag scanner (not a full HTML parser) and
+ * prints one "FILE: error: ..." line per problem, exiting with 1, when:
+ *   - an internal link href="#x" has no element with id="x";
+ *   - an image (<img src>, <source src>, <image href> or xlink:href in an
+ *     inline SVG) is neither a data: URI nor an existing file relative to
+ *     the HTML file's directory;
+ *   - the page has no <math> element (formulas must be MathML);
+ *   - a <script src> or <link href> points at the network (http:, https:,
+ *     or //host), so the page would not work offline.
+ * On success it prints
+ *   check_book: N internal links, M images, K math elements: ok
+ * Attribute values may be double-quoted, single-quoted or unquoted.
+ */
+#include <ctype.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* A string found in the page, and where (byte offset) for messages. */
+typedef struct {
+    char *text;
+    size_t offset;
+} Item;
+
+typedef struct {
+    Item *items;
+    size_t count;
+    size_t capacity;
+} ItemList;
+
+/* Everything the scan collects; checked once the whole page is read. */
+typedef struct {
+    const char *path;      /* the HTML file, for messages */
+    char *directory;       /* its directory, images are relative to it */
+    const char *html;      /* the whole page */
+    size_t length;
+    ItemList ids;
+    ItemList links;        /* targets of href="#..." without the '#' */
+    ItemList images;
+    size_t math_count;
+    size_t error_count;
+} Book;
+
+/* ---------------------------------------------------------------- */
+/* Memory and strings                                                */
+/* ---------------------------------------------------------------- */
+
+static void *allocate(size_t size)
+{
+    void *memory = malloc(size ? size : 1);
+    if (!memory) {
+        fputs("check_book: out of memory\n", stderr);
+        exit(2);
+    }
+    return memory;
+}
+
+static char *copy_string(const char *text, size_t length)
+{
+    char *copy = allocate(length + 1);
+    memcpy(copy, text, length);
+    copy[length] = '\0';
+    return copy;
+}
+
+static void list_add(ItemList *list, char *text, size_t offset)
+{
+    if (list->count == list->capacity) {
+        size_t capacity = list->capacity ? 2 * list->capacity : 64;
+        Item *items = realloc(list->items, capacity * sizeof *items);
+        if (!items) {
+            fputs("check_book: out of memory\n", stderr);
+            exit(2);
+        }
+        list->items = items;
+        list->capacity = capacity;
+    }
+    list->items[list->count].text = text;
+    list->items[list->count].offset = offset;
+    list->count++;
+}
+
+static void list_free(ItemList *list)
+{
+    for (size_t i = 0; i < list->count; i++)
+        free(list->items[i].text);
+    free(list->items);
+}
+
+static int starts_with_ignoring_case(const char *text, const char *prefix)
+{
+    for (; *prefix; text++, prefix++)
+        if (tolower((unsigned char)*text) != tolower((unsigned char)*prefix))
+            return 0;
+    return 1;
+}
+
+/* ---------------------------------------------------------------- */
+/* Decoding attribute values                                         */
+/* ---------------------------------------------------------------- */
+
+/* Writes code point as UTF-8 into out; returns the number of bytes. */
+static size_t put_utf8(unsigned long code, char *out)
+{
+    if (code < 0x80) {
+        out[0] = (char)code;
+        return 1;
+    }
+    if (code < 0x800) {
+        out[0] = (char)(0xC0 | (code >> 6));
+        out[1] = (char)(0x80 | (code & 0x3F));
+        return 2;
+    }
+    if (code < 0x10000) {
+        out[0] = (char)(0xE0 | (code >> 12));
+        out[1] = (char)(0x80 | ((code >> 6) & 0x3F));
+        out[2] = (char)(0x80 | (code & 0x3F));
+        return 3;
+    }
+    out[0] = (char)(0xF0 | ((code >> 18) & 0x07));
+    out[1] = (char)(0x80 | ((code >> 12) & 0x3F));
+    out[2] = (char)(0x80 | ((code >> 6) & 0x3F));
+    out[3] = (char)(0x80 | (code & 0x3F));
+    return 4;
+}
+
+/* Decodes one "&...;" at text; returns bytes consumed, 0 if not one. */
+static size_t decode_entity(const char *text, size_t length, char *out, size_t *written)
+{
+    static const struct { const char *name; char value; } named[] = {
+        {"&amp;", '&'}, {"&lt;", '<'}, {"&gt;", '>'}, {"&quot;", '"'}, {"&apos;", '\''},
+    };
+    for (size_t i = 0; i < sizeof named / sizeof named[0]; i++) {
+        size_t name_length = strlen(named[i].name);
+        if (name_length <= length && memcmp(text, named[i].name, name_length) == 0) {
+            out[0] = named[i].value;
+            *written = 1;
+            return name_length;
+        }
+    }
+    if (length < 4 || text[1] != '#')
+        return 0;
+    int hex = text[2] == 'x' || text[2] == 'X';
+    size_t i = hex ? 3 : 2;
+    unsigned long code = 0;
+    size_t digits = 0;
+    for (; i < length && digits < 8; i++, digits++) {
+        int c = (unsigned char)text[i];
+        if (hex ? !isxdigit(c) : !isdigit(c))
+            break;
+        code = code * (hex ? 16 : 10) + (unsigned long)(isdigit(c) ? c - '0' : tolower(c) - 'a' + 10);
+    }
+    if (digits == 0 || i >= length || text[i] != ';' || code == 0 || code > 0x10FFFF)
+        return 0;
+    *written = put_utf8(code, out);
+    return i + 1;
+}
+
+/* An attribute value as the browser sees it: character references decoded. */
+static char *decode_attribute(const char *text, size_t length)
+{
+    char *out = allocate(length + 1);  /* decoding never makes it longer */
+    size_t used = 0;
+    for (size_t i = 0; i < length;) {
+        size_t written = 0;
+        size_t consumed = text[i] == '&' ? decode_entity(text + i, length - i, out + used, &written) : 0;
+        if (consumed) {
+            used += written;
+            i += consumed;
+        } else {
+            out[used++] = text[i++];
+        }
+    }
+    out[used] = '\0';
+    return out;
+}
+
+static int hex_value(int c)
+{
+    return isdigit(c) ? c - '0' : tolower(c) - 'a' + 10;
+}
+
+/* "my%20figure.png" -> "my figure.png", in place. */
+static void percent_decode(char *text)
+{
+    char *out = text;
+    for (char *in = text; *in; out++) {
+        if (in[0] == '%' && isxdigit((unsigned char)in[1]) && isxdigit((unsigned char)in[2])) {
+            *out = (char)(hex_value((unsigned char)in[1]) * 16 + hex_value((unsigned char)in[2]));
+            in += 3;
+        } else {
+            *out = *in++;
+        }
+    }
+    *out = '\0';
+}
+
+/* ---------------------------------------------------------------- */
+/* Reporting                                                         */
+/* ---------------------------------------------------------------- */
+
+static long line_of(const Book *book, size_t offset)
+{
+    long line = 1;
+    for (size_t i = 0; i < offset && i < book->length; i++)
+        if (book->html[i] == '\n')
+            line++;
+    return line;
+}
+
+/* One "FILE: error: line N: ..." line; format and arguments as printf. */
+static void report(Book *book, size_t offset, const char *format, ...)
+{
+    va_list arguments;
+    va_start(arguments, format);
+    fprintf(stderr, "%s: error: line %ld: ", book->path, line_of(book, offset));
+    vfprintf(stderr, format, arguments);
+    fputc('\n', stderr);
+    va_end(arguments);
+    book->error_count++;
+}
+
+/* ---------------------------------------------------------------- */
+/* What each attribute means                                         */
+/* ---------------------------------------------------------------- */
+
+static int is_network_url(const char *url)
+{
+    return starts_with_ignoring_case(url, "http://") || starts_with_ignoring_case(url, "https://")
+        || strncmp(url, "//", 2) == 0;  /* protocol-relative: also the network */
+}
+
+/* Which attribute of which tag names an image the page shows. */
+static int is_image_source(const char *tag, const char *attribute)
+{
+    if (strcmp(attribute, "src") == 0)
+        return strcmp(tag, "img") == 0 || strcmp(tag, "source") == 0;
+    if (strcmp(attribute, "href") == 0 || strcmp(attribute, "xlink:href") == 0)
+        return strcmp(tag, "image") == 0;
+    return 0;
+}
+
+static int is_link_attribute(const char *attribute)
+{
+    return strcmp(attribute, "href") == 0 || strcmp(attribute, "xlink:href") == 0;
+}
+
+/* Takes ownership of value. */
+static void note_attribute(Book *book, const char *tag, const char *attribute, char *value, size_t offset)
+{
+    /* <a name="x"> is the old way to make a link target. */
+    if (strcmp(attribute, "id") == 0 || (strcmp(tag, "a") == 0 && strcmp(attribute, "name") == 0)) {
+        list_add(&book->ids, value, offset);
+        return;
+    }
+    int loads_code = (strcmp(tag, "script") == 0 && (strcmp(attribute, "src") == 0 || is_link_attribute(attribute)))
+        || (strcmp(tag, "link") == 0 && strcmp(attribute, "href") == 0);
+    if (loads_code && is_network_url(value))
+        report(book, offset, "<%s> loads \"%s\" from the network; the page must work offline", tag, value);
+
+    if (is_image_source(tag, attribute)) {
+        list_add(&book->images, value, offset);
+        return;
+    }
+    if (is_link_attribute(attribute) && value[0] == '#' && value[1] != '\0') {
+        memmove(value, value + 1, strlen(value));  /* drop the '#' */
+        list_add(&book->links, value, offset);
+        return;
+    }
+    free(value);
+}
+
+/* ---------------------------------------------------------------- */
+/* The tag scanner                                                   */
+/* ---------------------------------------------------------------- */
+
+static int is_name_char(int c)
+{
+    return c != '\0' && !isspace(c) && c != '=' && c != '>' && c != '/' && c != '"' && c != '\'';
+}
+
+static size_t skip_spaces(const Book *book, size_t pos)
+{
+    while (pos < book->length && isspace((unsigned char)book->html[pos]))
+        pos++;
+    return pos;
+}
+
+/* Position just after the next occurrence of marker, or the end. */
+static size_t skip_past(const Book *book, size_t pos, const char *marker)
+{
+    const char *found = strstr(book->html + pos, marker);
+    return found ? (size_t)(found - book->html) + strlen(marker) : book->length;
+}
+
+/* Contents of <script> and <style> are text, not tags: jump to the end tag. */
+static size_t skip_raw_text(const Book *book, size_t pos, const char *tag)
+{
+    for (; pos < book->length; pos++)
+        if (book->html[pos] == '<' && book->html[pos + 1] == '/'
+            && starts_with_ignoring_case(book->html + pos + 2, tag))
+            return pos;
+    return book->length;
+}
+
+/* Reads name into buffer (lower case, cut to size); returns the new position. */
+static size_t read_name(const Book *book, size_t pos, char *name, size_t size)
+{
+    size_t used = 0;
+    for (; pos < book->length && is_name_char((unsigned char)book->html[pos]); pos++)
+        if (used + 1 < size)
+            name[used++] = (char)tolower((unsigned char)book->html[pos]);
+    name[used] = '\0';
+    return pos;
+}
+
+/* Reads a quoted or unquoted value; returns it decoded via *value. */
+static size_t read_value(const Book *book, size_t pos, char **value)
+{
+    const char *html = book->html;
+    size_t start, end;
+    if (html[pos] == '"' || html[pos] == '\'') {
+        char quote = html[pos];
+        start = pos + 1;
+        const char *close = strchr(html + start, quote);
+        end = close ? (size_t)(close - html) : book->length;
+        pos = end < book->length ? end + 1 : end;
+    } else {
+        start = pos;
+        while (pos < book->length && !isspace((unsigned char)html[pos]) && html[pos] != '>')
+            pos++;
+        end = pos;
+    }
+    *value = decode_attribute(html + start, end - start);
+    return pos;
+}
+
+/* Scans the tag starting at "<name"; returns the position after its '>'. */
+static size_t scan_tag(Book *book, size_t pos)
+{
+    char tag[64], attribute[64];
+    size_t tag_offset = pos;
+    pos = read_name(book, pos + 1, tag, sizeof tag);
+    if (strcmp(tag, "math") == 0)
+        book->math_count++;
+    for (;;) {
+        pos = skip_spaces(book, pos);
+        if (pos >= book->length)
+            return pos;
+        if (book->html[pos] == '>')
+            break;
+        if (!is_name_char((unsigned char)book->html[pos])) {
+            pos++;  /* a stray '/', quote or '=': not part of a name */
+            continue;
+        }
+        pos = read_name(book, pos, attribute, sizeof attribute);
+        pos = skip_spaces(book, pos);
+        if (pos < book->length && book->html[pos] == '=') {
+            char *value;
+            pos = read_value(book, skip_spaces(book, pos + 1), &value);
+            note_attribute(book, tag, attribute, value, tag_offset);
+        }
+    }
+    pos++;  /* past '>' */
+    if (strcmp(tag, "script") == 0 || strcmp(tag, "style") == 0)
+        pos = skip_raw_text(book, pos, tag);
+    return pos;
+}
+
+static void scan_page(Book *book)
+{
+    const char *html = book->html;
+    size_t pos = 0;
+    while (pos < book->length) {
+        const char *next = strchr(html + pos, '<');
+        if (!next)
+            break;
+        pos = (size_t)(next - html);
+        if (strncmp(next, "<!--", 4) == 0)
+            pos = skip_past(book, pos + 4, "-->");
+        else if (strncmp(next, "<![CDATA[", 9) == 0)
+            pos = skip_past(book, pos + 9, "]]>");
+        else if (next[1] == '!' || next[1] == '?' || next[1] == '/')
+            pos = skip_past(book, pos + 1, ">");
+        else if (isalpha((unsigned char)next[1]))
+            pos = scan_tag(book, pos);
+        else
+            pos++;  /* a lone '<' in text */
+    }
+}
+
+/* ---------------------------------------------------------------- */
+/* The checks                                                        */
+/* ---------------------------------------------------------------- */
+
+static int compare_items(const void *a, const void *b)
+{
+    return strcmp(((const Item *)a)->text, ((const Item *)b)->text);
+}
+
+static int has_id(const Book *book, const char *id)
+{
+    Item key = {(char *)id, 0};
+    if (book->ids.count == 0)
+        return 0;  /* bsearch must not get a null array */
+    return bsearch(&key, book->ids.items, book->ids.count, sizeof key, compare_items) != NULL;
+}
+
+static void check_links(Book *book)
+{
+    if (book->ids.count > 0)
+        qsort(book->ids.items, book->ids.count, sizeof(Item), compare_items);
+    for (size_t i = 0; i < book->links.count; i++) {
+        const Item *link = &book->links.items[i];
+        if (has_id(book, link->text))
+            continue;
+        char *decoded = copy_string(link->text, strlen(link->text));
+        percent_decode(decoded);  /* "#caf%C3%A9" may name id="café" */
+        if (!has_id(book, decoded))
+            report(book, link->offset, "link to \"#%s\" but no element has id=\"%s\"", link->text, link->text);
+        free(decoded);
+    }
+}
+
+static int file_exists(const char *path)
+{
+    FILE *file = fopen(path, "rb");
+    if (!file)
+        return 0;
+    fclose(file);
+    return 1;
+}
+
+/* The file an image URL names: query and fragment dropped, %xx decoded,
+   relative to the page's directory. */
+static char *image_file_path(const Book *book, const char *url)
+{
+    if (starts_with_ignoring_case(url, "file://"))
+        url += strlen("file://");
+    size_t length = strcspn(url, "?#");
+    char *relative = copy_string(url, length);
+    percent_decode(relative);
+    if (relative[0] == '/' || book->directory[0] == '\0')
+        return relative;
+    size_t size = strlen(book->directory) + 1 + strlen(relative) + 1;
+    char *full = allocate(size);
+    snprintf(full, size, "%s/%s", book->directory, relative);
+    free(relative);
+    return full;
+}
+
+static void check_images(Book *book)
+{
+    for (size_t i = 0; i < book->images.count; i++) {
+        const Item *image = &book->images.items[i];
+        if (starts_with_ignoring_case(image->text, "data:"))
+            continue;
+        if (is_network_url(image->text)) {
+            report(book, image->offset, "image \"%s\" is on the network; the page must work offline", image->text);
+            continue;
+        }
+        char *path = image_file_path(book, image->text);
+        if (image->text[0] == '\0' || !file_exists(path))
+            report(book, image->offset, "image \"%s\" is not embedded and there is no such file", image->text);
+        free(path);
+    }
+}
+
+static void check_math(Book *book)
+{
+    if (book->math_count == 0) {
+        fprintf(stderr, "%s: error: no <math> element: formulas must be MathML (pandoc --mathml)\n", book->path);
+        book->error_count++;
+    }
+}
+
+/* ---------------------------------------------------------------- */
+/* Reading the file and main                                         */
+/* ---------------------------------------------------------------- */
+
+/* The whole file as a NUL-terminated string, or NULL. */
+static char *read_file(const char *path, size_t *length)
+{
+    FILE *file = fopen(path, "rb");
+    if (!file)
+        return NULL;
+    size_t used = 0, capacity = 1 << 16;
+    char *text = allocate(capacity);
+    size_t got;
+    while ((got = fread(text + used, 1, capacity - used - 1, file)) > 0) {
+        used += got;
+        if (capacity - used - 1 == 0) {
+            char *bigger = realloc(text, capacity * 2);
+            if (!bigger) {
+                fputs("check_book: out of memory\n", stderr);
+                exit(2);
+            }
+            text = bigger;
+            capacity *= 2;
+        }
+    }
+    int failed = ferror(file);
+    fclose(file);
+    if (failed) {
+        free(text);
+        return NULL;
+    }
+    text[used] = '\0';
+    *length = used;
+    return text;
+}
+
+/* "build/book.html" -> "build"; "book.html" -> "" (the current directory). */
+static char *directory_of(const char *path)
+{
+    const char *slash = strrchr(path, '/');
+    if (!slash)
+        return copy_string("", 0);
+    if (slash == path)
+        return copy_string("/", 1);
+    return copy_string(path, (size_t)(slash - path));
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 2) {
+        fprintf(stderr, "usage: %s FILE.html\n", argv[0]);
+        return 2;
+    }
+    Book book = {0};
+    book.path = argv[1];
+    size_t length = 0;
+    char *html = read_file(book.path, &length);
+    if (!html) {
+        fprintf(stderr, "%s: error: cannot read the file\n", book.path);
+        return 1;
+    }
+    if (strlen(html) != length)
+        fprintf(stderr, "%s: warning: NUL bytes in the file; only the part before the first is checked\n", book.path);
+    book.html = html;
+    book.length = strlen(html);
+    book.directory = directory_of(book.path);
+
+    scan_page(&book);
+    check_links(&book);
+    check_images(&book);
+    check_math(&book);
+
+    if (book.error_count == 0)
+        printf("check_book: %zu internal links, %zu images, %zu math elements: ok\n",
+               book.links.count, book.images.count, book.math_count);
+    int status = book.error_count == 0 ? 0 : 1;
+    list_free(&book.ids);
+    list_free(&book.links);
+    list_free(&book.images);
+    free(book.directory);
+    free(html);
+    return status;
+}

@@ -1,0 +1,47 @@
+#!/bin/sh
+# Installs what the build needs when it is missing, or says how to.
+# Run by `make` before anything is compiled. Debian and Ubuntu: apt-get,
+# as root or with passwordless sudo; anywhere else it prints the command.
+# Extra packages can be asked for by name: `sh tools/deps.sh clang`.
+
+missing=""
+need() { missing="$missing $1"; }
+
+command -v pkg-config >/dev/null 2>&1 || need pkg-config
+command -v cc >/dev/null 2>&1 || need gcc
+if command -v pkg-config >/dev/null 2>&1; then
+  pkg-config --exists libpng || need libpng-dev
+  pkg-config --exists check || need check
+else
+  need libpng-dev; need check
+fi
+command -v pandoc >/dev/null 2>&1 || need pandoc
+command -v gnuplot >/dev/null 2>&1 || need gnuplot-nox
+for extra in "$@"; do
+  dpkg -s "$extra" >/dev/null 2>&1 || need "$extra"
+done
+
+[ -z "$missing" ] && exit 0
+
+if ! command -v apt-get >/dev/null 2>&1; then
+  echo "deps: missing:$missing" >&2
+  echo "deps: install them with your package manager; see README.md (Requirements)" >&2
+  exit 1
+fi
+if [ "$(id -u)" = 0 ]; then
+  sudo=""
+elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+  sudo="sudo"
+else
+  echo "deps: missing:$missing" >&2
+  echo "deps: run this once, then make again:" >&2
+  echo "    sudo apt-get install -y$missing" >&2
+  exit 1
+fi
+echo "deps: installing$missing"
+export DEBIAN_FRONTEND=noninteractive
+# Install first from the lists the machine has; refresh them only if that fails.
+$sudo apt-get install -y --no-install-recommends $missing >/dev/null 2>&1 || {
+  $sudo apt-get update -q >/dev/null &&
+  $sudo apt-get install -y -q --no-install-recommends $missing
+} || { echo "deps: apt-get install$missing failed" >&2; exit 1; }

@@ -1,0 +1,833 @@
+/*
+ * tangle - extract the program of a literate book from its chapters.
+ *
+ * USAGE
+ *   tangle [--line] [--strict] -o OUTDIR CHAPTER.md...
+ *
+ *   Reads the chapters in the order given and writes every root file they
+ *   define below OUTDIR, creating directories as needed.  A file is only
+ *   rewritten when its bytes change, so make does not rebuild needlessly;
+ *   other files in OUTDIR are left alone.
+ *     --line     emit #line directives into .c and .h outputs, so that the
+ *                compiler reports errors at CHAPTER.md:LINE
+ *     --strict   a chunk that no root file uses is an error, not a warning
+ *     --help     print the usage
+ *
+ * CODE BLOCKS
+ *   A fence is 3 or more backticks or tildes at column 0, closed by a line
+ *   at column 0 holding at least as many of the same character and nothing
+ *   else but blanks.  A block is program code only when its info string is
+ *   a pandoc attribute list with chunk= or file=; other blocks are skipped.
+ *     ```{.c file="vec.h"}                root file, written to OUTDIR/vec.h
+ *     ```{.c chunk="vector ops"}          first definition of a named chunk
+ *     ```{.c chunk="vector ops" .append}  adds lines at the end of the body
+ *     ```{.c chunk="shade" .replace}      replaces the whole body so far
+ *   Inside the braces: .class, #id, key="value" (with \" and \\) and
+ *   key=value.  .append and .replace work for files too.  A file path must
+ *   stay inside OUTDIR ("a/../b.c" means "b.c").
+ *
+ * REFERENCES
+ *   A code line holding only <<name>> (blanks around it allowed) expands to
+ *   the body of chunk 'name', each line prefixed with the blanks in front
+ *   of the reference (blank lines get no prefix).  References nest up to
+ *   1000 levels deep.  "<<" anywhere else in a line is plain text.
+ *
+ * LINE DIRECTIVES
+ *   With --line, '#line N "CHAPTER"' is written whenever the next line of a
+ *   .c or .h output does not directly follow the previous one in the same
+ *   chapter: before every piece of a definition and after every reference.
+ *
+ * DIAGNOSTICS
+ *   "CHAPTER:LINE: error: MESSAGE" on stderr.  Everything is checked before
+ *   anything is written; after an error nothing is written and the exit
+ *   status is 1.  Errors: unreadable chapter, unterminated fence, malformed
+ *   attributes, chunk= with file=, .append with .replace, empty name or
+ *   path, path absolute or leaving OUTDIR, second definition without
+ *   .append/.replace, .append/.replace of something undefined, reference to
+ *   an undefined chunk, cycle of references, nesting deeper than 1000, an
+ *   output over 64 MiB, unwritable output.  A chunk no root file reaches
+ *   gets a warning (an error with --strict).  Bad usage exits with 2.
+ */
+#include <errno.h>
+#include <stdarg.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+enum { MAX_DEPTH = 1000 };
+/* Stops a chunk that doubles itself level after level from eating memory. */
+#define MAX_OUTPUT_BYTES ((size_t)64 << 20)
+
+struct span { const char *text; size_t len; };
+struct buffer { char *data; size_t len, cap; };
+
+struct source {
+    const char *path;          /* exactly as given on the command line */
+    char *text;
+    struct span *lines;        /* without the "\n" or "\r\n" */
+    size_t n_lines, cap_lines;
+};
+
+/* One fenced block: lines first .. first+count-1 (0-based) of src. */
+struct piece { const struct source *src; size_t first, count; };
+
+struct chunk {
+    char *name;                /* chunk name, or clean path of a root file */
+    size_t name_len;
+    bool is_file, used;
+    const struct source *src;  /* where it was first defined */
+    size_t line;
+    struct piece *pieces;
+    size_t n_pieces, cap_pieces;
+    size_t live_from;          /* pieces before this one were replaced */
+    enum { UNVISITED, VISITING, DONE } state;
+};
+
+struct tangle {
+    bool line_directives, strict;
+    const char *outdir;
+    struct source *sources;
+    size_t n_sources;
+    struct chunk **chunks;     /* in order of definition */
+    size_t n_chunks, cap_chunks;
+    struct chunk **slots;      /* open-addressing hash table, half empty */
+    size_t n_slots;
+    int errors;
+};
+
+/* ---- memory and messages ------------------------------------------- */
+
+/* Running out of memory is the one failure we do not try to survive. */
+static void *check_alloc(void *p)
+{
+    if (!p) {
+        fputs("tangle: out of memory\n", stderr);
+        exit(1);
+    }
+    return p;
+}
+
+/* Makes room for one more element in the growable array ITEMS. */
+static void *grow(void *items, size_t count, size_t *cap, size_t size)
+{
+    if (count < *cap)
+        return items;
+    *cap = *cap ? 2 * *cap : 16;
+    return check_alloc(*cap > SIZE_MAX / size ? NULL : realloc(items, *cap * size));
+}
+
+static char *copy_string(const char *s, size_t len)
+{
+    char *copy = check_alloc(malloc(len + 1));
+    memcpy(copy, s, len);
+    copy[len] = '\0';
+    return copy;
+}
+
+static void buffer_add(struct buffer *b, const char *s, size_t n)
+{
+    while (b->cap - b->len < n)
+        b->data = grow(b->data, b->cap, &b->cap, 1);
+    if (n > 0) /* memcpy wants real pointers even for 0 bytes */
+        memcpy(b->data + b->len, s, n);
+    b->len += n;
+}
+
+static void buffer_add_str(struct buffer *b, const char *s)
+{
+    buffer_add(b, s, strlen(s));
+}
+
+/* Returns the contents as a C string; the buffer gives up ownership. */
+static char *buffer_take_string(struct buffer *b)
+{
+    buffer_add(b, "", 1);
+    return b->data;
+}
+
+/* LINE 0 means the message is about the whole file. */
+static void diagnose(struct tangle *t, bool is_error, const char *path,
+                     size_t line, const char *fmt, ...)
+    __attribute__((format(printf, 5, 6)));
+
+static void diagnose(struct tangle *t, bool is_error, const char *path,
+                     size_t line, const char *fmt, ...)
+{
+    va_list ap;
+    const char *kind = is_error ? "error" : "warning";
+    if (line > 0)
+        fprintf(stderr, "%s:%zu: %s: ", path, line, kind);
+    else
+        fprintf(stderr, "%s: %s: ", path, kind);
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+    t->errors += is_error;
+}
+
+/* ---- reading chapters ---------------------------------------------- */
+
+/* Returns 0, or the errno saying why PATH could not be read. */
+static int read_whole_file(const char *path, char **text, size_t *len)
+{
+    struct buffer b = {0};
+    char block[1 << 14];
+    size_t n;
+    FILE *f = fopen(path, "rb");
+    *text = NULL;
+    if (!f)
+        return errno;
+    while ((n = fread(block, 1, sizeof block, f)) > 0)
+        buffer_add(&b, block, n);
+    int err = ferror(f) ? (errno ? errno : EIO) : 0;
+    fclose(f);
+    *len = b.len;
+    *text = buffer_take_string(&b);
+    return err;
+}
+
+/* A line ends at "\n"; a "\r" right before it (or before the end) is dropped. */
+static void split_lines(struct source *s, size_t len)
+{
+    const char *p = s->text, *end = s->text + len;
+    while (p < end) {
+        const char *newline = memchr(p, '\n', (size_t)(end - p));
+        size_t n = (size_t)((newline ? newline : end) - p);
+        if (n > 0 && p[n - 1] == '\r')
+            n--;
+        s->lines = grow(s->lines, s->n_lines, &s->cap_lines, sizeof *s->lines);
+        s->lines[s->n_lines++] = (struct span){p, n};
+        p = newline ? newline + 1 : end;
+    }
+}
+
+static bool is_blank_char(char c) { return c == ' ' || c == '\t'; }
+
+static struct span trim(struct span s)
+{
+    while (s.len > 0 && is_blank_char(s.text[0]))
+        s.text++, s.len--;
+    while (s.len > 0 && is_blank_char(s.text[s.len - 1]))
+        s.len--;
+    return s;
+}
+
+static bool is_blank(struct span s) { return trim(s).len == 0; }
+
+static bool span_is(struct span s, const char *word)
+{
+    return s.len == strlen(word) && memcmp(s.text, word, s.len) == 0;
+}
+
+/* ---- chunk table --------------------------------------------------- */
+
+/* The slot holding the chunk, or the empty slot where it would go. */
+static struct chunk **table_slot(const struct tangle *t, bool is_file,
+                                 const char *name, size_t len)
+{
+    uint64_t hash = 14695981039346656037u ^ (uint64_t)is_file; /* FNV-1a */
+    for (size_t i = 0; i < len; i++)
+        hash = (hash ^ (unsigned char)name[i]) * 1099511628211u;
+    for (size_t i = (size_t)hash;; i++) {
+        struct chunk *c = t->slots[i & (t->n_slots - 1)];
+        if (!c || (c->is_file == is_file && c->name_len == len &&
+                   memcmp(c->name, name, len) == 0))
+            return &t->slots[i & (t->n_slots - 1)];
+    }
+}
+
+static struct chunk *find_chunk(const struct tangle *t, bool is_file,
+                                const char *name, size_t len)
+{
+    return t->n_slots ? *table_slot(t, is_file, name, len) : NULL;
+}
+
+static struct chunk *new_chunk(struct tangle *t, bool is_file, const char *name,
+                               const struct source *src, size_t line)
+{
+    struct chunk *c = check_alloc(malloc(sizeof *c));
+    *c = (struct chunk){.name = copy_string(name, strlen(name)),
+                        .name_len = strlen(name), .is_file = is_file,
+                        .src = src, .line = line};
+    t->chunks = grow(t->chunks, t->n_chunks, &t->cap_chunks, sizeof *t->chunks);
+    t->chunks[t->n_chunks++] = c;
+    if (2 * t->n_chunks > t->n_slots) { /* rebuild the table twice as big */
+        free(t->slots);
+        t->n_slots = t->n_slots ? 2 * t->n_slots : 64;
+        t->slots = check_alloc(calloc(t->n_slots, sizeof *t->slots));
+        for (size_t i = 0; i < t->n_chunks; i++)
+            *table_slot(t, t->chunks[i]->is_file, t->chunks[i]->name,
+                        t->chunks[i]->name_len) = t->chunks[i];
+    } else {
+        *table_slot(t, is_file, c->name, c->name_len) = c;
+    }
+    return c;
+}
+
+/* ---- attributes: {.c chunk="name" .append} ------------------------- */
+
+struct attributes { char *chunk, *file; bool append, replace; };
+
+/* Length of the word at P: it stops at a blank, '}' or STOP. */
+static size_t word_length(const char *p, const char *end, char stop)
+{
+    size_t n = 0;
+    while (p + n < end && !is_blank_char(p[n]) && p[n] != '}' && p[n] != stop)
+        n++;
+    return n;
+}
+
+/* Reads a "quoted" (with \" and \\) or bare value at *PP. */
+static const char *read_value(const char **pp, const char *end, char **value)
+{
+    struct buffer b = {0};
+    const char *p = *pp;
+    if (p < end && *p == '"') {
+        for (p++; p < end && *p != '"'; p++) {
+            p += *p == '\\' && p + 1 < end;
+            buffer_add(&b, p, 1);
+        }
+        if (p++ == end) {
+            free(b.data);
+            return "unterminated quote in attributes";
+        }
+    } else {
+        buffer_add(&b, p, word_length(p, end, '\0'));
+        p += b.len;
+    }
+    *pp = p;
+    *value = buffer_take_string(&b);
+    return NULL;
+}
+
+static const char *parse_key_value(const char **pp, const char *end,
+                                   struct attributes *a)
+{
+    struct span key = {*pp, word_length(*pp, end, '=')};
+    char *value = NULL, **slot = span_is(key, "chunk") ? &a->chunk
+                               : span_is(key, "file")  ? &a->file : NULL;
+    *pp += key.len;
+    if (key.len == 0 || *pp == end || **pp != '=')
+        return "expected .class, #id or key=\"value\" in attributes";
+    (*pp)++;
+    const char *err = read_value(pp, end, &value);
+    if (!err && slot && *slot)
+        err = "chunk= or file= given twice";
+    if (!err && slot) {
+        *slot = value;
+        value = NULL;
+    }
+    free(value); /* other keys mean nothing to the tangler */
+    return err;
+}
+
+/* INFO starts with '{'.  Returns NULL, or a message saying what is wrong. */
+static const char *parse_attributes(struct span info, struct attributes *a)
+{
+    const char *p = info.text + 1, *end = info.text + info.len;
+    if (memchr(info.text, '\0', info.len))
+        return "NUL byte in attributes";
+    for (;;) {
+        while (p < end && is_blank_char(*p))
+            p++;
+        if (p == end)
+            return "missing '}' in attributes";
+        if (*p == '}')
+            break;
+        if (*p != '.' && *p != '#') {
+            const char *err = parse_key_value(&p, end, a);
+            if (err)
+                return err;
+            continue;
+        }
+        struct span word = {p + 1, word_length(p + 1, end, '\0')};
+        if (word.len == 0)
+            return "empty class or id in attributes";
+        a->append |= *p == '.' && span_is(word, "append");
+        a->replace |= *p == '.' && span_is(word, "replace");
+        p = word.text + word.len;
+    }
+    return is_blank((struct span){p + 1, (size_t)(end - p - 1)})
+               ? NULL : "unexpected text after '}' in attributes";
+}
+
+/* ---- definitions --------------------------------------------------- */
+
+/* Folds "." and "x/.." away; NULL with *WHY set if the path is unusable. */
+static char *clean_path(const char *path, const char **why)
+{
+    const char *last = strrchr(path, '/');
+    last = last ? last + 1 : path;
+    *why = path[0] == '/' ? "is absolute"
+         : (!*last || !strcmp(last, ".") || !strcmp(last, "..")) ? "does not name a file"
+         : NULL;
+    char *out = copy_string(path, strlen(path));
+    size_t n = 0; /* out[0..n) is the clean path so far */
+    for (const char *p = path; *p && !*why; p += *p == '/') {
+        size_t len = strcspn(p, "/");
+        if (len == 2 && p[0] == '.' && p[1] == '.') {
+            *why = n == 0 ? "leaves the output directory" : NULL;
+            while (n > 0 && out[n - 1] != '/')
+                n--;
+            n -= n > 0; /* and the slash in front of the dropped component */
+        } else if (len > 0 && !(len == 1 && p[0] == '.')) {
+            if (n > 0)
+                out[n++] = '/';
+            memmove(out + n, p, len);
+            n += len;
+        }
+        p += len;
+    }
+    out[n] = '\0';
+    if (!*why)
+        return out;
+    free(out);
+    return NULL;
+}
+
+/* The key a block defines (chunk name or clean path), or NULL on error. */
+static char *block_key(struct tangle *t, const struct source *src, size_t line,
+                       const struct attributes *a)
+{
+    const char *why = a->chunk && a->file ? "chunk= and file= cannot be combined"
+                    : a->append && a->replace ? ".append and .replace cannot be combined"
+                    : a->chunk && !*a->chunk ? "empty chunk name"
+                    : a->file && !*a->file ? "empty file path" : NULL;
+    if (why) {
+        diagnose(t, true, src->path, line, "%s", why);
+        return NULL;
+    }
+    if (a->chunk)
+        return copy_string(a->chunk, strlen(a->chunk));
+    char *path = clean_path(a->file, &why);
+    if (!path)
+        diagnose(t, true, src->path, line, "file path '%s' %s", a->file, why);
+    return path;
+}
+
+static void define_piece(struct tangle *t, const struct source *src, size_t fence,
+                         size_t count, const struct attributes *a)
+{
+    size_t line = fence + 1;
+    char *key = block_key(t, src, line, a);
+    if (!key)
+        return;
+    bool is_file = a->file != NULL, extends = a->append || a->replace;
+    const char *kind = is_file ? "file" : "chunk";
+    struct chunk *c = find_chunk(t, is_file, key, strlen(key));
+    if (c && !extends)
+        diagnose(t, true, src->path, line,
+                 "%s '%s' is already defined at %s:%zu (use .append or .replace)",
+                 kind, key, c->src->path, c->line);
+    else if (!c && extends)
+        diagnose(t, true, src->path, line, "cannot %s undefined %s '%s'",
+                 a->append ? "append to" : "replace", kind, key);
+    else {
+        if (!c)
+            c = new_chunk(t, is_file, key, src, line);
+        if (a->replace)
+            c->live_from = c->n_pieces;
+        c->pieces = grow(c->pieces, c->n_pieces, &c->cap_pieces, sizeof *c->pieces);
+        c->pieces[c->n_pieces++] = (struct piece){src, fence + 1, count};
+    }
+    free(key);
+}
+
+/* ---- fences -------------------------------------------------------- */
+
+struct fence { char ch; size_t width; struct span info; };
+
+static bool opens_fence(struct span line, struct fence *f)
+{
+    f->ch = line.len > 0 ? line.text[0] : '\0';
+    for (f->width = 0; f->width < line.len && line.text[f->width] == f->ch;)
+        f->width++;
+    f->info = trim((struct span){line.text + f->width, line.len - f->width});
+    if (f->width < 3 || (f->ch != '`' && f->ch != '~'))
+        return false;
+    /* A backtick in the info string makes it inline code (CommonMark). */
+    return !(f->ch == '`' && memchr(f->info.text, '`', f->info.len));
+}
+
+static bool closes_fence(struct span line, const struct fence *f)
+{
+    size_t n = 0;
+    while (n < line.len && line.text[n] == f->ch)
+        n++;
+    return n >= f->width && is_blank((struct span){line.text + n, line.len - n});
+}
+
+static void handle_block(struct tangle *t, const struct source *src, size_t fence,
+                         struct span info, size_t count)
+{
+    struct attributes a = {0};
+    if (info.len == 0 || info.text[0] != '{')
+        return; /* ```c, ```text or no info at all: an illustration */
+    const char *err = parse_attributes(info, &a);
+    if (err)
+        diagnose(t, true, src->path, fence + 1, "%s", err);
+    else if (a.chunk || a.file)
+        define_piece(t, src, fence, count, &a);
+    free(a.chunk);
+    free(a.file);
+}
+
+static void parse_source(struct tangle *t, const struct source *src)
+{
+    struct fence f;
+    for (size_t i = 0; i < src->n_lines; i++) {
+        if (!opens_fence(src->lines[i], &f))
+            continue;
+        size_t close = i + 1;
+        while (close < src->n_lines && !closes_fence(src->lines[close], &f))
+            close++;
+        if (close == src->n_lines) {
+            diagnose(t, true, src->path, i + 1, "code fence is never closed");
+            return;
+        }
+        handle_block(t, src, i, f.info, close - i - 1);
+        i = close;
+    }
+}
+
+static void load_sources(struct tangle *t, char **paths, size_t n)
+{
+    t->sources = check_alloc(calloc(n, sizeof *t->sources));
+    t->n_sources = n;
+    for (size_t i = 0; i < n; i++) {
+        struct source *s = &t->sources[i];
+        size_t len;
+        s->path = paths[i];
+        int err = read_whole_file(s->path, &s->text, &len);
+        if (err)
+            diagnose(t, true, s->path, 0, "cannot read: %s", strerror(err));
+        else
+            split_lines(s, len);
+        if (!err)
+            parse_source(t, s);
+    }
+}
+
+/* ---- checking references ------------------------------------------- */
+
+/* A line that is only "<<name>>" (blanks around it allowed). */
+static bool parse_reference(struct span line, struct span *indent, struct span *name)
+{
+    struct span s = trim(line);
+    if (s.len < 5 || memcmp(s.text, "<<", 2) != 0 ||
+        memcmp(s.text + s.len - 2, ">>", 2) != 0)
+        return false;
+    *indent = (struct span){line.text, (size_t)(s.text - line.text)};
+    *name = (struct span){s.text + 2, s.len - 4};
+    return true;
+}
+
+struct walk {
+    struct chunk *stack[MAX_DEPTH];
+    size_t depth;
+    bool from_root; /* only chunks reached from a root file count as used */
+};
+
+static void check_chunk(struct tangle *t, struct chunk *c, struct walk *w);
+
+static void report_cycle(struct tangle *t, const struct source *src, size_t line,
+                         const struct chunk *target, const struct walk *w)
+{
+    struct buffer msg = {0};
+    size_t from = w->depth - 1;
+    while (w->stack[from] != target)
+        from--;
+    for (size_t k = from; k <= w->depth; k++) {
+        buffer_add_str(&msg, k > from ? " -> '" : "'");
+        buffer_add_str(&msg, k < w->depth ? w->stack[k]->name : target->name);
+        buffer_add_str(&msg, "'");
+    }
+    char *text = buffer_take_string(&msg);
+    diagnose(t, true, src->path, line, "cycle of references: %s", text);
+    free(text);
+}
+
+static void check_reference(struct tangle *t, const struct source *src, size_t line,
+                            struct span name, struct walk *w)
+{
+    struct chunk *target = find_chunk(t, false, name.text, name.len);
+    if (!target) {
+        char *text = copy_string(name.text, name.len);
+        diagnose(t, true, src->path, line, "reference to undefined chunk '%s'", text);
+        free(text);
+        return;
+    }
+    target->used |= w->from_root;
+    if (target->state == VISITING)
+        report_cycle(t, src, line, target, w);
+    else if (target->state == UNVISITED && w->depth == MAX_DEPTH)
+        diagnose(t, true, src->path, line, "references nested deeper than %d levels",
+                 MAX_DEPTH);
+    else if (target->state == UNVISITED)
+        check_chunk(t, target, w);
+}
+
+static void check_chunk(struct tangle *t, struct chunk *c, struct walk *w)
+{
+    struct span indent, name;
+    c->state = VISITING;
+    w->stack[w->depth++] = c;
+    for (size_t p = c->live_from; p < c->n_pieces; p++) {
+        const struct piece *pc = &c->pieces[p];
+        for (size_t i = pc->first; i < pc->first + pc->count; i++)
+            if (parse_reference(pc->src->lines[i], &indent, &name))
+                check_reference(t, pc->src, i + 1, name, w);
+    }
+    w->depth--;
+    c->state = DONE;
+}
+
+/* Walks from the root files first, then checks the chunks they never reach. */
+static void check_references(struct tangle *t)
+{
+    struct walk *w = check_alloc(calloc(1, sizeof *w));
+    for (int pass = 0; pass < 2; pass++) {
+        w->from_root = pass == 0;
+        for (size_t i = 0; i < t->n_chunks; i++)
+            if (t->chunks[i]->is_file == w->from_root && t->chunks[i]->state == UNVISITED)
+                check_chunk(t, t->chunks[i], w);
+    }
+    free(w);
+    for (size_t i = 0; i < t->n_chunks; i++) {
+        const struct chunk *c = t->chunks[i];
+        if (!c->is_file && !c->used)
+            diagnose(t, t->strict, c->src->path, c->line,
+                     "chunk '%s' is defined but never used", c->name);
+    }
+}
+
+/* ---- expanding ----------------------------------------------------- */
+
+struct output {
+    struct buffer text;
+    struct buffer indent;     /* blanks of the references we are inside */
+    bool line_directives, too_big;
+    const char *sync_path;    /* where the compiler thinks the next line is */
+    size_t sync_line;
+};
+
+static void emit_line(struct output *out, const char *path, size_t number,
+                      struct span line)
+{
+    if (out->line_directives && (out->sync_path != path || out->sync_line != number)) {
+        char directive[32];
+        snprintf(directive, sizeof directive, "#line %zu \"", number);
+        buffer_add_str(&out->text, directive);
+        for (const char *p = path; *p; p++) {
+            if (*p == '"' || *p == '\\')
+                buffer_add(&out->text, "\\", 1);
+            buffer_add(&out->text, p, 1);
+        }
+        buffer_add_str(&out->text, "\"\n");
+    }
+    if (!is_blank(line)) /* blank lines stay free of trailing blanks */
+        buffer_add(&out->text, out->indent.data, out->indent.len);
+    buffer_add(&out->text, line.text, line.len);
+    buffer_add(&out->text, "\n", 1);
+    out->sync_path = path;
+    out->sync_line = number + 1;
+    out->too_big = out->text.len > MAX_OUTPUT_BYTES;
+}
+
+static void emit_chunk(const struct tangle *t, struct output *out,
+                       const struct chunk *c)
+{
+    struct span indent, name;
+    for (size_t p = c->live_from; p < c->n_pieces; p++) {
+        const struct piece *pc = &c->pieces[p];
+        for (size_t i = pc->first; i < pc->first + pc->count && !out->too_big; i++) {
+            if (!parse_reference(pc->src->lines[i], &indent, &name)) {
+                emit_line(out, pc->src->path, i + 1, pc->src->lines[i]);
+                continue;
+            }
+            size_t outer = out->indent.len;
+            buffer_add(&out->indent, indent.text, indent.len);
+            out->too_big = out->indent.len > MAX_OUTPUT_BYTES;
+            emit_chunk(t, out, find_chunk(t, false, name.text, name.len));
+            out->indent.len = outer;
+        }
+    }
+}
+
+static bool ends_with(const char *s, const char *suffix)
+{
+    size_t n = strlen(s), k = strlen(suffix);
+    return n >= k && strcmp(s + n - k, suffix) == 0;
+}
+
+static struct buffer generate_file(struct tangle *t, const struct chunk *root)
+{
+    struct output out = {0};
+    out.line_directives = t->line_directives &&
+                          (ends_with(root->name, ".c") || ends_with(root->name, ".h"));
+    emit_chunk(t, &out, root);
+    if (out.too_big)
+        diagnose(t, true, root->src->path, root->line,
+                 "file '%s' would be larger than %zu bytes", root->name, MAX_OUTPUT_BYTES);
+    free(out.indent.data);
+    return out.text;
+}
+
+/* ---- writing ------------------------------------------------------- */
+
+static bool file_has_bytes(const char *path, const struct buffer *text)
+{
+    char *old;
+    size_t len;
+    bool same = read_whole_file(path, &old, &len) == 0 && len == text->len &&
+                (len == 0 || memcmp(old, text->data, len) == 0);
+    free(old);
+    return same;
+}
+
+/* mkdir -p for every directory in front of the last '/' of PATH. */
+static int make_parent_dirs(char *path)
+{
+    int err = 0;
+    for (char *p = strchr(path + 1, '/'); p && !err; p = strchr(p + 1, '/')) {
+        *p = '\0';
+        if (mkdir(path, 0777) != 0 && errno != EEXIST)
+            err = errno;
+        *p = '/';
+    }
+    return err;
+}
+
+static int write_all(int fd, const struct buffer *text)
+{
+    for (size_t done = 0; done < text->len;) {
+        ssize_t n = write(fd, text->data + done, text->len - done);
+        if (n < 0 && errno != EINTR)
+            return errno;
+        done += n > 0 ? (size_t)n : 0;
+    }
+    return 0;
+}
+
+/* Writes a temporary file beside PATH and renames it over PATH, so that
+   nobody ever sees half a file. */
+static int replace_file(const char *path, const struct buffer *text)
+{
+    struct buffer tmp = {0};
+    buffer_add(&tmp, path, (size_t)(strrchr(path, '/') + 1 - path));
+    buffer_add_str(&tmp, ".tangle-XXXXXX");
+    char *tmp_path = buffer_take_string(&tmp);
+    int fd = mkstemp(tmp_path);
+    int err = fd < 0 ? errno : write_all(fd, text);
+    if (fd >= 0 && !err && fchmod(fd, 0644) != 0)
+        err = errno;
+    if (fd >= 0 && close(fd) != 0 && !err)
+        err = errno;
+    if (!err && rename(tmp_path, path) != 0)
+        err = errno;
+    if (err && fd >= 0)
+        unlink(tmp_path);
+    free(tmp_path);
+    return err;
+}
+
+static void write_if_changed(struct tangle *t, const char *relative,
+                             const struct buffer *text)
+{
+    struct buffer b = {0};
+    buffer_add_str(&b, t->outdir);
+    buffer_add_str(&b, ends_with(t->outdir, "/") ? "" : "/");
+    buffer_add_str(&b, relative);
+    char *path = buffer_take_string(&b);
+    if (!file_has_bytes(path, text)) {
+        int err = make_parent_dirs(path);
+        if (!err)
+            err = replace_file(path, text);
+        if (err)
+            diagnose(t, true, path, 0, "cannot write: %s", strerror(err));
+    }
+    free(path);
+}
+
+/* Builds every file in memory first: an error anywhere writes nothing. */
+static void write_outputs(struct tangle *t)
+{
+    struct buffer *texts = check_alloc(calloc(t->n_chunks + 1, sizeof *texts));
+    for (size_t i = 0; i < t->n_chunks; i++)
+        if (t->chunks[i]->is_file)
+            texts[i] = generate_file(t, t->chunks[i]);
+    for (size_t i = 0; i < t->n_chunks && t->errors == 0; i++)
+        if (t->chunks[i]->is_file)
+            write_if_changed(t, t->chunks[i]->name, &texts[i]);
+    for (size_t i = 0; i < t->n_chunks; i++)
+        free(texts[i].data);
+    free(texts);
+}
+
+/* ---- main ---------------------------------------------------------- */
+
+static void free_tangle(struct tangle *t)
+{
+    for (size_t i = 0; i < t->n_chunks; i++) {
+        free(t->chunks[i]->name);
+        free(t->chunks[i]->pieces);
+        free(t->chunks[i]);
+    }
+    for (size_t i = 0; i < t->n_sources; i++) {
+        free(t->sources[i].text);
+        free(t->sources[i].lines);
+    }
+    free(t->chunks);
+    free(t->slots);
+    free(t->sources);
+}
+
+enum parsed { OPTIONS_OK, OPTIONS_HELP, OPTIONS_BAD };
+
+static enum parsed parse_options(int argc, char **argv, struct tangle *t,
+                                 char **inputs, size_t *n_inputs)
+{
+    bool only_inputs = false;
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        if (only_inputs || a[0] != '-' || a[1] == '\0')
+            inputs[(*n_inputs)++] = argv[i];
+        else if (strcmp(a, "--") == 0)
+            only_inputs = true;
+        else if (strcmp(a, "--line") == 0)
+            t->line_directives = true;
+        else if (strcmp(a, "--strict") == 0)
+            t->strict = true;
+        else if (strcmp(a, "-o") == 0 && i + 1 < argc && argv[i + 1][0] != '\0')
+            t->outdir = argv[++i];
+        else
+            return strcmp(a, "--help") == 0 ? OPTIONS_HELP : OPTIONS_BAD;
+    }
+    return t->outdir && *n_inputs > 0 ? OPTIONS_OK : OPTIONS_BAD;
+}
+
+int main(int argc, char **argv)
+{
+    static const char usage[] =
+        "usage: tangle [--line] [--strict] -o OUTDIR CHAPTER.md...\n";
+    struct tangle t = {0};
+    size_t n_inputs = 0;
+    char **inputs = check_alloc(calloc((size_t)argc, sizeof *inputs));
+    enum parsed parsed = parse_options(argc, argv, &t, inputs, &n_inputs);
+    if (parsed == OPTIONS_OK) {
+        load_sources(&t, inputs, n_inputs);
+        check_references(&t);
+        if (t.errors == 0)
+            write_outputs(&t);
+    } else {
+        fputs(usage, parsed == OPTIONS_HELP ? stdout : stderr);
+    }
+    free_tangle(&t);
+    free(inputs);
+    return parsed == OPTIONS_BAD ? 2 : t.errors ? 1 : 0;
+}
