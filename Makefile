@@ -54,7 +54,7 @@ suites_upto = $(foreach n,$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS)),$(wildcard
 previous = $(lastword $(filter-out $(1),$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS))))
 
 .PHONY: all test deps src figures charts book clean check-src check-figures \
-        check-book test-tangle tools benches
+        check-book check-lines test-tangle tools benches
 
 all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures benches book
 
@@ -209,7 +209,12 @@ test-tangle: $(B)/test/tangle $(TANGLE)
 	@echo "== the tangler's suite"
 	TANGLE=$(TANGLE) CK_DEFAULT_TIMEOUT=60 $(B)/test/tangle
 
-test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures check-book
+# A syntax error typed into chapter 01 must be reported at its Markdown line.
+check-lines: $(TANGLE) | deps
+	@sh tools/check_line_directives.sh $(TANGLE) chapters/01-camera.md 'double half_width = tan('
+
+test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures check-book \
+      check-lines
 	@echo "make test: all passed"
 
 clean:

@@ -1,52 +1,49 @@
 /*
  * tangle - extract the program of a literate book from its chapters.
  *
- * USAGE
- *   tangle [--line] [--strict] -o OUTDIR CHAPTER.md...
- *
+ * USAGE: tangle [--line] [--strict] -o OUTDIR CHAPTER.md...
  *   Reads the chapters in the order given and writes every root file they
  *   define below OUTDIR, creating directories as needed.  A file is only
- *   rewritten when its bytes change, so make does not rebuild needlessly;
+ *   rewritten when its bytes change (so make does not rebuild needlessly);
  *   other files in OUTDIR are left alone.
- *     --line     emit #line directives into .c and .h outputs, so that the
- *                compiler reports errors at CHAPTER.md:LINE
- *     --strict   a chunk that no root file uses is an error, not a warning
- *     --help     print the usage
+ *   --line    emit #line directives into .c and .h outputs, so that the
+ *             compiler reports errors at CHAPTER.md:LINE
+ *   --strict  a chunk that no root file uses is an error, not a warning
+ *   --help    print the usage
  *
  * CODE BLOCKS
  *   A fence is 3 or more backticks or tildes at column 0, closed by a line
- *   at column 0 holding at least as many of the same character and nothing
- *   else but blanks.  A block is program code only when its info string is
- *   a pandoc attribute list with chunk= or file=; other blocks are skipped.
+ *   at column 0 of at least as many of the same character and nothing else
+ *   but blanks.  A block is program code only when its info string is a
+ *   pandoc attribute list with chunk= or file=; other blocks are skipped.
  *     ```{.c file="vec.h"}                root file, written to OUTDIR/vec.h
  *     ```{.c chunk="vector ops"}          first definition of a named chunk
  *     ```{.c chunk="vector ops" .append}  adds lines at the end of the body
  *     ```{.c chunk="shade" .replace}      replaces the whole body so far
- *   Inside the braces: .class, #id, key="value" (with \" and \\) and
- *   key=value.  .append and .replace work for files too.  A file path must
- *   stay inside OUTDIR ("a/../b.c" means "b.c").
+ *   Braces hold .class, #id, key="value" (with \" and \\) and key=value.
+ *   .append and .replace work for files too.  A file path must stay inside
+ *   OUTDIR ("a/../b.c" means "b.c").
  *
  * REFERENCES
  *   A code line holding only <<name>> (blanks around it allowed) expands to
  *   the body of chunk 'name', each line prefixed with the blanks in front
  *   of the reference (blank lines get no prefix).  References nest up to
- *   1000 levels deep.  "<<" anywhere else in a line is plain text.
+ *   1000 deep.  "<<" anywhere else in a line is plain text.
  *
  * LINE DIRECTIVES
  *   With --line, '#line N "CHAPTER"' is written whenever the next line of a
  *   .c or .h output does not directly follow the previous one in the same
  *   chapter: before every piece of a definition and after every reference.
  *
- * DIAGNOSTICS
- *   "CHAPTER:LINE: error: MESSAGE" on stderr.  Everything is checked before
- *   anything is written; after an error nothing is written and the exit
- *   status is 1.  Errors: unreadable chapter, unterminated fence, malformed
+ * DIAGNOSTICS: "CHAPTER:LINE: error: MESSAGE" on stderr, exit status 1.
+ *   Everything is checked before anything is written; after an error
+ *   nothing is written.  Errors: unreadable chapter, unclosed fence, bad
  *   attributes, chunk= with file=, .append with .replace, empty name or
  *   path, path absolute or leaving OUTDIR, second definition without
- *   .append/.replace, .append/.replace of something undefined, reference to
- *   an undefined chunk, cycle of references, nesting deeper than 1000, an
- *   output over 64 MiB, unwritable output.  A chunk no root file reaches
- *   gets a warning (an error with --strict).  Bad usage exits with 2.
+ *   .append/.replace, .append/.replace of something undefined, reference
+ *   to an undefined chunk, cycle of references, nesting deeper than 1000,
+ *   an output over 64 MiB, unwritable output.  A chunk no root file
+ *   reaches gets a warning (an error with --strict).  Bad usage exits 2.
  */
 #include <errno.h>
 #include <stdarg.h>
@@ -149,13 +146,10 @@ static char *buffer_take_string(struct buffer *b)
     return b->data;
 }
 
-/* LINE 0 means the message is about the whole file. */
-static void diagnose(struct tangle *t, bool is_error, const char *path,
-                     size_t line, const char *fmt, ...)
-    __attribute__((format(printf, 5, 6)));
-
-static void diagnose(struct tangle *t, bool is_error, const char *path,
-                     size_t line, const char *fmt, ...)
+/* Prints PATH:LINE: error: ... (LINE 0: about the whole file). */
+static void __attribute__((format(printf, 5, 6)))
+diagnose(struct tangle *t, bool is_error, const char *path, size_t line,
+         const char *fmt, ...)
 {
     va_list ap;
     const char *kind = is_error ? "error" : "warning";
@@ -366,19 +360,20 @@ static char *clean_path(const char *path, const char **why)
     *why = path[0] == '/' ? "is absolute"
          : (!*last || !strcmp(last, ".") || !strcmp(last, "..")) ? "does not name a file"
          : NULL;
-    char *out = copy_string(path, strlen(path));
+    char *out = check_alloc(malloc(strlen(path) + 1));
     size_t n = 0; /* out[0..n) is the clean path so far */
     for (const char *p = path; *p && !*why; p += *p == '/') {
         size_t len = strcspn(p, "/");
         if (len == 2 && p[0] == '.' && p[1] == '.') {
-            *why = n == 0 ? "leaves the output directory" : NULL;
+            if (n == 0)
+                *why = "leaves the output directory";
             while (n > 0 && out[n - 1] != '/')
                 n--;
             n -= n > 0; /* and the slash in front of the dropped component */
         } else if (len > 0 && !(len == 1 && p[0] == '.')) {
             if (n > 0)
                 out[n++] = '/';
-            memmove(out + n, p, len);
+            memcpy(out + n, p, len);
             n += len;
         }
         p += len;
@@ -504,12 +499,12 @@ static void load_sources(struct tangle *t, char **paths, size_t n)
         size_t len;
         s->path = paths[i];
         int err = read_whole_file(s->path, &s->text, &len);
-        if (err)
+        if (err) {
             diagnose(t, true, s->path, 0, "cannot read: %s", strerror(err));
-        else
-            split_lines(s, len);
-        if (!err)
-            parse_source(t, s);
+            continue;
+        }
+        split_lines(s, len);
+        parse_source(t, s);
     }
 }
 
@@ -682,7 +677,7 @@ static struct buffer generate_file(struct tangle *t, const struct chunk *root)
 
 static bool file_has_bytes(const char *path, const struct buffer *text)
 {
-    char *old;
+    char *old = NULL;
     size_t len;
     bool same = read_whole_file(path, &old, &len) == 0 && len == text->len &&
                 (len == 0 || memcmp(old, text->data, len) == 0);
@@ -724,7 +719,7 @@ static int replace_file(const char *path, const struct buffer *text)
     char *tmp_path = buffer_take_string(&tmp);
     int fd = mkstemp(tmp_path);
     int err = fd < 0 ? errno : write_all(fd, text);
-    if (fd >= 0 && !err && fchmod(fd, 0644) != 0)
+    if (fd >= 0 && !err && fchmod(fd, 0644) != 0) /* mkstemp made it 0600 */
         err = errno;
     if (fd >= 0 && close(fd) != 0 && !err)
         err = errno;

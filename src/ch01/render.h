@@ -1,0 +1,22 @@
+/* render.h: tracing rays and rendering an image (chapter 01). */
+#ifndef RENDER_H
+#define RENDER_H
+
+#include "image.h"
+#include "scene.h"
+
+/* Counts of the work done, for --stats. */
+typedef struct {
+    long long primary_rays;
+} render_stats;
+
+/* The colour of the background in the unit direction dir. */
+vec3 background_color(const background *bg, vec3 dir);
+
+/* The linear colour seen along the ray r. */
+vec3 trace(const scene *s, ray r, render_stats *stats);
+
+/* Renders s into img, which must be s->cam.width by s->cam.height. */
+void render(const scene *s, image *img, render_stats *stats);
+
+#endif
