@@ -180,14 +180,18 @@ check-src: $(foreach n,$(NUMS),check-src-ch$(n))
 check-figures: $(foreach n,$(NUMS),check-figures-ch$(n))
 
 # ---------------------------------------------------------------- charts
-# bench/chNN_x.c writes CSV; bench/chNN_x.gp draws figures/chNN-x.svg from it.
+# bench/chNN_x.c writes figures/chNN-x.csv; bench/chNN_x.gp draws figures/chNN-x*.svg
+# from it (gnuplot gets csv= the CSV and stem= figures/chNN-x).
+# One chart: make chart-ch02_sphere. All of them, one after another so that
+# no two benchmarks share the machine: make charts.
+chart-%: $(B)/bench/% | deps
+	$< > figures/$(subst _,-,$*).csv.tmp
+	mv figures/$(subst _,-,$*).csv.tmp figures/$(subst _,-,$*).csv
+	gnuplot -e "csv='figures/$(subst _,-,$*).csv'; stem='figures/$(subst _,-,$*)'" bench/$*.gp
+	@echo "wrote figures/$(subst _,-,$*)*.svg"
+
 charts: deps $(BENCHES)
-	@for b in $(BENCHES); do \
-	  name=$$(basename $$b); csv=figures/$$(echo $$name | sed 's/_/-/').csv; \
-	  echo "$$b > $$csv"; $$b > $$csv.tmp && mv $$csv.tmp $$csv || exit 1; \
-	  gnuplot -e "csv='$$csv'; out='$${csv%.csv}.svg'" bench/$$name.gp || exit 1; \
-	  echo "wrote $${csv%.csv}.svg"; \
-	done
+	@for b in $(notdir $(BENCHES)); do $(MAKE) --no-print-directory chart-$$b || exit 1; done
 
 # ---------------------------------------------------------------- book
 CHARTS := $(wildcard figures/ch[0-9][0-9]-*.svg)

@@ -1,9 +1,9 @@
 # ch01_srgb.gp: figures/ch01-srgb.svg from the CSV of bench/ch01_srgb.c.
-#   gnuplot -e "csv='figures/ch01-srgb.csv'; out='figures/ch01-srgb.svg'" bench/ch01_srgb.gp
+#   gnuplot -e "csv='figures/ch01-srgb.csv'; stem='figures/ch01-srgb'" bench/ch01_srgb.gp
 # x: time per encoded channel; y: share of inputs that get a wrong 8-bit code.
 # A method with no wrong code is drawn on the bottom edge (a log axis has no 0).
 set terminal svg size 760,500 font "Helvetica,13" background "white"
-set output out
+set output stem.'.svg'
 set datafile separator ","
 set logscale xy
 set xrange [0.8:30]

@@ -386,7 +386,7 @@ static void expect_error(const char *text, size_t length, int line, int col,
 
 START_TEST(test_scene_rejects_unknown_keywords)
 {
-    EXPECT_ERROR("camera fov 60\n  sphere 1\n", 2, 3, "expected a statement keyword, found 'sphere'");
+    EXPECT_ERROR("camera fov 60\n  bogus 1\n", 2, 3, "expected a statement keyword, found 'bogus'");
     EXPECT_ERROR("camera zoom 2", 1, 8, "found 'zoom'");
     EXPECT_ERROR("camera", 1, 7, "found end of line");
 }

@@ -19,4 +19,5 @@ vec3 trace(const scene *s, ray r, render_stats *stats);
 /* Renders s into img, which must be s->cam.width by s->cam.height. */
 void render(const scene *s, image *img, render_stats *stats);
 
+
 #endif

@@ -114,6 +114,7 @@ static bool read_color(parser *p, const char *what, vec3 *out)
     return true;
 }
 
+
 static bool parse_camera(parser *p, scene *s)
 {
     if (!next_token(p))

@@ -1,0 +1,330 @@
+/* scene.c: scene defaults and the scene file parser (chapter 01). */
+#include "scene.h"
+
+#include <errno.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "image.h"
+
+typedef struct {
+    const char *name;        /* file name, for errors */
+    const char *line, *end;  /* current line [line, end) */
+    const char *next;        /* where the next token search starts */
+    int line_number;
+    const char *token;       /* last token read: [token, token + token_length) */
+    int token_length;
+    scene_error *err;
+} parser;
+
+static int column_of(const parser *p, const char *at) { return (int)(at - p->line) + 1; }
+
+static bool fail_at(parser *p, const char *at, const char *format, ...)
+{
+    scene_error *err = p->err;
+    snprintf(err->file, sizeof err->file, "%s", p->name);
+    err->line = p->line_number;
+    err->col = column_of(p, at);
+    va_list args;
+    va_start(args, format);
+    vsnprintf(err->message, sizeof err->message, format, args);
+    va_end(args);
+    return false;
+}
+
+/* "EXPECTATION, found 'TOKEN'", located at the token just read. */
+static bool expected(parser *p, const char *format, ...)
+{
+    char what[160];
+    va_list args;
+    va_start(args, format);
+    vsnprintf(what, sizeof what, format, args);
+    va_end(args);
+    if (p->token_length == 0)
+        return fail_at(p, p->token, "%s, found end of line", what);
+    int shown = p->token_length > 40 ? 40 : p->token_length;
+    return fail_at(p, p->token, "%s, found '%.*s%s'", what, shown, p->token,
+                   shown < p->token_length ? "..." : "");
+}
+
+static bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
+
+static bool next_token(parser *p)
+{
+    const char *c = p->next;
+    while (c < p->end && is_blank(*c))
+        c++;
+    p->token = c;
+    p->token_length = 0;
+    if (c == p->end || *c == '#')
+        return false;
+    while (c < p->end && !is_blank(*c))
+        c++;
+    p->token_length = (int)(c - p->token);
+    p->next = c;
+    return true;
+}
+
+static bool token_is(const parser *p, const char *word)
+{
+    return (size_t)p->token_length == strlen(word) &&
+           memcmp(p->token, word, (size_t)p->token_length) == 0;
+}
+
+/* Reads the next token as a finite number; what names it in errors. */
+static bool read_number(parser *p, const char *what, double *out)
+{
+    char text[64];
+    if (!next_token(p) || p->token_length >= (int)sizeof text)
+        return expected(p, "expected %s", what);
+    memcpy(text, p->token, (size_t)p->token_length);
+    text[p->token_length] = '\0';
+    char *stop;
+    double value = strtod(text, &stop);
+    if (stop == text || *stop != '\0')
+        return expected(p, "expected %s", what);
+    if (!isfinite(value))
+        return expected(p, "expected %s (a finite number)", what);
+    *out = value;
+    return true;
+}
+
+static bool read_int(parser *p, const char *what, long *out)
+{
+    double value;
+    if (!read_number(p, what, &value))
+        return false;
+    if (value != floor(value) || fabs(value) > 1e15) /* 1e15: exact in a double */
+        return expected(p, "expected %s (a whole number)", what);
+    *out = (long)value;
+    return true;
+}
+
+static bool read_color(parser *p, const char *what, vec3 *out)
+{
+    double c[3];
+    for (int k = 0; k < 3; k++) {
+        if (!read_number(p, what, &c[k]))
+            return false;
+        if (c[k] < 0)
+            return expected(p, "expected %s of at least 0", what);
+    }
+    *out = (vec3){c[0], c[1], c[2]};
+    return true;
+}
+
+#define SCENE_MAX_COORDINATE 1e100 /* squares of coordinates stay finite */
+
+static bool read_point(parser *p, const char *what, vec3 *out)
+{
+    double c[3];
+    for (int k = 0; k < 3; k++) {
+        if (!read_number(p, what, &c[k]))
+            return false;
+        if (fabs(c[k]) > SCENE_MAX_COORDINATE)
+            return expected(p, "expected %s between -1e100 and 1e100", what);
+    }
+    *out = (vec3){c[0], c[1], c[2]};
+    return true;
+}
+
+bool scene_add_sphere(scene *s, sphere sp)
+{
+    if (s->sphere_count == s->sphere_capacity) {
+        if (s->sphere_capacity >= SCENE_MAX_SPHERES)
+            return false;
+        int capacity = s->sphere_capacity ? 2 * s->sphere_capacity : 8;
+        sphere *grown = realloc(s->spheres, (size_t)capacity * sizeof *grown);
+        if (grown == NULL)
+            return false;
+        s->spheres = grown;
+        s->sphere_capacity = capacity;
+    }
+    s->spheres[s->sphere_count++] = sp;
+    return true;
+}
+
+static bool parse_camera(parser *p, scene *s)
+{
+    if (!next_token(p))
+        return expected(p, "expected a camera setting such as 'fov'");
+    do {
+        if (token_is(p, "fov")) {
+            double fov;
+            if (!read_number(p, "a field of view in degrees", &fov))
+                return false;
+            if (!(fov > 0 && fov < 180))
+                return expected(p, "expected a field of view between 0 and 180 degrees");
+            s->cam.fov_deg = fov;
+        }
+        else
+            return expected(p, "expected a camera setting such as 'fov'");
+    } while (next_token(p));
+    return true;
+}
+
+static bool read_side(parser *p, const char *what, int *out)
+{
+    long n = 0;
+    if (!read_int(p, what, &n))
+        return false;
+    if (n < 1 || n > IMAGE_MAX_SIDE)
+        return expected(p, "expected %s from 1 to %d pixels", what, IMAGE_MAX_SIDE);
+    *out = (int)n;
+    return true;
+}
+
+static bool parse_image(parser *p, scene *s)
+{
+    int w, h;
+    if (!read_side(p, "an image width", &w) || !read_side(p, "an image height", &h))
+        return false;
+    if ((long)w * h > IMAGE_MAX_PIXELS)
+        return expected(p, "expected at most %ld pixels in all (%dx%d is %ld)",
+                        IMAGE_MAX_PIXELS, w, h, (long)w * h);
+    s->cam.width = w;
+    s->cam.height = h;
+    return true;
+}
+
+static bool parse_background(parser *p, scene *s)
+{
+    const char *rest = p->next;
+    if (next_token(p) && token_is(p, "gradient")) {
+        s->bg.kind = BACKGROUND_GRADIENT;
+        return read_color(p, "a bottom colour component", &s->bg.bottom) &&
+               read_color(p, "a top colour component", &s->bg.top);
+    }
+    p->next = rest; /* not "gradient": read that token again as a number */
+    s->bg.kind = BACKGROUND_SOLID;
+    return read_color(p, "a colour component", &s->bg.bottom);
+}
+
+static bool read_radius(parser *p, double *radius)
+{
+    if (!read_number(p, "a radius", radius))
+        return false;
+    if (!(*radius >= 1e-100 && *radius <= 1e100))
+        return expected(p, "expected a radius between 1e-100 and 1e100");
+    return true;
+}
+
+static bool parse_sphere(parser *p, scene *s)
+{
+    sphere sp = {.center = {0, 0, 5}, .radius = 1, .color = {0.8, 0.8, 0.8}};
+    while (next_token(p)) {
+        if (token_is(p, "center")) {
+            if (!read_point(p, "a centre coordinate", &sp.center))
+                return false;
+        } else if (token_is(p, "radius")) {
+            if (!read_radius(p, &sp.radius))
+                return false;
+        } else if (token_is(p, "color")) {
+            if (!read_color(p, "a colour component", &sp.color))
+                return false;
+        }
+        else
+            return expected(p, "expected a sphere setting (center, radius, color)");
+    }
+    if (!scene_add_sphere(s, sp))
+        return fail_at(p, p->line, "more than %d spheres", SCENE_MAX_SPHERES);
+    return true;
+}
+
+void scene_init(scene *s)
+{
+    memset(s, 0, sizeof *s);
+    s->cam.fov_deg = 60.0;
+    s->cam.width = 320;
+    s->cam.height = 240;
+    s->bg.kind = BACKGROUND_GRADIENT;
+    s->bg.bottom = (vec3){1.0, 1.0, 1.0};
+    s->bg.top = (vec3){0.3, 0.5, 1.0};
+}
+
+void scene_free(scene *s)
+{
+    (void)s; /* nothing is allocated yet */
+    free(s->spheres);
+    s->spheres = NULL;
+    s->sphere_count = s->sphere_capacity = 0;
+}
+
+typedef bool (*statement_parser)(parser *p, scene *s);
+
+static const struct {
+    const char *keyword;
+    statement_parser parse;
+} statements[] = {
+    {"camera", parse_camera},
+    {"image", parse_image},
+    {"background", parse_background},
+    {"sphere", parse_sphere},
+};
+
+static bool parse_statement(parser *p, scene *s)
+{
+    if (!next_token(p))
+        return true; /* a blank line or a comment */
+    for (size_t k = 0; k < sizeof statements / sizeof statements[0]; k++) {
+        if (token_is(p, statements[k].keyword)) {
+            if (!statements[k].parse(p, s))
+                return false;
+            return next_token(p) ? expected(p, "expected end of line") : true;
+        }
+    }
+    return expected(p, "expected a statement keyword");
+}
+
+bool scene_parse(scene *s, const char *text, size_t length, const char *name,
+                 scene_error *err)
+{
+    parser p = {.name = name, .err = err};
+    const char *end = text + length;
+    const char *line = text;
+    while (line < end) {
+        const char *eol = memchr(line, '\n', (size_t)(end - line));
+        if (eol == NULL)
+            eol = end;
+        p.line = p.next = line;
+        p.end = eol;
+        p.line_number++;
+        const char *nul = memchr(line, '\0', (size_t)(eol - line));
+        if (nul != NULL)
+            return fail_at(&p, nul, "unexpected NUL byte: this is not a text file");
+        if (!parse_statement(&p, s))
+            return false;
+        line = eol < end ? eol + 1 : end;
+    }
+    return true;
+}
+
+static bool file_error(scene_error *err, const char *path, const char *message)
+{
+    snprintf(err->file, sizeof err->file, "%s", path);
+    err->line = err->col = 0;
+    snprintf(err->message, sizeof err->message, "%s", message);
+    return false;
+}
+
+bool scene_load(scene *s, const char *path, scene_error *err)
+{
+    FILE *in = fopen(path, "rb");
+    if (in == NULL)
+        return file_error(err, path, strerror(errno));
+    char *text = malloc(SCENE_MAX_BYTES + 1);
+    size_t length = text ? fread(text, 1, SCENE_MAX_BYTES + 1, in) : 0;
+    bool ok = false;
+    if (text == NULL)
+        file_error(err, path, "out of memory");
+    else if (ferror(in))
+        file_error(err, path, strerror(errno));
+    else if (length > SCENE_MAX_BYTES)
+        file_error(err, path, "larger than a scene file may be (16 MiB)");
+    else
+        ok = scene_parse(s, text, length, path, err);
+    free(text);
+    fclose(in);
+    return ok;
+}

@@ -1,0 +1,380 @@
+/* ch02_spheres.c: ray-sphere intersection, the nearest hit, and the sphere
+ * statement (chapter 02).
+ *
+ * Expected roots are worked out by hand (stated beside each) or computed by
+ * this file's own long double version of the robust form. */
+#include <check.h>
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <string.h>
+
+#include "render.h"
+#include "scene.h"
+#include "sphere.h"
+
+typedef int (*roots_fn)(vec3, double, ray, double[2]);
+
+static const struct {
+    const char *name;
+    roots_fn roots;
+} forms[] = {
+    {"geometric", sphere_roots_geometric},
+    {"quadratic", sphere_roots_quadratic},
+    {"robust", sphere_roots_robust},
+    {"geometric float", sphere_roots_geometric_float},
+    {"quadratic float", sphere_roots_quadratic_float},
+    {"robust float", sphere_roots_robust_float},
+};
+#define N_FORMS (int)(sizeof forms / sizeof forms[0])
+
+static const vec3 ORIGIN = {0, 0, 0};
+static const vec3 PLUS_Z = {0, 0, 1};
+
+static uint64_t rng = 12345; /* fixed seed: the same rays every run */
+
+static double uniform(double lo, double hi)
+{
+    rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
+    return lo + (hi - lo) * (double)(rng >> 11) / 9007199254740992.0;
+}
+
+static vec3 random_unit(void)
+{
+    vec3 v;
+    do
+        v = (vec3){uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
+    while (vec3_dot(v, v) > 1 || vec3_dot(v, v) < 1e-6);
+    return vec3_normalize(v);
+}
+
+/* ------------------------------------------------------------ roots */
+
+START_TEST(test_two_hits_at_4_and_6)
+{
+    /* Unit sphere 5 ahead: enters at 4, leaves at 6, exact in float too. */
+    for (int f = 0; f < N_FORMS; f++) {
+        double t[2];
+        ck_assert_int_eq(forms[f].roots((vec3){0, 0, 5}, 1, (ray){ORIGIN, PLUS_Z}, t), 2);
+        ck_assert_msg(t[0] == 4 && t[1] == 6, "%s: %g %g", forms[f].name, t[0], t[1]);
+    }
+}
+END_TEST
+
+START_TEST(test_tangent_ray_gives_a_double_root)
+{
+    /* The line x = 1 touches the unit sphere at (1, 0, 5). */
+    for (int f = 0; f < N_FORMS; f++) {
+        double t[2];
+        ck_assert_int_eq(forms[f].roots((vec3){0, 0, 5}, 1, (ray){{1, 0, 0}, PLUS_Z}, t), 2);
+        ck_assert_msg(t[0] == 5 && t[1] == 5, "%s: %g %g", forms[f].name, t[0], t[1]);
+    }
+}
+END_TEST
+
+START_TEST(test_ray_beside_the_sphere_misses)
+{
+    for (int f = 0; f < N_FORMS; f++) {
+        double t[2];
+        ck_assert_int_eq(forms[f].roots((vec3){0, 0, 5}, 1, (ray){{1.5, 0, 0}, PLUS_Z}, t), 0);
+    }
+}
+END_TEST
+
+START_TEST(test_sphere_behind_the_origin_is_not_seen)
+{
+    sphere sp = {.center = {0, 0, -5}, .radius = 1};
+    double t[2], seen;
+    ck_assert_int_eq(sphere_roots_robust(sp.center, 1, (ray){ORIGIN, PLUS_Z}, t), 2);
+    ck_assert(t[0] == -6 && t[1] == -4);
+    ck_assert(!sphere_hit_t(&sp, (ray){ORIGIN, PLUS_Z}, 0, INFINITY, &seen));
+}
+END_TEST
+
+START_TEST(test_origin_inside_sees_the_far_side)
+{
+    sphere sp = {.center = {0, 0, 0}, .radius = 2, .color = {1, 1, 1}};
+    ray r = {ORIGIN, PLUS_Z};
+    double t;
+    ck_assert(sphere_hit_t(&sp, r, 0, INFINITY, &t));
+    ck_assert(t == 2); /* roots -2 and 2: the one in front */
+    hit h;
+    sphere_fill_hit(&sp, r, t, &h);
+    ck_assert(h.normal.x == 0 && h.normal.y == 0 && h.normal.z == 1); /* outward */
+}
+END_TEST
+
+START_TEST(test_roots_are_ordered)
+{
+    for (int k = 0; k < 2000; k++) {
+        vec3 c = vec3_scale(random_unit(), uniform(0, 20));
+        ray r = {vec3_scale(random_unit(), uniform(0, 20)), random_unit()};
+        for (int f = 0; f < N_FORMS; f++) {
+            double t[2];
+            if (forms[f].roots(c, uniform(0.1, 5), r, t) == 2)
+                ck_assert_msg(t[0] <= t[1], "%s: %g > %g", forms[f].name, t[0], t[1]);
+        }
+    }
+}
+END_TEST
+
+START_TEST(test_negative_d_squared_from_rounding_is_a_hit)
+{
+    /* Aimed exactly at the centre; found by search: |c|^2 - <c,d>^2 rounds
+     * to about -2.3e-13 in double instead of 0. */
+    vec3 c = {0.60000000000000009, 2.5, 45};
+    double n = sqrt(c.x * c.x + c.y * c.y + c.z * c.z);
+    vec3 d = {c.x / n, c.y / n, c.z / n};
+    double along = c.x * d.x + c.y * d.y + c.z * d.z;
+    double D2 = c.x * c.x + c.y * c.y + c.z * c.z - along * along;
+    ck_assert_msg(D2 < 0, "precondition: D^2 = %g should round below 0", D2);
+    ck_assert(isnan(sqrt(D2))); /* the sheet's D: every comparison with it is false */
+    for (int f = 0; f < 3; f++) { /* the double forms */
+        double t[2];
+        ck_assert_int_eq(forms[f].roots(c, 1, (ray){ORIGIN, d}, t), 2);
+        /* Head-on: t = |c| -+ 1. The naive forms err by about eps |c|^2 / r
+         * (the cancellation the chapter derives), the robust one by eps |c|. */
+        double tolerance = (f == 2 ? 8 : 4 * n) * DBL_EPSILON * n;
+        ck_assert_double_eq_tol(t[0], n - 1, tolerance);
+        ck_assert_double_eq_tol(t[1], n + 1, tolerance);
+    }
+}
+END_TEST
+
+/* ------------------------------------------------------------ where forms fail */
+
+/* The visible root of the robust form in long double; false on a miss.
+ * *gap: how far the ray's line passes from the silhouette, in radii. */
+static bool reference_t(vec3 c, double radius, ray r, long double *t, long double *gap)
+{
+    long double f[3] = {(long double)r.origin.x - c.x, (long double)r.origin.y - c.y,
+                        (long double)r.origin.z - c.z};
+    long double d[3] = {r.dir.x, r.dir.y, r.dir.z};
+    long double a = 0, beta = 0, perp2 = 0, ff = 0;
+    for (int k = 0; k < 3; k++)
+        a += d[k] * d[k], beta += f[k] * d[k], ff += f[k] * f[k];
+    for (int k = 0; k < 3; k++) {
+        long double p = f[k] - d[k] * beta / a;
+        perp2 += p * p;
+    }
+    long double rr = (long double)radius * radius, delta = rr - perp2;
+    *gap = fabsl(sqrtl(perp2) - radius) / radius;
+    if (delta < 0)
+        return false;
+    long double q = -beta - copysignl(sqrtl(a * delta), beta);
+    long double near = q / a, far = (ff - rr) / q;
+    long double t0 = fminl(near, far), t1 = fmaxl(near, far);
+    *t = t0 > 0 ? t0 : t1;
+    return *t > 0;
+}
+
+typedef struct {
+    int misclassified;
+    double max_rel_error;
+} form_score;
+
+/* A ray grazing the silhouette closer than this (in radii) may be called a
+ * hit or a miss: rounding the direction to float (2^-24 per component)
+ * already moves the line by up to 1e-4 radii at 10^3 radii; 2e-4 leaves a
+ * factor 2. The naive forms' band is eps D^2 / 2 = 0.03 radii there. */
+#define GRAZING 2e-4
+
+/* Rays from the origin over a disc of 1.2 radii around a unit sphere at D;
+ * misclassified counts the rays that are not grazing. */
+static form_score score_form(roots_fn roots, double D, int n_rays)
+{
+    form_score s = {0, 0};
+    vec3 axis = vec3_normalize((vec3){0.3, 0.4, 1.0});
+    vec3 c = vec3_scale(axis, D);
+    vec3 e1 = vec3_normalize((vec3){1.0, 0.0, -0.3});
+    vec3 e2 = {axis.y * e1.z - axis.z * e1.y, axis.z * e1.x - axis.x * e1.z,
+               axis.x * e1.y - axis.y * e1.x};
+    rng = 777;
+    for (int k = 0; k < n_rays; k++) {
+        double u = uniform(-1.2, 1.2), v = uniform(-1.2, 1.2);
+        ray r = {ORIGIN, vec3_normalize(vec3_add(c, vec3_add(vec3_scale(e1, u), vec3_scale(e2, v))))};
+        long double ref, gap;
+        bool ref_hit = reference_t(c, 1, r, &ref, &gap);
+        double t[2];
+        bool hit = roots(c, 1, r, t) == 2 && (t[0] > 0 || t[1] > 0);
+        if (hit != ref_hit) {
+            s.misclassified += gap > GRAZING;
+        } else if (hit) {
+            double seen = t[0] > 0 ? t[0] : t[1];
+            s.max_rel_error = fmax(s.max_rel_error, (double)fabsl((seen - ref) / ref));
+        }
+    }
+    return s;
+}
+
+START_TEST(test_naive_forms_fail_in_float_where_robust_holds)
+{
+    /* 10^3 radii: the chapter's chart shows the naive float forms failing. */
+    for (int f = 3; f < 5; f++) {
+        form_score s = score_form(forms[f].roots, 1e3, 4000);
+        ck_assert_msg(s.misclassified > 0 || s.max_rel_error > 1e-3,
+                      "%s: %d misclassified, max error %g", forms[f].name, s.misclassified,
+                      s.max_rel_error);
+    }
+    form_score robust = score_form(sphere_roots_robust_float, 1e3, 4000);
+    ck_assert_int_eq(robust.misclassified, 0);
+    ck_assert_msg(robust.max_rel_error < 1e-5, "robust float: %g", robust.max_rel_error);
+}
+END_TEST
+
+START_TEST(test_double_forms_are_exact_near_and_robust_far)
+{
+    for (int f = 0; f < 3; f++) {
+        form_score s = score_form(forms[f].roots, 10, 2000);
+        ck_assert_int_eq(s.misclassified, 0);
+        ck_assert_msg(s.max_rel_error < 1e-13, "%s: %g", forms[f].name, s.max_rel_error);
+    }
+    form_score far = score_form(sphere_roots_robust, 1e7, 2000);
+    ck_assert_int_eq(far.misclassified, 0);
+    ck_assert_msg(far.max_rel_error < 1e-14, "robust at 1e7: %g", far.max_rel_error);
+}
+END_TEST
+
+/* ------------------------------------------------------------ hits */
+
+START_TEST(test_normals_are_unit_and_outward)
+{
+    const double distances[] = {3, 1e3, 1e6};
+    for (int k = 0; k < 3; k++) {
+        sphere sp = {.center = vec3_scale(vec3_normalize((vec3){1, 2, 3}), distances[k]),
+                     .radius = 1};
+        for (int n = 0; n < 500; n++) {
+            vec3 aim = vec3_add(sp.center, vec3_scale(random_unit(), 0.9));
+            ray r = {ORIGIN, vec3_normalize(aim)};
+            double t;
+            ck_assert(sphere_hit_t(&sp, r, 0, INFINITY, &t));
+            hit h;
+            sphere_fill_hit(&sp, r, t, &h);
+            ck_assert_double_eq_tol(vec3_length(h.normal), 1.0, 4 * DBL_EPSILON);
+            ck_assert(vec3_dot(h.normal, vec3_sub(h.point, sp.center)) > 0);
+            ck_assert(vec3_dot(h.normal, r.dir) < 0); /* seen from outside: facing us */
+            /* The point is on the sphere to the ray's own rounding error. */
+            ck_assert_double_eq_tol(vec3_length(vec3_sub(h.point, sp.center)), 1.0,
+                                    8 * DBL_EPSILON * distances[k]);
+        }
+    }
+}
+END_TEST
+
+START_TEST(test_nearest_of_several_spheres_wins)
+{
+    scene s;
+    scene_init(&s);
+    const double zs[] = {10, 5, 20};
+    for (int k = 0; k < 3; k++)
+        ck_assert(scene_add_sphere(&s, (sphere){.center = {0, 0, zs[k]}, .radius = 1,
+                                               .color = {k, 0, 0}}));
+    render_stats stats = {0};
+    hit h;
+    ray r = {ORIGIN, PLUS_Z};
+    ck_assert(scene_intersect(&s, r, 0, INFINITY, &h, &stats));
+    ck_assert(h.t == 4 && h.color.x == 1); /* the sphere at 5, listed second */
+    ck_assert(!scene_intersect(&s, r, 0, 3, &h, &stats));
+    ck_assert(scene_intersect(&s, r, 4.5, INFINITY, &h, &stats));
+    ck_assert(h.t == 6); /* leaving the sphere at 5 */
+    ck_assert_int_eq(stats.sphere_tests, 9);
+    scene_free(&s);
+}
+END_TEST
+
+/* ------------------------------------------------------------ the statement */
+
+static bool parse(scene *s, const char *text, scene_error *err)
+{
+    scene_init(s);
+    return scene_parse(s, text, strlen(text), "test.scene", err);
+}
+
+START_TEST(test_sphere_statement_defaults_and_settings)
+{
+    scene s;
+    scene_error err;
+    ck_assert(parse(&s, "sphere\nsphere radius 2 color 0 0.5 1 center -1 2.5 1e3\n", &err));
+    ck_assert_int_eq(s.sphere_count, 2);
+    ck_assert(s.spheres[0].radius == 1 && s.spheres[0].center.z == 5);
+    ck_assert(s.spheres[1].radius == 2 && s.spheres[1].center.x == -1 &&
+              s.spheres[1].center.z == 1000 && s.spheres[1].color.z == 1);
+    scene_free(&s);
+    ck_assert_ptr_null(s.spheres);
+}
+END_TEST
+
+static void expect_error(const char *text, int line, int col, const char *part)
+{
+    scene s;
+    scene_error err;
+    ck_assert_msg(!parse(&s, text, &err), "accepted: %s", text);
+    ck_assert_msg(err.line == line && err.col == col, "'%s': %d:%d (%s), expected %d:%d", text,
+                  err.line, err.col, err.message, line, col);
+    ck_assert_msg(strstr(err.message, part) != NULL, "'%s': '%s' lacks '%s'", text, err.message,
+                  part);
+    scene_free(&s);
+}
+
+START_TEST(test_sphere_statement_rejects_bad_radii)
+{
+    expect_error("sphere radius 0", 1, 15, "radius between 1e-100 and 1e100, found '0'");
+    expect_error("sphere radius -1", 1, 15, "found '-1'");
+    expect_error("sphere radius nan", 1, 15, "finite");
+    expect_error("sphere radius inf", 1, 15, "finite");
+    expect_error("sphere radius 1e-200", 1, 15, "between 1e-100");
+    expect_error("sphere radius 1e200", 1, 15, "between 1e-100");
+    expect_error("sphere radius", 1, 14, "found end of line");
+}
+END_TEST
+
+START_TEST(test_sphere_statement_rejects_bad_centres_and_settings)
+{
+    expect_error("sphere center 1 nan 3", 1, 17, "finite");
+    expect_error("sphere center 1 2", 1, 18, "found end of line");
+    expect_error("sphere center 1 2 1e200", 1, 19, "between -1e100 and 1e100");
+    expect_error("sphere center 1 2 3 size 4", 1, 21, "expected a sphere setting");
+    expect_error("\n\nsphere color 1 -1 0", 3, 16, "at least 0");
+}
+END_TEST
+
+START_TEST(test_scene_add_sphere_grows)
+{
+    scene s;
+    scene_init(&s);
+    for (int k = 0; k < 1000; k++)
+        ck_assert(scene_add_sphere(&s, (sphere){.center = {k, 0, 0}, .radius = 1}));
+    ck_assert_int_eq(s.sphere_count, 1000);
+    ck_assert(s.spheres[999].center.x == 999);
+    scene_free(&s);
+}
+END_TEST
+
+Suite *ch02_spheres_suite(void)
+{
+    Suite *s = suite_create("ch02 spheres");
+    TCase *roots = tcase_create("formulas");
+    tcase_add_test(roots, test_two_hits_at_4_and_6);
+    tcase_add_test(roots, test_tangent_ray_gives_a_double_root);
+    tcase_add_test(roots, test_ray_beside_the_sphere_misses);
+    tcase_add_test(roots, test_sphere_behind_the_origin_is_not_seen);
+    tcase_add_test(roots, test_origin_inside_sees_the_far_side);
+    tcase_add_test(roots, test_roots_are_ordered);
+    tcase_add_test(roots, test_normals_are_unit_and_outward);
+    tcase_add_test(roots, test_nearest_of_several_spheres_wins);
+    suite_add_tcase(s, roots);
+
+    TCase *edges = tcase_create("edge cases");
+    tcase_add_test(edges, test_negative_d_squared_from_rounding_is_a_hit);
+    tcase_add_test(edges, test_naive_forms_fail_in_float_where_robust_holds);
+    tcase_add_test(edges, test_double_forms_are_exact_near_and_robust_far);
+    suite_add_tcase(s, edges);
+
+    TCase *bad = tcase_create("bad input");
+    tcase_add_test(bad, test_sphere_statement_defaults_and_settings);
+    tcase_add_test(bad, test_sphere_statement_rejects_bad_radii);
+    tcase_add_test(bad, test_sphere_statement_rejects_bad_centres_and_settings);
+    tcase_add_test(bad, test_scene_add_sphere_grows);
+    suite_add_tcase(s, bad);
+    return s;
+}
