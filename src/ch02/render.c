@@ -41,7 +41,8 @@ void render(const scene *s, image *img, render_stats *stats)
         for (int i = 0; i < img->width; i++) {
             ray r = camera_ray(&s->cam, i, j);
             stats->primary_rays++;
-            image_set(img, i, j, trace(s, r, stats));
+            vec3 c = trace(s, r, stats);
+            image_set(img, i, j, c);
         }
     }
 }

@@ -129,18 +129,29 @@ static bool read_point(parser *p, const char *what, vec3 *out)
     return true;
 }
 
+/* Room for one more element: returns items (moved if it had to grow), or
+ * NULL, leaving items as they were, at max or when memory runs out. */
+static void *grow_array(void *items, int count, int *capacity, int max, size_t size)
+{
+    if (count < *capacity)
+        return items;
+    if (*capacity >= max)
+        return NULL;
+    int wanted = *capacity ? 2 * *capacity : 8;
+    wanted = wanted < max ? wanted : max;
+    void *grown = realloc(items, (size_t)wanted * size);
+    if (grown != NULL)
+        *capacity = wanted;
+    return grown;
+}
+
 bool scene_add_sphere(scene *s, sphere sp)
 {
-    if (s->sphere_count == s->sphere_capacity) {
-        if (s->sphere_capacity >= SCENE_MAX_SPHERES)
-            return false;
-        int capacity = s->sphere_capacity ? 2 * s->sphere_capacity : 8;
-        sphere *grown = realloc(s->spheres, (size_t)capacity * sizeof *grown);
-        if (grown == NULL)
-            return false;
-        s->spheres = grown;
-        s->sphere_capacity = capacity;
-    }
+    sphere *grown = grow_array(s->spheres, s->sphere_count, &s->sphere_capacity,
+                               SCENE_MAX_SPHERES, sizeof sp);
+    if (grown == NULL)
+        return false;
+    s->spheres = grown;
     s->spheres[s->sphere_count++] = sp;
     return true;
 }
