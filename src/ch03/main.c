@@ -24,7 +24,7 @@ static const char DEFAULT_SCENE[] =
     "light directional direction -1 -1.5 1 intensity 0.35 0.38 0.45\n"
     "light point position -2.5 1.5 4 intensity 1.5 1.3 1.0 attenuation 1 0 0.15\n"
     "light spot position 1 4 6.4 direction -0.15 -1 0 angle 16 exponent 4 "
-    "intensity 1.3 1.3 1.2\n"
+    "intensity 0.9 0.9 0.8\n"
     ;
 
 typedef struct {
