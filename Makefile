@@ -42,6 +42,10 @@ TANGLE  := $(B)/tools/tangle
 CHAPTERS := $(sort $(wildcard chapters/[0-9][0-9]-*.md))
 NUMS     := $(foreach c,$(CHAPTERS),$(firstword $(subst -, ,$(notdir $(c)))))
 
+# link_meshes DIR DEPTH: scenes name meshes relative to themselves, so every
+# tangled scenes/ folder gets a link to the repository's meshes/ folder.
+link_meshes = if [ -d $(1)/scenes ]; then ln -sfn $(2)meshes $(1)/scenes/meshes; fi
+
 # chapters_upto NN: the Markdown of chapters 01..NN (chapters are numbered 01, 02, ...)
 chapters_upto = $(wordlist 1,$(patsubst 0%,%,$(1)),$(CHAPTERS))
 # c_files NN: the .c files that chapters 01..NN declare with file="..."
@@ -89,6 +93,7 @@ FIGS$(1) := figures/ch$(1)-default.png $$(patsubst scenes/%.scene,figures/%.png,
 $$(T$(1))/.stamp: $$(call chapters_upto,$(1)) $(TANGLE)
 	@mkdir -p $$(@D)
 	$(TANGLE) --line --strict -o $$(@D) $$(call chapters_upto,$(1))
+	@$$(call link_meshes,$$(@D),../../../../)
 	@touch $$@
 
 $$(T$(1))/%.c $$(T$(1))/%.h $$(T$(1))/%.scene: $$(T$(1))/.stamp ;
@@ -134,10 +139,12 @@ diff-ch$(1):
 src-ch$(1): $(TANGLE)
 	rm -rf src/ch$(1)
 	$(TANGLE) --strict -o src/ch$(1) $$(call chapters_upto,$(1))
+	@$$(call link_meshes,src/ch$(1),../../../)
 
 check-src-ch$(1): $(TANGLE)
 	@rm -rf build/srccheck/ch$(1)
 	@$(TANGLE) --strict -o build/srccheck/ch$(1) $$(call chapters_upto,$(1))
+	@$$(call link_meshes,build/srccheck/ch$(1),../../../../)
 	@diff -r src/ch$(1) build/srccheck/ch$(1) >/dev/null || \
 	  { echo "src/ch$(1) is not what the chapters tangle to: run 'make src' and commit"; \
 	    diff -ru src/ch$(1) build/srccheck/ch$(1) | head -40; exit 1; }

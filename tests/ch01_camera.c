@@ -465,7 +465,7 @@ START_TEST(test_scene_load_reports_unreadable_files)
     fputc('\n', f);
     fclose(f);
     ck_assert(!scene_load(&s, path, &err));
-    ck_assert(strstr(err.message, "larger") != NULL);
+    ck_assert(strstr(err.message, "larger than") != NULL);
     scene_free(&s);
 }
 END_TEST

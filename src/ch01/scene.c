@@ -198,8 +198,9 @@ static const struct {
     {"background", parse_background},
 };
 
-static bool parse_statement(parser *p, scene *s)
+static bool parse_statement(parser *p, void *target)
 {
+    scene *s = target;
     if (!next_token(p))
         return true; /* a blank line or a comment */
     for (size_t k = 0; k < sizeof statements / sizeof statements[0]; k++) {
@@ -212,27 +213,36 @@ static bool parse_statement(parser *p, scene *s)
     return expected(p, "expected a statement keyword");
 }
 
-bool scene_parse(scene *s, const char *text, size_t length, const char *name,
-                 scene_error *err)
+typedef bool (*line_parser)(parser *p, void *target);
+
+/* Calls parse_line on every line of text[0..length), stopping at the first error. */
+static bool parse_lines(parser *p, const char *text, size_t length, line_parser parse_line,
+                        void *target)
 {
-    parser p = {.name = name, .err = err};
     const char *end = text + length;
     const char *line = text;
     while (line < end) {
         const char *eol = memchr(line, '\n', (size_t)(end - line));
         if (eol == NULL)
             eol = end;
-        p.line = p.next = line;
-        p.end = eol;
-        p.line_number++;
+        p->line = p->next = line;
+        p->end = eol;
+        p->line_number++;
         const char *nul = memchr(line, '\0', (size_t)(eol - line));
         if (nul != NULL)
-            return fail_at(&p, nul, "unexpected NUL byte: this is not a text file");
-        if (!parse_statement(&p, s))
+            return fail_at(p, nul, "unexpected NUL byte: this is not a text file");
+        if (!parse_line(p, target))
             return false;
         line = eol < end ? eol + 1 : end;
     }
     return true;
+}
+
+bool scene_parse(scene *s, const char *text, size_t length, const char *name,
+                 scene_error *err)
+{
+    parser p = {.name = name, .err = err};
+    return parse_lines(&p, text, length, parse_statement, s);
 }
 
 static bool file_error(scene_error *err, const char *path, const char *message)
@@ -243,23 +253,39 @@ static bool file_error(scene_error *err, const char *path, const char *message)
     return false;
 }
 
-bool scene_load(scene *s, const char *path, scene_error *err)
+/* The whole file at path, at most max_bytes, in a malloc'ed *text. */
+static bool read_file(const char *path, long max_bytes, char **text, size_t *length,
+                      scene_error *err)
 {
     FILE *in = fopen(path, "rb");
     if (in == NULL)
         return file_error(err, path, strerror(errno));
-    char *text = malloc(SCENE_MAX_BYTES + 1);
-    size_t length = text ? fread(text, 1, SCENE_MAX_BYTES + 1, in) : 0;
+    *text = malloc((size_t)max_bytes + 1);
+    *length = *text ? fread(*text, 1, (size_t)max_bytes + 1, in) : 0;
     bool ok = false;
-    if (text == NULL)
+    if (*text == NULL)
         file_error(err, path, "out of memory");
     else if (ferror(in))
         file_error(err, path, strerror(errno));
-    else if (length > SCENE_MAX_BYTES)
-        file_error(err, path, "larger than a scene file may be (16 MiB)");
+    else if (*length > (size_t)max_bytes)
+        file_error(err, path, "larger than such a file may be");
     else
-        ok = scene_parse(s, text, length, path, err);
-    free(text);
+        ok = true, (*text)[*length] = '\0'; /* a last stop for strtol and friends */
     fclose(in);
+    if (!ok) {
+        free(*text);
+        *text = NULL;
+    }
+    return ok;
+}
+
+bool scene_load(scene *s, const char *path, scene_error *err)
+{
+    char *text;
+    size_t length;
+    if (!read_file(path, SCENE_MAX_BYTES, &text, &length, err))
+        return false;
+    bool ok = scene_parse(s, text, length, path, err);
+    free(text);
     return ok;
 }

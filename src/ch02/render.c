@@ -15,7 +15,8 @@ bool scene_intersect(const scene *s, ray r, double t_min, double t_max, hit *h,
     }
     if (nearest != NULL)
         sphere_fill_hit(nearest, r, t_max, h);
-    return nearest != NULL;
+    bool found = nearest != NULL;
+    return found;
 }
 
 vec3 background_color(const background *bg, vec3 dir)

@@ -165,6 +165,13 @@ static bool read_direction(parser *p, const char *what, vec3 *out)
     return true;
 }
 
+static bool read_material_name(parser *p, const scene *s, int *material)
+{
+    if (!next_token(p) || (*material = find_material(s, p)) < 0)
+        return expected(p, "expected the name of a material defined above");
+    return true;
+}
+
 /* Room for one more element: returns items (moved if it had to grow), or
  * NULL, leaving items as they were, at max or when memory runs out. */
 static void *grow_array(void *items, int count, int *capacity, int max, size_t size)
@@ -299,8 +306,8 @@ static bool parse_sphere(parser *p, scene *s)
                 return false;
         }
         else if (token_is(p, "material")) {
-            if (!next_token(p) || (sp.material = find_material(s, p)) < 0)
-                return expected(p, "expected the name of a material defined above");
+            if (!read_material_name(p, s, &sp.material))
+                return false;
         }
         else
             return expected(p, "expected a sphere setting (center, radius, color)");
@@ -526,8 +533,9 @@ static const struct {
     {"light", parse_light},
 };
 
-static bool parse_statement(parser *p, scene *s)
+static bool parse_statement(parser *p, void *target)
 {
+    scene *s = target;
     if (!next_token(p))
         return true; /* a blank line or a comment */
     for (size_t k = 0; k < sizeof statements / sizeof statements[0]; k++) {
@@ -540,27 +548,36 @@ static bool parse_statement(parser *p, scene *s)
     return expected(p, "expected a statement keyword");
 }
 
-bool scene_parse(scene *s, const char *text, size_t length, const char *name,
-                 scene_error *err)
+typedef bool (*line_parser)(parser *p, void *target);
+
+/* Calls parse_line on every line of text[0..length), stopping at the first error. */
+static bool parse_lines(parser *p, const char *text, size_t length, line_parser parse_line,
+                        void *target)
 {
-    parser p = {.name = name, .err = err};
     const char *end = text + length;
     const char *line = text;
     while (line < end) {
         const char *eol = memchr(line, '\n', (size_t)(end - line));
         if (eol == NULL)
             eol = end;
-        p.line = p.next = line;
-        p.end = eol;
-        p.line_number++;
+        p->line = p->next = line;
+        p->end = eol;
+        p->line_number++;
         const char *nul = memchr(line, '\0', (size_t)(eol - line));
         if (nul != NULL)
-            return fail_at(&p, nul, "unexpected NUL byte: this is not a text file");
-        if (!parse_statement(&p, s))
+            return fail_at(p, nul, "unexpected NUL byte: this is not a text file");
+        if (!parse_line(p, target))
             return false;
         line = eol < end ? eol + 1 : end;
     }
     return true;
+}
+
+bool scene_parse(scene *s, const char *text, size_t length, const char *name,
+                 scene_error *err)
+{
+    parser p = {.name = name, .err = err};
+    return parse_lines(&p, text, length, parse_statement, s);
 }
 
 static bool file_error(scene_error *err, const char *path, const char *message)
@@ -571,23 +588,39 @@ static bool file_error(scene_error *err, const char *path, const char *message)
     return false;
 }
 
-bool scene_load(scene *s, const char *path, scene_error *err)
+/* The whole file at path, at most max_bytes, in a malloc'ed *text. */
+static bool read_file(const char *path, long max_bytes, char **text, size_t *length,
+                      scene_error *err)
 {
     FILE *in = fopen(path, "rb");
     if (in == NULL)
         return file_error(err, path, strerror(errno));
-    char *text = malloc(SCENE_MAX_BYTES + 1);
-    size_t length = text ? fread(text, 1, SCENE_MAX_BYTES + 1, in) : 0;
+    *text = malloc((size_t)max_bytes + 1);
+    *length = *text ? fread(*text, 1, (size_t)max_bytes + 1, in) : 0;
     bool ok = false;
-    if (text == NULL)
+    if (*text == NULL)
         file_error(err, path, "out of memory");
     else if (ferror(in))
         file_error(err, path, strerror(errno));
-    else if (length > SCENE_MAX_BYTES)
-        file_error(err, path, "larger than a scene file may be (16 MiB)");
+    else if (*length > (size_t)max_bytes)
+        file_error(err, path, "larger than such a file may be");
     else
-        ok = scene_parse(s, text, length, path, err);
-    free(text);
+        ok = true, (*text)[*length] = '\0'; /* a last stop for strtol and friends */
     fclose(in);
+    if (!ok) {
+        free(*text);
+        *text = NULL;
+    }
+    return ok;
+}
+
+bool scene_load(scene *s, const char *path, scene_error *err)
+{
+    char *text;
+    size_t length;
+    if (!read_file(path, SCENE_MAX_BYTES, &text, &length, err))
+        return false;
+    bool ok = scene_parse(s, text, length, path, err);
+    free(text);
     return ok;
 }

@@ -9,12 +9,12 @@ typedef struct {
     real x, y, z;
 } rvec;
 
-static rvec rvec_from(vec3 v) { return (rvec){(real)v.x, (real)v.y, (real)v.z}; }
-static rvec rvec_sub(rvec a, rvec b) { return (rvec){a.x - b.x, a.y - b.y, a.z - b.z}; }
-static rvec rvec_scale(rvec a, real s) { return (rvec){a.x * s, a.y * s, a.z * s}; }
-static real rvec_dot(rvec a, rvec b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline rvec rvec_from(vec3 v) { return (rvec){(real)v.x, (real)v.y, (real)v.z}; }
+static inline rvec rvec_sub(rvec a, rvec b) { return (rvec){a.x - b.x, a.y - b.y, a.z - b.z}; }
+static inline rvec rvec_scale(rvec a, real s) { return (rvec){a.x * s, a.y * s, a.z * s}; }
+static inline real rvec_dot(rvec a, rvec b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 /* sqrt in double then rounded: correctly rounded in float as well. */
-static real real_sqrt(real x) { return (real)sqrt((double)x); }
+static inline real real_sqrt(real x) { return (real)sqrt((double)x); }
 
 /* Sheet 1.4 for any origin: a = <c - o, d>, D^2 = |c - o|^2 - a^2,
  * t = a -+ sqrt(r^2 - D^2). Needs |d| = 1. */

@@ -1,0 +1,25 @@
+/* camera.h: the pinhole camera and its primary rays (chapter 01).
+ *
+ * The eye is at the origin looking down +z, x to the right, y up; the image
+ * plane is z = 1. Pixel (i, j) is column i from the left, row j from the top. */
+#ifndef CAMERA_H
+#define CAMERA_H
+
+#include "vec.h"
+
+typedef struct {
+    double fov_deg;    /* horizontal field of view in degrees, in (0, 180) */
+    int width, height; /* image size in pixels, both >= 1 */
+} camera;
+
+/* Width (and height) of one pixel on the image plane: 2 tan(fov/2) / width. */
+double camera_pixel_size(const camera *cam);
+
+/* The point of the image plane at pixel coordinates (u, v): u runs from 0 at
+ * the left edge to width at the right edge, v from 0 at the top to height. */
+vec3 camera_image_point(const camera *cam, double u, double v);
+
+/* The primary ray through the centre of pixel (i, j), with a unit direction. */
+ray camera_ray(const camera *cam, int i, int j);
+
+#endif

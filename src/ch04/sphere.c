@@ -1,0 +1,25 @@
+/* sphere.c: the ray-sphere hit used by the renderer (chapter 02). */
+#include "sphere.h"
+
+bool sphere_hit_t(const sphere *sp, ray r, double t_min, double t_max, double *t)
+{
+    double roots[2];
+    if (sphere_roots_robust(sp->center, sp->radius, r, roots) == 0)
+        return false;
+    double nearest = roots[0] > t_min ? roots[0] : roots[1];
+    if (!(nearest > t_min && nearest < t_max))
+        return false;
+    *t = nearest;
+    return true;
+}
+
+void sphere_fill_hit(const sphere *sp, ray r, double t, hit *h)
+{
+    h->t = t;
+    h->point = ray_at(r, t);
+    /* Normalised rather than divided by the radius: unit length even when
+     * the point carries the rounding error of a long ray. */
+    h->normal = vec3_normalize(vec3_sub(h->point, sp->center));
+    h->color = sp->color;
+    h->material = sp->material;
+}

@@ -1,0 +1,37 @@
+/* triangle.h: ray-triangle intersection (chapter 04).
+ *
+ * Each triangle_hit_* function tests the ray r against the triangle
+ * (a, b, c). On a hit with t_min < t < t_max it returns true and fills
+ * *out with t and the barycentric coordinates b[0..2] of the hit point
+ * (weights of a, b, c; each >= 0, summing to 1). Points on an edge count
+ * as inside. A ray parallel to the plane and a degenerate (zero-area)
+ * triangle give false. The _float versions compute in float and exist to
+ * be measured against. */
+#ifndef TRIANGLE_H
+#define TRIANGLE_H
+
+#include <stdbool.h>
+#include "vec.h"
+
+typedef struct {
+    double t;
+    double b[3];
+} triangle_hit;
+
+typedef bool (*triangle_method)(vec3 a, vec3 b, vec3 c, ray r, double t_min, double t_max,
+                                triangle_hit *out);
+
+bool triangle_hit_sheet(vec3 a, vec3 b, vec3 c, ray r, double t_min, double t_max,
+                        triangle_hit *out);
+bool triangle_hit_moller_trumbore(vec3 a, vec3 b, vec3 c, ray r, double t_min, double t_max,
+                                  triangle_hit *out);
+bool triangle_hit_watertight(vec3 a, vec3 b, vec3 c, ray r, double t_min, double t_max,
+                             triangle_hit *out);
+bool triangle_hit_sheet_float(vec3 a, vec3 b, vec3 c, ray r, double t_min, double t_max,
+                              triangle_hit *out);
+bool triangle_hit_moller_trumbore_float(vec3 a, vec3 b, vec3 c, ray r, double t_min,
+                                        double t_max, triangle_hit *out);
+bool triangle_hit_watertight_float(vec3 a, vec3 b, vec3 c, ray r, double t_min, double t_max,
+                                   triangle_hit *out);
+
+#endif
