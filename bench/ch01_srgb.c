@@ -18,8 +18,8 @@
 #include <time.h>
 
 #include "image.h"
+#include "bench_util.h"
 
-#define NOINLINE __attribute__((noinline)) /* each method costs one call, as in the renderer */
 
 /* ---------------------------------------------------------------- the methods */
 
@@ -125,21 +125,6 @@ static accuracy measure_accuracy(method_fn f)
 #define BATCHES 11
 
 static double inputs[N_INPUTS];
-static volatile unsigned sink; /* keeps the compiler from dropping the work */
-
-static double now_ns(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return 1e9 * (double)t.tv_sec + (double)t.tv_nsec;
-}
-
-static int compare_doubles(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static double measure_ns(method_fn f)
 {
     double batch[BATCHES];
@@ -148,11 +133,10 @@ static double measure_ns(method_fn f)
         unsigned sum = 0;
         for (int k = 0; k < N_INPUTS; k++)
             sum += f(inputs[k]);
-        sink += sum;
+        bench_sink += sum;
         batch[b] = (now_ns() - start) / N_INPUTS;
     }
-    qsort(batch, BATCHES, sizeof batch[0], compare_doubles);
-    return batch[BATCHES / 2];
+    return median(batch, BATCHES);
 }
 
 static void fill_inputs(void)

@@ -26,6 +26,7 @@
 #include <time.h>
 
 #include "sphere.h"
+#include "bench_util.h"
 
 #if defined(__SIZEOF_FLOAT128__) && LDBL_MANT_DIG < 113
 typedef __float128 quad; /* x86-64: 113-bit significand, in software */
@@ -115,12 +116,6 @@ static void make_rays(double D, vec3 *center, ray *rays, int n)
 
 /* ---------------------------------------------------------------- measuring */
 
-static int compare_doubles(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* The visible root of a form's answer; false for a miss. */
 static bool form_t(roots_fn roots, vec3 c, ray r, double *t)
 {
@@ -184,15 +179,6 @@ static void print_results(const double ns[N_FORMS])
     }
 }
 
-static double now_ns(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return 1e9 * (double)t.tv_sec + (double)t.tv_nsec;
-}
-
-static volatile double sink; /* keeps the compiler from dropping the work */
-
 /* Median time of one call, over 11 batches of 100 passes over 4096 rays. */
 static double time_form(roots_fn roots)
 {
@@ -206,11 +192,10 @@ static double time_form(roots_fn roots)
         for (int p = 0; p < PASSES; p++)
             for (int k = 0; k < RAYS; k++)
                 sum += roots(c, 1.0, rays[k], t) ? t[0] : 0;
-        sink += sum;
+        bench_sink += sum;
         batch[b] = (now_ns() - start) / (RAYS * PASSES);
     }
-    qsort(batch, BATCHES, sizeof batch[0], compare_doubles);
-    return batch[BATCHES / 2];
+    return median(batch, BATCHES);
 }
 
 int main(void)

@@ -27,8 +27,8 @@
 #include <time.h>
 
 #include "shade.h"
+#include "bench_util.h"
 
-#define NOINLINE __attribute__((noinline)) /* one call per evaluation, as in the renderer */
 #define N_PAIRS 200000
 
 typedef double (*highlight_fn)(vec3 n, vec3 l, vec3 v, double k);
@@ -155,21 +155,6 @@ static void fit_blinn_exponent(double k)
 
 /* ---------------------------------------------------------------- speed */
 
-static volatile double sink; /* keeps the compiler from dropping the work */
-
-static double now_ns(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return 1e9 * (double)t.tv_sec + (double)t.tv_nsec;
-}
-
-static int compare_doubles(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 static double time_method(highlight_fn f, double k)
 {
     enum { BATCHES = 11 };
@@ -178,11 +163,10 @@ static double time_method(highlight_fn f, double k)
         double start = now_ns(), sum = 0;
         for (int i = 0; i < N_PAIRS; i++)
             sum += f(NORMAL, lights[i], viewers[i], k);
-        sink += sum;
+        bench_sink += sum;
         batch[b] = (now_ns() - start) / N_PAIRS;
     }
-    qsort(batch, BATCHES, sizeof batch[0], compare_doubles);
-    return batch[BATCHES / 2];
+    return median(batch, BATCHES);
 }
 
 /* ---------------------------------------------------------------- report */

@@ -29,6 +29,7 @@
 
 #include "mesh.h"
 #include "scene.h"
+#include "bench_util.h"
 
 static const struct {
     const char *name, *precision;
@@ -189,21 +190,6 @@ static double leak_rate(triangle_method test, vec3 offset)
     return (double)leaks / n_rays;
 }
 
-static double now_ns(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_MONOTONIC, &t);
-    return 1e9 * (double)t.tv_sec + (double)t.tv_nsec;
-}
-
-static int compare_doubles(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-static volatile int sink; /* keeps the compiler from dropping the work */
-
 static double ns_per_test(triangle_method test)
 {
     enum { BATCHES = 7 };
@@ -216,11 +202,10 @@ static double ns_per_test(triangle_method test)
             for (int f = 0; f < n_faces; f++)
                 hits += test(vertices[faces[f][0]], vertices[faces[f][1]], vertices[faces[f][2]],
                              rays[k], 0, INFINITY, &th);
-        sink += hits;
+        bench_sink += hits;
         batch[b] = (now_ns() - start) / ((double)((n_rays + 3) / 4) * n_faces);
     }
-    qsort(batch, BATCHES, sizeof batch[0], compare_doubles);
-    return batch[BATCHES / 2];
+    return median(batch, BATCHES);
 }
 
 /* ---------------------------------------------------------------- brute force */
@@ -252,7 +237,7 @@ static void brute_force(const char *path)
         hit h;
         double start = now_ns();
         for (int k = 0; k < RAYS; k++)
-            sink += mesh_intersect(&bunny, probe[k], 0, INFINITY, &h, &tests);
+            bench_sink += mesh_intersect(&bunny, probe[k], 0, INFINITY, &h, &tests);
         double ns = (now_ns() - start) / RAYS;
         printf("brute-force,%d,%.1f,%.1f,tests_per_ray\n", bunny.triangle_count, ns,
                (double)tests / RAYS);

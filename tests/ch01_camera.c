@@ -17,6 +17,7 @@
 #include "camera.h"
 #include "image.h"
 #include "scene.h"
+#include "test_util.h"
 
 #define DEG (3.14159265358979323846L / 180.0L)
 
@@ -231,22 +232,6 @@ END_TEST
 
 /* ------------------------------------------------------------ PNG */
 
-static char tmpdir[64];
-
-static void make_tmpdir(void)
-{
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/ch01-test-XXXXXX");
-    ck_assert_ptr_nonnull(mkdtemp(tmpdir));
-}
-
-static void remove_tmpdir(void)
-{
-    char command[128];
-    snprintf(command, sizeof command, "rm -rf '%s'", tmpdir);
-    if (system(command) != 0)
-        fprintf(stderr, "could not remove %s\n", tmpdir);
-}
-
 static long double reference_srgb(long double L)
 {
     return L <= 0.0031308L ? 12.92L * L : 1.055L * powl(L, 1 / 2.4L) - 0.055L;
@@ -283,19 +268,6 @@ START_TEST(test_png_round_trip_through_libpng)
 }
 END_TEST
 
-static int count_entries(const char *dir)
-{
-    char command[160];
-    snprintf(command, sizeof command, "ls -A '%s' | wc -l", dir);
-    FILE *p = popen(command, "r");
-    int n = -1;
-    if (p != NULL && fscanf(p, "%d", &n) != 1)
-        n = -1;
-    if (p != NULL)
-        pclose(p);
-    return n;
-}
-
 START_TEST(test_failed_write_leaves_no_file_behind)
 {
     image img;
@@ -329,17 +301,11 @@ END_TEST
 
 /* ------------------------------------------------------------ scene files */
 
-static bool parse(scene *s, const char *text, scene_error *err)
-{
-    scene_init(s);
-    return scene_parse(s, text, strlen(text), "test.scene", err);
-}
-
 START_TEST(test_scene_defaults)
 {
     scene s;
     scene_error err;
-    ck_assert(parse(&s, "", &err));
+    ck_assert(parse_text(&s, "", &err));
     ck_assert(s.cam.fov_deg == 60 && s.cam.width == 320 && s.cam.height == 240);
     ck_assert(s.bg.kind == BACKGROUND_GRADIENT);
     scene_free(&s);
@@ -356,93 +322,76 @@ START_TEST(test_scene_reads_every_statement)
                        "\timage 64 32\n"
                        "background 0.25 0.5 2\n"
                        "camera fov 1e1"; /* no final newline; later wins */
-    ck_assert_msg(parse(&s, text, &err), "%d:%d: %s", err.line, err.col, err.message);
+    ck_assert_msg(parse_text(&s, text, &err), "%d:%d: %s", err.line, err.col, err.message);
     ck_assert(s.cam.fov_deg == 10.0);
     ck_assert(s.cam.width == 64 && s.cam.height == 32);
     ck_assert(s.bg.kind == BACKGROUND_SOLID);
     ck_assert(s.bg.bottom.x == 0.25 && s.bg.bottom.y == 0.5 && s.bg.bottom.z == 2);
-    ck_assert(parse(&s, "background gradient 0 0 0 1 1 1", &err));
+    ck_assert(parse_text(&s, "background gradient 0 0 0 1 1 1", &err));
     ck_assert(s.bg.kind == BACKGROUND_GRADIENT && s.bg.top.y == 1 && s.bg.bottom.x == 0);
     scene_free(&s);
 }
 END_TEST
 
-static void expect_error(const char *text, size_t length, int line, int col,
-                         const char *message_part)
-{
-    scene s;
-    scene_error err;
-    scene_init(&s);
-    bool ok = scene_parse(&s, text, length, "bad.scene", &err);
-    ck_assert_msg(!ok, "accepted: %s", text);
-    ck_assert_str_eq(err.file, "bad.scene");
-    ck_assert_msg(err.line == line && err.col == col, "'%s': error at %d:%d, expected %d:%d (%s)",
-                  text, err.line, err.col, line, col, err.message);
-    ck_assert_msg(strstr(err.message, message_part) != NULL, "'%s': message '%s' lacks '%s'",
-                  text, err.message, message_part);
-    scene_free(&s);
-}
-#define EXPECT_ERROR(text, line, col, part) expect_error(text, strlen(text), line, col, part)
-
 START_TEST(test_scene_rejects_unknown_keywords)
 {
-    EXPECT_ERROR("camera fov 60\n  bogus 1\n", 2, 3, "expected a statement keyword, found 'bogus'");
-    EXPECT_ERROR("camera zoom 2", 1, 8, "found 'zoom'");
-    EXPECT_ERROR("camera", 1, 7, "found end of line");
+    expect_parse_error("camera fov 60\n  bogus 1\n", 2, 3, "expected a statement keyword, found 'bogus'");
+    expect_parse_error("camera zoom 2", 1, 8, "found 'zoom'");
+    expect_parse_error("camera", 1, 7, "found end of line");
 }
 END_TEST
 
 START_TEST(test_scene_rejects_missing_and_non_numeric_values)
 {
-    EXPECT_ERROR("camera fov", 1, 11, "found end of line");
-    EXPECT_ERROR("camera fov abc", 1, 12, "found 'abc'");
-    EXPECT_ERROR("camera fov 12abc", 1, 12, "found '12abc'");
-    EXPECT_ERROR("image 320", 1, 10, "expected an image height, found end of line");
-    EXPECT_ERROR("image 320.5 240", 1, 7, "whole number");
-    EXPECT_ERROR("background 1 1", 1, 15, "found end of line");
-    EXPECT_ERROR("background gradient 1 1 1 0 0", 1, 30, "found end of line");
-    EXPECT_ERROR("background 1 1 1 # ok\nbackground 1 x 1", 2, 14, "found 'x'");
-    EXPECT_ERROR("camera fov 1234567890123456789012345678901234567890123456789012345678901234567890",
+    expect_parse_error("camera fov", 1, 11, "found end of line");
+    expect_parse_error("camera fov abc", 1, 12, "found 'abc'");
+    expect_parse_error("camera fov 12abc", 1, 12, "found '12abc'");
+    expect_parse_error("image 320", 1, 10, "expected an image height, found end of line");
+    expect_parse_error("image 320.5 240", 1, 7, "whole number");
+    expect_parse_error("background 1 1", 1, 15, "found end of line");
+    expect_parse_error("background gradient 1 1 1 0 0", 1, 30, "found end of line");
+    expect_parse_error("background 1 1 1 # ok\nbackground 1 x 1", 2, 14, "found 'x'");
+    expect_parse_error("camera fov 1234567890123456789012345678901234567890123456789012345678901234567890",
                  1, 12, "...'");
 }
 END_TEST
 
 START_TEST(test_scene_rejects_non_finite_numbers)
 {
-    EXPECT_ERROR("camera fov nan", 1, 12, "finite");
-    EXPECT_ERROR("camera fov inf", 1, 12, "finite");
-    EXPECT_ERROR("camera fov -INFINITY", 1, 12, "finite");
-    EXPECT_ERROR("background 1 1e999 1", 1, 14, "finite");
-    EXPECT_ERROR("image nan 4", 1, 7, "finite");
+    expect_parse_error("camera fov nan", 1, 12, "finite");
+    expect_parse_error("camera fov inf", 1, 12, "finite");
+    expect_parse_error("camera fov -INFINITY", 1, 12, "finite");
+    expect_parse_error("background 1 1e999 1", 1, 14, "finite");
+    expect_parse_error("image nan 4", 1, 7, "finite");
 }
 END_TEST
 
 START_TEST(test_scene_rejects_field_of_view_outside_0_180)
 {
-    EXPECT_ERROR("camera fov 0", 1, 12, "between 0 and 180");
-    EXPECT_ERROR("camera fov 180", 1, 12, "between 0 and 180");
-    EXPECT_ERROR("camera fov -5", 1, 12, "between 0 and 180");
-    EXPECT_ERROR("camera fov 720", 1, 12, "between 0 and 180");
+    expect_parse_error("camera fov 0", 1, 12, "between 0 and 180");
+    expect_parse_error("camera fov 180", 1, 12, "between 0 and 180");
+    expect_parse_error("camera fov -5", 1, 12, "between 0 and 180");
+    expect_parse_error("camera fov 720", 1, 12, "between 0 and 180");
 }
 END_TEST
 
 START_TEST(test_scene_rejects_bad_image_sizes)
 {
-    EXPECT_ERROR("image 0 240", 1, 7, "from 1 to 16384");
-    EXPECT_ERROR("image 320 -240", 1, 11, "from 1 to 16384");
-    EXPECT_ERROR("image 100000 100000", 1, 7, "from 1 to 16384");
-    EXPECT_ERROR("image 1e15 1", 1, 7, "from 1 to 16384");
-    EXPECT_ERROR("image 1e16 1", 1, 7, "whole number");
-    EXPECT_ERROR("image 16384 16384", 1, 13, "at most 16777216 pixels");
+    expect_parse_error("image 0 240", 1, 7, "from 1 to 16384");
+    expect_parse_error("image 320 -240", 1, 11, "from 1 to 16384");
+    expect_parse_error("image 100000 100000", 1, 7, "from 1 to 16384");
+    expect_parse_error("image 1e15 1", 1, 7, "from 1 to 16384");
+    expect_parse_error("image 1e16 1", 1, 7, "whole number");
+    expect_parse_error("image 16384 16384", 1, 13, "at most 16777216 pixels");
 }
 END_TEST
 
 START_TEST(test_scene_rejects_leftovers_and_negative_colours)
 {
-    EXPECT_ERROR("image 320 240 1", 1, 15, "expected end of line, found '1'");
-    EXPECT_ERROR("background -1 0 0", 1, 12, "at least 0");
+    expect_parse_error("image 320 240 1", 1, 15, "expected end of line, found '1'");
+    expect_parse_error("background -1 0 0", 1, 12, "at least 0");
     static const char with_nul[] = "camera\0 fov 30";
-    expect_error(with_nul, sizeof with_nul - 1, 1, 7, "NUL");
+    expect_parse_error_named("bad.scene", with_nul, sizeof with_nul - 1, 1, 7, "NUL");
 }
 END_TEST
 
@@ -471,40 +420,6 @@ START_TEST(test_scene_load_reports_unreadable_files)
 END_TEST
 
 /* ------------------------------------------------------------ command line */
-
-/* Runs $CHAPTER_BIN with args; returns its exit status, stderr in errors[]. */
-static int run_bin(const char *const *args, char *errors, size_t size)
-{
-    const char *bin = getenv("CHAPTER_BIN");
-    ck_assert_msg(bin != NULL, "set CHAPTER_BIN to the chapter's binary");
-    char err_path[128];
-    snprintf(err_path, sizeof err_path, "%s/stderr.txt", tmpdir);
-    pid_t pid = fork();
-    ck_assert(pid >= 0);
-    if (pid == 0) {
-        const char *argv[16] = {bin};
-        for (int k = 0; args[k] != NULL && k < 14; k++)
-            argv[k + 1] = args[k];
-        if (freopen(err_path, "w", stderr) == NULL || freopen("/dev/null", "w", stdout) == NULL)
-            _exit(127);
-        execv(bin, (char *const *)argv);
-        _exit(127);
-    }
-    int status;
-    waitpid(pid, &status, 0);
-    FILE *f = fopen(err_path, "r");
-    size_t n = f ? fread(errors, 1, size - 1, f) : 0;
-    errors[n] = '\0';
-    if (f)
-        fclose(f);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
-}
-
-static bool file_exists(const char *path)
-{
-    struct stat st;
-    return stat(path, &st) == 0;
-}
 
 START_TEST(test_cli_renders_the_built_in_scene)
 {

@@ -11,6 +11,7 @@
 
 #include "render.h"
 #include "scene.h"
+#include "test_util.h"
 #include "sphere.h"
 
 typedef int (*roots_fn)(vec3, double, ray, double[2]);
@@ -284,17 +285,12 @@ END_TEST
 
 /* ------------------------------------------------------------ the statement */
 
-static bool parse(scene *s, const char *text, scene_error *err)
-{
-    scene_init(s);
-    return scene_parse(s, text, strlen(text), "test.scene", err);
-}
 
 START_TEST(test_sphere_statement_defaults_and_settings)
 {
     scene s;
     scene_error err;
-    ck_assert(parse(&s, "sphere\nsphere radius 2 color 0 0.5 1 center -1 2.5 1e3\n", &err));
+    ck_assert(parse_text(&s, "sphere\nsphere radius 2 color 0 0.5 1 center -1 2.5 1e3\n", &err));
     ck_assert_int_eq(s.sphere_count, 2);
     ck_assert(s.spheres[0].radius == 1 && s.spheres[0].center.z == 5);
     ck_assert(s.spheres[1].radius == 2 && s.spheres[1].center.x == -1 &&
@@ -304,37 +300,26 @@ START_TEST(test_sphere_statement_defaults_and_settings)
 }
 END_TEST
 
-static void expect_error(const char *text, int line, int col, const char *part)
-{
-    scene s;
-    scene_error err;
-    ck_assert_msg(!parse(&s, text, &err), "accepted: %s", text);
-    ck_assert_msg(err.line == line && err.col == col, "'%s': %d:%d (%s), expected %d:%d", text,
-                  err.line, err.col, err.message, line, col);
-    ck_assert_msg(strstr(err.message, part) != NULL, "'%s': '%s' lacks '%s'", text, err.message,
-                  part);
-    scene_free(&s);
-}
 
 START_TEST(test_sphere_statement_rejects_bad_radii)
 {
-    expect_error("sphere radius 0", 1, 15, "radius between 1e-100 and 1e100, found '0'");
-    expect_error("sphere radius -1", 1, 15, "found '-1'");
-    expect_error("sphere radius nan", 1, 15, "finite");
-    expect_error("sphere radius inf", 1, 15, "finite");
-    expect_error("sphere radius 1e-200", 1, 15, "between 1e-100");
-    expect_error("sphere radius 1e200", 1, 15, "between 1e-100");
-    expect_error("sphere radius", 1, 14, "found end of line");
+    expect_parse_error("sphere radius 0", 1, 15, "radius between 1e-100 and 1e100, found '0'");
+    expect_parse_error("sphere radius -1", 1, 15, "found '-1'");
+    expect_parse_error("sphere radius nan", 1, 15, "finite");
+    expect_parse_error("sphere radius inf", 1, 15, "finite");
+    expect_parse_error("sphere radius 1e-200", 1, 15, "between 1e-100");
+    expect_parse_error("sphere radius 1e200", 1, 15, "between 1e-100");
+    expect_parse_error("sphere radius", 1, 14, "found end of line");
 }
 END_TEST
 
 START_TEST(test_sphere_statement_rejects_bad_centres_and_settings)
 {
-    expect_error("sphere center 1 nan 3", 1, 17, "finite");
-    expect_error("sphere center 1 2", 1, 18, "found end of line");
-    expect_error("sphere center 1 2 1e200", 1, 19, "between -1e100 and 1e100");
-    expect_error("sphere center 1 2 3 size 4", 1, 21, "expected a sphere setting");
-    expect_error("\n\nsphere color 1 -1 0", 3, 16, "at least 0");
+    expect_parse_error("sphere center 1 nan 3", 1, 17, "finite");
+    expect_parse_error("sphere center 1 2", 1, 18, "found end of line");
+    expect_parse_error("sphere center 1 2 1e200", 1, 19, "between -1e100 and 1e100");
+    expect_parse_error("sphere center 1 2 3 size 4", 1, 21, "expected a sphere setting");
+    expect_parse_error("\n\nsphere color 1 -1 0", 3, 16, "at least 0");
 }
 END_TEST
 

@@ -10,6 +10,7 @@
 
 #include "render.h"
 #include "scene.h"
+#include "test_util.h"
 #include "shade.h"
 
 #define DEG (M_PI / 180.0)
@@ -167,17 +168,12 @@ END_TEST
 
 /* ------------------------------------------------------------ lights */
 
-static bool parse(scene *s, const char *text, scene_error *err)
-{
-    scene_init(s);
-    return scene_parse(s, text, strlen(text), "test.scene", err);
-}
 
 START_TEST(test_spot_intensity_inside_at_and_beyond_the_cone)
 {
     scene s;
     scene_error err;
-    ck_assert(parse(&s, "light spot position 0 0 0 direction 0 0 1 angle 60 exponent 2\n", &err));
+    ck_assert(parse_text(&s, "light spot position 0 0 0 direction 0 0 1 angle 60 exponent 2\n", &err));
     const light *L = &s.lights[0];
     /* Points at distance 2, at angles from the axis; attenuation is 1. */
     double inside = 59.9 * DEG, outside = 60.1 * DEG;
@@ -267,7 +263,7 @@ START_TEST(test_material_light_and_tonemap_statements)
                        "sphere\n"
                        "light point position 1 2 3 intensity 2 2 2 attenuation 1 -1 0.5\n"
                        "light directional direction 0 -2 0\n";
-    ck_assert_msg(parse(&s, text, &err), "%d:%d %s", err.line, err.col, err.message);
+    ck_assert_msg(parse_text(&s, text, &err), "%d:%d %s", err.line, err.col, err.message);
     ck_assert(s.ambient.z == 0.3 && s.tone.alpha == 1.5 && s.tone.beta == 0.8);
     ck_assert_int_eq(s.material_count, 1);
     const material *shiny = scene_material(&s, s.spheres[0].material);
@@ -283,75 +279,64 @@ START_TEST(test_material_light_and_tonemap_statements)
 }
 END_TEST
 
-static void expect_error(const char *text, int line, int col, const char *part)
-{
-    scene s;
-    scene_error err;
-    ck_assert_msg(!parse(&s, text, &err), "accepted: %s", text);
-    ck_assert_msg(err.line == line && err.col == col, "'%s': %d:%d (%s), expected %d:%d", text,
-                  err.line, err.col, err.message, line, col);
-    ck_assert_msg(strstr(err.message, part) != NULL, "'%s': '%s' lacks '%s'", text, err.message,
-                  part);
-    scene_free(&s);
-}
 
 START_TEST(test_scene_rejects_unknown_and_duplicate_materials)
 {
-    expect_error("sphere material shiny", 1, 17, "material defined above, found 'shiny'");
-    expect_error("sphere material", 1, 16, "found end of line");
-    expect_error("material a\nsphere\nmaterial a specular 1", 3, 10, "defined on line 1");
-    expect_error("material default\nmaterial default", 2, 10, "defined on line 1");
-    expect_error("material abcdefghijabcdefghijabcdefghijxy", 1, 10, "1 to 31 characters");
+    expect_parse_error("sphere material shiny", 1, 17, "material defined above, found 'shiny'");
+    expect_parse_error("sphere material", 1, 16, "found end of line");
+    expect_parse_error("material a\nsphere\nmaterial a specular 1", 3, 10, "defined on line 1");
+    expect_parse_error("material default\nmaterial default", 2, 10, "defined on line 1");
+    expect_parse_error("material abcdefghijabcdefghijabcdefghijxy", 1, 10, "1 to 31 characters");
 }
 END_TEST
 
 START_TEST(test_scene_rejects_bad_coefficients)
 {
-    expect_error("material m diffuse -0.1", 1, 20, "from 0 to 1, found '-0.1'");
-    expect_error("material m specular 1.5", 1, 21, "from 0 to 1");
-    expect_error("material m ambient nan", 1, 20, "finite");
-    expect_error("material m emission 1 inf 0", 1, 23, "finite");
-    expect_error("material m emission 1 -1 0", 1, 23, "at least 0");
-    expect_error("material m shininess 0.5", 1, 22, "at least 1");
-    expect_error("material m highlight torrance", 1, 22, "'phong' or 'blinn'");
-    expect_error("material m gloss 1", 1, 12, "expected a material setting");
+    expect_parse_error("material m diffuse -0.1", 1, 20, "from 0 to 1, found '-0.1'");
+    expect_parse_error("material m specular 1.5", 1, 21, "from 0 to 1");
+    expect_parse_error("material m ambient nan", 1, 20, "finite");
+    expect_parse_error("material m emission 1 inf 0", 1, 23, "finite");
+    expect_parse_error("material m emission 1 -1 0", 1, 23, "at least 0");
+    expect_parse_error("material m shininess 0.5", 1, 22, "at least 1");
+    expect_parse_error("material m highlight torrance", 1, 22, "'phong' or 'blinn'");
+    expect_parse_error("material m gloss 1", 1, 12, "expected a material setting");
 }
 END_TEST
 
 START_TEST(test_scene_rejects_bad_lights)
 {
-    expect_error("light", 1, 6, "kind of light");
-    expect_error("light laser", 1, 7, "kind of light");
-    expect_error("light point angle 30", 1, 13, "(position, intensity, attenuation)");
-    expect_error("light directional position 0 0 0", 1, 19, "(direction, intensity)");
-    expect_error("light spot angle 0", 1, 18, "between 0 and 180");
-    expect_error("light spot angle 180", 1, 18, "between 0 and 180");
-    expect_error("light spot angle -20", 1, 18, "between 0 and 180");
-    expect_error("light spot exponent -1", 1, 21, "at least 0");
-    expect_error("light directional direction 0 0 0", 1, 29, "non-zero length");
-    expect_error("light spot direction 1e-200 0 0", 1, 22, "non-zero length");
-    expect_error("light point intensity -1 1 1", 1, 23, "at least 0");
+    expect_parse_error("light", 1, 6, "kind of light");
+    expect_parse_error("light laser", 1, 7, "kind of light");
+    expect_parse_error("light point angle 30", 1, 13, "(position, intensity, attenuation)");
+    expect_parse_error("light directional position 0 0 0", 1, 19, "(direction, intensity)");
+    expect_parse_error("light spot angle 0", 1, 18, "between 0 and 180");
+    expect_parse_error("light spot angle 180", 1, 18, "between 0 and 180");
+    expect_parse_error("light spot angle -20", 1, 18, "between 0 and 180");
+    expect_parse_error("light spot exponent -1", 1, 21, "at least 0");
+    expect_parse_error("light directional direction 0 0 0", 1, 29, "non-zero length");
+    expect_parse_error("light spot direction 1e-200 0 0", 1, 22, "non-zero length");
+    expect_parse_error("light point intensity -1 1 1", 1, 23, "at least 0");
 }
 END_TEST
 
 START_TEST(test_scene_rejects_attenuation_that_reaches_zero)
 {
-    expect_error("light point attenuation 0 0 1", 1, 25, "a1 > 0");
-    expect_error("light point attenuation -1 0 1", 1, 25, "a1 > 0");
-    expect_error("light point attenuation 1 0 -0.01", 1, 29, "a3 >= 0");
-    expect_error("light point attenuation 1 -1 0", 1, 27, "a2 >= 0 or a2^2 < 4 a1 a3");
-    expect_error("light spot attenuation 1 -2 1", 1, 26, "reaches 0"); /* (1 - r)^2 */
-    expect_error("light point attenuation 1 0 nan", 1, 29, "finite");
+    expect_parse_error("light point attenuation 0 0 1", 1, 25, "a1 > 0");
+    expect_parse_error("light point attenuation -1 0 1", 1, 25, "a1 > 0");
+    expect_parse_error("light point attenuation 1 0 -0.01", 1, 29, "a3 >= 0");
+    expect_parse_error("light point attenuation 1 -1 0", 1, 27, "a2 >= 0 or a2^2 < 4 a1 a3");
+    expect_parse_error("light spot attenuation 1 -2 1", 1, 26, "reaches 0"); /* (1 - r)^2 */
+    expect_parse_error("light point attenuation 1 0 nan", 1, 29, "finite");
 }
 END_TEST
 
 START_TEST(test_scene_rejects_bad_tone_maps_and_ambient)
 {
-    expect_error("tonemap", 1, 8, "'alpha' or 'beta'");
-    expect_error("tonemap gamma 2.2", 1, 9, "'alpha' or 'beta'");
-    expect_error("tonemap alpha 0", 1, 15, "greater than 0");
-    expect_error("tonemap beta -1", 1, 14, "greater than 0");
-    expect_error("ambient 1 1", 1, 12, "found end of line");
+    expect_parse_error("tonemap", 1, 8, "'alpha' or 'beta'");
+    expect_parse_error("tonemap gamma 2.2", 1, 9, "'alpha' or 'beta'");
+    expect_parse_error("tonemap alpha 0", 1, 15, "greater than 0");
+    expect_parse_error("tonemap beta -1", 1, 14, "greater than 0");
+    expect_parse_error("ambient 1 1", 1, 12, "found end of line");
 }
 END_TEST
 

@@ -15,6 +15,7 @@
 #include "render.h"
 #include "scene.h"
 #include "triangle.h"
+#include "test_util.h"
 
 static const struct {
     const char *name;
@@ -252,33 +253,6 @@ END_TEST
 
 /* ------------------------------------------------------------ OBJ files */
 
-static char tmpdir[64];
-
-static void make_tmpdir(void)
-{
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/ch04-test-XXXXXX");
-    ck_assert_ptr_nonnull(mkdtemp(tmpdir));
-}
-
-static void remove_tmpdir(void)
-{
-    char command[128];
-    snprintf(command, sizeof command, "rm -rf '%s'", tmpdir);
-    if (system(command) != 0)
-        fprintf(stderr, "could not remove %s\n", tmpdir);
-}
-
-static const char *write_file(const char *name, const char *text)
-{
-    static char path[160];
-    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
-    FILE *f = fopen(path, "w");
-    ck_assert_ptr_nonnull(f);
-    fputs(text, f);
-    fclose(f);
-    return path;
-}
-
 START_TEST(test_obj_reads_every_face_form)
 {
     const char *path = write_file("forms.obj",
@@ -395,11 +369,6 @@ END_TEST
 
 /* ------------------------------------------------------------ statements */
 
-static bool parse_scene(scene *s, const char *text, const char *name, scene_error *err)
-{
-    scene_init(s);
-    return scene_parse(s, text, strlen(text), name, err);
-}
 
 START_TEST(test_triangle_and_mesh_statements)
 {
@@ -410,7 +379,7 @@ START_TEST(test_triangle_and_mesh_statements)
     scene_error err;
     const char *text = "triangle a 0 0 4 b 1 0 4 c 0 1 4 color 1 0 0\n"
                        "mesh file tri.obj scale 2 offset 1 1 10 smooth color 0 1 0\n";
-    ck_assert_msg(parse_scene(&s, text, scene_path, &err), "%d:%d %s", err.line, err.col,
+    ck_assert_msg(parse_named(&s, text, strlen(text), scene_path, &err), "%d:%d %s", err.line, err.col,
                   err.message);
     ck_assert_int_eq(s.mesh_count, 2);
     ck_assert(s.meshes[0].triangle_count == 1 && s.meshes[0].color.x == 1);
@@ -428,16 +397,9 @@ END_TEST
 
 static void expect_scene_error(const char *text, int line, int col, const char *part)
 {
-    char scene_path[160];
-    snprintf(scene_path, sizeof scene_path, "%s/bad.scene", tmpdir);
-    scene s;
-    scene_error err;
-    ck_assert_msg(!parse_scene(&s, text, scene_path, &err), "accepted: %s", text);
-    ck_assert_msg(err.line == line && err.col == col, "'%s': %d:%d (%s), expected %d:%d", text,
-                  err.line, err.col, err.message, line, col);
-    ck_assert_msg(strstr(err.message, part) != NULL, "'%s': '%s' lacks '%s'", text, err.message,
-                  part);
-    scene_free(&s);
+    char scene_path[192];
+    snprintf(scene_path, sizeof scene_path, "%s", tmp_path("bad.scene"));
+    expect_parse_error_named(scene_path, text, strlen(text), line, col, part);
 }
 
 START_TEST(test_triangle_and_mesh_statements_reject_bad_input)
@@ -458,10 +420,31 @@ START_TEST(test_triangle_and_mesh_statements_reject_bad_input)
     scene_error err;
     char scene_path[160];
     snprintf(scene_path, sizeof scene_path, "%s/x.scene", tmpdir);
-    ck_assert(!parse_scene(&s, "mesh file broken.obj", scene_path, &err));
+    ck_assert(!parse_named(&s, "mesh file broken.obj", 20, scene_path, &err));
     ck_assert_str_eq(err.file, errors); /* the OBJ file's own location */
     ck_assert(err.line == 2 && err.col == 5);
     scene_free(&s);
+}
+END_TEST
+
+START_TEST(test_cli_reports_obj_errors_and_writes_nothing)
+{
+    write_file("broken.obj", "v 0 0 0\nv 1 0 0\nf 1 2 3\n");
+    write_file("nul.obj", "v 0 0 0\n");
+    write_bytes("nul.obj", "v 0 0 0\nv 1\0 0 0\n", 16);
+    const char *cases[][2] = {{"mesh file broken.obj\n", "broken.obj:3:7: error: vertex index 3"},
+                              {"mesh file nul.obj\n", "nul.obj:2:4: error: unexpected NUL byte"},
+                              {"mesh file none.obj\n", "1:11: error: cannot read mesh file"}};
+    for (int k = 0; k < 3; k++) {
+        const char *scene_path = write_file("bad.scene", cases[k][0]);
+        char scene_copy[192], out[192], errors[2048];
+        snprintf(scene_copy, sizeof scene_copy, "%s", scene_path);
+        snprintf(out, sizeof out, "%s", tmp_path("out.png"));
+        const char *args[] = {scene_copy, "-o", out, NULL};
+        ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+        ck_assert_msg(strstr(errors, cases[k][1]) != NULL, "stderr: %s", errors);
+        ck_assert(!file_exists(out));
+    }
 }
 END_TEST
 
@@ -493,6 +476,7 @@ Suite *ch04_triangles_suite(void)
     tcase_add_test(bad, test_obj_rejects_more_vertices_than_the_limit);
     tcase_add_test(bad, test_triangle_and_mesh_statements);
     tcase_add_test(bad, test_triangle_and_mesh_statements_reject_bad_input);
+    tcase_add_test(bad, test_cli_reports_obj_errors_and_writes_nothing);
     suite_add_tcase(s, bad);
     return s;
 }

@@ -1,0 +1,143 @@
+/* test_util.h: helpers shared by the chapter suites: a temporary folder per
+ * test, files written into it, and running the chapter's binary.
+ *
+ * Each suite that includes this gets its own copies (everything is static
+ * inline). The binary under test is named by $CHAPTER_BIN, which the
+ * Makefile sets to bin/chNN for the chapter whose program is being tested. */
+#ifndef TEST_UTIL_H
+#define TEST_UTIL_H
+
+#include <check.h>
+#include <stdbool.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "scene.h"
+
+static char tmpdir[64];
+
+/* Fixtures: a fresh, empty folder for every test, removed afterwards. */
+static inline void make_tmpdir(void)
+{
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/rt-test-XXXXXX");
+    ck_assert_ptr_nonnull(mkdtemp(tmpdir));
+}
+
+static inline void remove_tmpdir(void)
+{
+    char command[128];
+    snprintf(command, sizeof command, "rm -rf '%s'", tmpdir);
+    if (system(command) != 0)
+        fprintf(stderr, "could not remove %s\n", tmpdir);
+}
+
+/* tmpdir/name, in a buffer that the next call reuses. */
+static inline const char *tmp_path(const char *name)
+{
+    static char path[192];
+    snprintf(path, sizeof path, "%s/%s", tmpdir, name);
+    return path;
+}
+
+/* Writes length bytes of text to tmpdir/name; returns the path. */
+static inline const char *write_bytes(const char *name, const char *text, size_t length)
+{
+    const char *path = tmp_path(name);
+    FILE *f = fopen(path, "wb");
+    ck_assert_ptr_nonnull(f);
+    ck_assert_int_eq(fwrite(text, 1, length, f), length);
+    fclose(f);
+    return path;
+}
+
+static inline const char *write_file(const char *name, const char *text)
+{
+    return write_bytes(name, text, strlen(text));
+}
+
+static inline bool file_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}
+
+/* How many entries the folder has (. and .. not counted). */
+static inline int count_entries(const char *dir)
+{
+    char command[160];
+    snprintf(command, sizeof command, "ls -A '%s' | wc -l", dir);
+    FILE *p = popen(command, "r");
+    int n = -1;
+    if (p != NULL && fscanf(p, "%d", &n) != 1)
+        n = -1;
+    if (p != NULL)
+        pclose(p);
+    return n;
+}
+
+/* Runs $CHAPTER_BIN with the NULL-ended args; returns its exit status and
+ * puts what it wrote on stderr into errors[size]. */
+static inline int run_bin(const char *const *args, char *errors, size_t size)
+{
+    const char *bin = getenv("CHAPTER_BIN");
+    ck_assert_msg(bin != NULL, "set CHAPTER_BIN to the chapter's binary");
+    char err_path[128];
+    snprintf(err_path, sizeof err_path, "%s/stderr.txt", tmpdir);
+    pid_t pid = fork();
+    ck_assert(pid >= 0);
+    if (pid == 0) {
+        const char *argv[16] = {bin};
+        for (int k = 0; args[k] != NULL && k < 14; k++)
+            argv[k + 1] = args[k];
+        if (freopen(err_path, "w", stderr) == NULL || freopen("/dev/null", "w", stdout) == NULL)
+            _exit(127);
+        execv(bin, (char *const *)argv);
+        _exit(127);
+    }
+    int status;
+    waitpid(pid, &status, 0);
+    FILE *f = fopen(err_path, "r");
+    size_t n = f ? fread(errors, 1, size - 1, f) : 0;
+    errors[n] = '\0';
+    if (f)
+        fclose(f);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+/* scene_init, then parse text[0..length) as the file called name. */
+static inline bool parse_named(scene *s, const char *text, size_t length, const char *name,
+                               scene_error *err)
+{
+    scene_init(s);
+    return scene_parse(s, text, length, name, err);
+}
+
+static inline bool parse_text(scene *s, const char *text, scene_error *err)
+{
+    return parse_named(s, text, strlen(text), "test.scene", err);
+}
+
+/* Asserts that the text is rejected with an error at line:col of the file
+ * called name, whose message contains part. */
+static inline void expect_parse_error_named(const char *name, const char *text, size_t length,
+                                            int line, int col, const char *part)
+{
+    scene s;
+    scene_error err;
+    ck_assert_msg(!parse_named(&s, text, length, name, &err), "accepted: %s", text);
+    ck_assert_str_eq(err.file, name);
+    ck_assert_msg(err.line == line && err.col == col, "'%s': error at %d:%d (%s), expected %d:%d",
+                  text, err.line, err.col, err.message, line, col);
+    ck_assert_msg(strstr(err.message, part) != NULL, "'%s': message '%s' lacks '%s'", text,
+                  err.message, part);
+    scene_free(&s);
+}
+
+#define expect_parse_error(text, line, col, part) \
+    expect_parse_error_named("bad.scene", (text), strlen(text), (line), (col), (part))
+
+#endif
