@@ -389,7 +389,8 @@ END_TEST
 START_TEST(test_scene_rejects_leftovers_and_negative_colours)
 {
     expect_parse_error("image 320 240 1", 1, 15, "expected end of line, found '1'");
-    expect_parse_error("background -1 0 0", 1, 12, "at least 0");
+    expect_parse_error("background -1 0 0", 1, 12, "from 0 to 1e6");
+    expect_parse_error("background 0 2e6 0", 1, 14, "from 0 to 1e6");
     static const char with_nul[] = "camera\0 fov 30";
     expect_parse_error_named("bad.scene", with_nul, sizeof with_nul - 1, 1, 7, "NUL");
 }

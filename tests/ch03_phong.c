@@ -261,7 +261,7 @@ START_TEST(test_material_light_and_tonemap_statements)
                        "material default diffuse 0.5\n"
                        "sphere material shiny\n"
                        "sphere\n"
-                       "light point position 1 2 3 intensity 2 2 2 attenuation 1 -1 0.5\n"
+                       "light point position 1 2 3 intensity 2 2 2 attenuation 1 0.5 0.25\n"
                        "light directional direction 0 -2 0\n";
     ck_assert_msg(parse_text(&s, text, &err), "%d:%d %s", err.line, err.col, err.message);
     ck_assert(s.ambient.z == 0.3 && s.tone.alpha == 1.5 && s.tone.beta == 0.8);
@@ -273,7 +273,7 @@ START_TEST(test_material_light_and_tonemap_statements)
     ck_assert(shiny->diffuse == 0.8); /* the built-in default, not the redefined one */
     ck_assert(scene_material(&s, s.spheres[1].material)->diffuse == 0.5);
     ck_assert_int_eq(s.light_count, 2);
-    ck_assert(s.lights[0].attenuation[1] == -1); /* 1 - r + r^2/2 > 0: accepted */
+    ck_assert(s.lights[0].attenuation[1] == 0.5 && s.lights[0].attenuation[2] == 0.25);
     ck_assert(s.lights[1].direction.y == -1);    /* normalised */
     scene_free(&s);
 }
@@ -296,7 +296,7 @@ START_TEST(test_scene_rejects_bad_coefficients)
     expect_parse_error("material m specular 1.5", 1, 21, "from 0 to 1");
     expect_parse_error("material m ambient nan", 1, 20, "finite");
     expect_parse_error("material m emission 1 inf 0", 1, 23, "finite");
-    expect_parse_error("material m emission 1 -1 0", 1, 23, "at least 0");
+    expect_parse_error("material m emission 1 -1 0", 1, 23, "from 0 to 1e6");
     expect_parse_error("material m shininess 0.5", 1, 22, "at least 1");
     expect_parse_error("material m highlight torrance", 1, 22, "'phong' or 'blinn'");
     expect_parse_error("material m gloss 1", 1, 12, "expected a material setting");
@@ -315,17 +315,21 @@ START_TEST(test_scene_rejects_bad_lights)
     expect_parse_error("light spot exponent -1", 1, 21, "at least 0");
     expect_parse_error("light directional direction 0 0 0", 1, 29, "non-zero length");
     expect_parse_error("light spot direction 1e-200 0 0", 1, 22, "non-zero length");
-    expect_parse_error("light point intensity -1 1 1", 1, 23, "at least 0");
+    expect_parse_error("light point intensity -1 1 1", 1, 23, "from 0 to 1e6");
 }
 END_TEST
 
 START_TEST(test_scene_rejects_attenuation_that_reaches_zero)
 {
-    expect_parse_error("light point attenuation 0 0 1", 1, 25, "a1 > 0");
-    expect_parse_error("light point attenuation -1 0 1", 1, 25, "a1 > 0");
-    expect_parse_error("light point attenuation 1 0 -0.01", 1, 29, "a3 >= 0");
-    expect_parse_error("light point attenuation 1 -1 0", 1, 27, "a2 >= 0 or a2^2 < 4 a1 a3");
-    expect_parse_error("light spot attenuation 1 -2 1", 1, 26, "reaches 0"); /* (1 - r)^2 */
+    expect_parse_error("light point attenuation 0 0 1", 1, 25, "a1 from 1e-6 to 1e6");
+    expect_parse_error("light point attenuation -1 0 1", 1, 25, "a1 from 1e-6");
+    expect_parse_error("light point attenuation 1e-300 0 1", 1, 25, "a1 from 1e-6");
+    expect_parse_error("light point attenuation 1 0 -0.01", 1, 29, "a3 from 0 to 1e6");
+    expect_parse_error("light point attenuation 1 -1 0", 1, 27, "a2 from 0 to 1e6");
+    /* (1 - r)^2 is 0 at r = 1; 1 - 1.9r + r^2 > 0 only by a rounding-sized margin */
+    expect_parse_error("light spot attenuation 1 -2 1", 1, 26, "a2 from 0");
+    expect_parse_error("light spot attenuation 1 -1.9 1", 1, 26, "a2 from 0");
+    expect_parse_error("light point attenuation 1 1e7 0", 1, 27, "a2 from 0 to 1e6");
     expect_parse_error("light point attenuation 1 0 nan", 1, 29, "finite");
 }
 END_TEST

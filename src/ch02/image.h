@@ -5,8 +5,10 @@
 #ifndef IMAGE_H
 #define IMAGE_H
 
+#include <assert.h>
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdio.h>
 #include "vec.h"
 
 /* Limits that keep width * height * sizeof(vec3) far from overflow. */
@@ -23,8 +25,12 @@ typedef struct {
 bool image_init(image *img, int width, int height);
 void image_free(image *img);
 
+/* A NaN or an infinity in a pixel is a bug upstream, never bad input: the
+ * parsers keep every number finite and bounded. The check goes away with
+ * -DNDEBUG. */
 static inline void image_set(image *img, int i, int j, vec3 c)
 {
+    assert(isfinite(c.x) && isfinite(c.y) && isfinite(c.z));
     img->pixels[(size_t)j * img->width + i] = c;
 }
 
@@ -42,5 +48,9 @@ double gamma_encode(double linear, double gamma);
  * is written under a temporary name and renamed. On failure returns false
  * and puts the reason in why[why_size]. */
 bool image_write_png(const image *img, const char *path, char *why, size_t why_size);
+
+/* Encodes img as PNG into the open stream out and flushes it; false, with
+ * the reason, when encoding or writing fails (a full disk, say). */
+bool image_write_png_stream(const image *img, FILE *out, char *why, size_t why_size);
 
 #endif

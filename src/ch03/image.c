@@ -54,7 +54,8 @@ double gamma_encode(double linear, double gamma)
     return linear >= 1.0 ? 1.0 : pow(linear, 1.0 / gamma);
 }
 
-/* 8-bit sRGB bytes of the whole image, row by row; NULL if out of memory. */
+/* 8-bit sRGB bytes of the whole image, row by row; NULL if out of memory.
+ * 3 * width * height cannot overflow: image_init capped it at 3 * 2^24. */
 static unsigned char *encode_rows(const image *img)
 {
     size_t n = (size_t)img->width * img->height;
@@ -83,7 +84,21 @@ static bool write_png_stream(FILE *out, const image *img, const unsigned char *b
         png_image_free(&info);
         return false;
     }
+    if (fflush(out) != 0 || ferror(out)) { /* a full disk shows here, or at fclose */
+        snprintf(why, why_size, "cannot write: %s", strerror(errno));
+        return false;
+    }
     return true;
+}
+
+bool image_write_png_stream(const image *img, FILE *out, char *why, size_t why_size)
+{
+    unsigned char *bytes = encode_rows(img);
+    bool ok = bytes != NULL && write_png_stream(out, img, bytes, why, why_size);
+    if (bytes == NULL)
+        snprintf(why, why_size, "out of memory");
+    free(bytes);
+    return ok;
 }
 
 bool image_write_png(const image *img, const char *path, char *why, size_t why_size)

@@ -101,20 +101,24 @@ static bool read_int(parser *p, const char *what, long *out)
     return true;
 }
 
+/* Light adds up and is multiplied; keeping every colour and intensity at
+ * most 1e6 keeps any sum of products far from overflowing to infinity. */
+#define SCENE_MAX_INTENSITY 1e6
+
 static bool read_color(parser *p, const char *what, vec3 *out)
 {
     double c[3];
     for (int k = 0; k < 3; k++) {
         if (!read_number(p, what, &c[k]))
             return false;
-        if (c[k] < 0)
-            return expected(p, "expected %s of at least 0", what);
+        if (!(c[k] >= 0 && c[k] <= SCENE_MAX_INTENSITY))
+            return expected(p, "expected %s from 0 to 1e6", what);
     }
     *out = (vec3){c[0], c[1], c[2]};
     return true;
 }
 
-#define SCENE_MAX_COORDINATE 1e100 /* squares of coordinates stay finite */
+#define SCENE_MAX_COORDINATE 1e50 /* fourth powers of coordinates stay finite */
 
 static bool read_point(parser *p, const char *what, vec3 *out)
 {
@@ -123,7 +127,7 @@ static bool read_point(parser *p, const char *what, vec3 *out)
         if (!read_number(p, what, &c[k]))
             return false;
         if (fabs(c[k]) > SCENE_MAX_COORDINATE)
-            return expected(p, "expected %s between -1e100 and 1e100", what);
+            return expected(p, "expected %s between -1e50 and 1e50", what);
     }
     *out = (vec3){c[0], c[1], c[2]};
     return true;
@@ -286,8 +290,8 @@ static bool read_radius(parser *p, double *radius)
 {
     if (!read_number(p, "a radius", radius))
         return false;
-    if (!(*radius >= 1e-100 && *radius <= 1e100))
-        return expected(p, "expected a radius between 1e-100 and 1e100");
+    if (!(*radius >= 1e-50 && *radius <= 1e50))
+        return expected(p, "expected a radius between 1e-50 and 1e50");
     return true;
 }
 
@@ -387,12 +391,12 @@ static bool read_attenuation(parser *p, double a[3])
     }
     const char *problem = NULL;
     int bad = 0;
-    if (!(a[0] > 0))
-        bad = 0, problem = "a1 > 0, so that the light is finite at its own position";
-    else if (a[2] < 0)
-        bad = 2, problem = "a3 >= 0, or the denominator turns negative far away";
-    else if (a[1] < 0 && !(a[1] * a[1] < 4 * a[0] * a[2]))
-        bad = 1, problem = "a2 >= 0 or a2^2 < 4 a1 a3, or the denominator reaches 0";
+    if (!(a[0] >= 1e-6 && a[0] <= 1e6))
+        bad = 0, problem = "a1 from 1e-6 to 1e6, so that the light is finite at its position";
+    else if (!(a[1] >= 0 && a[1] <= 1e6))
+        bad = 1, problem = "a2 from 0 to 1e6, so that the denominator stays at least a1";
+    else if (!(a[2] >= 0 && a[2] <= 1e6))
+        bad = 2, problem = "a3 from 0 to 1e6, so that the denominator stays at least a1";
     if (problem == NULL)
         return true;
     p->token = where[bad], p->token_length = length[bad];
@@ -588,26 +592,46 @@ static bool file_error(scene_error *err, const char *path, const char *message)
     return false;
 }
 
-/* The whole file at path, at most max_bytes, in a malloc'ed *text. */
+/* Reads from in until the end, growing *text by doubling; false when it
+ * would pass max_bytes or memory runs out. */
+static bool read_all(FILE *in, long max_bytes, char **text, size_t *length)
+{
+    size_t capacity = 4096;
+    *text = malloc(capacity);
+    *length = 0;
+    while (*text != NULL) {
+        *length += fread(*text + *length, 1, capacity - *length, in);
+        if (*length < capacity || *length > (size_t)max_bytes)
+            return *length <= (size_t)max_bytes; /* the end, or too much */
+        char *grown = realloc(*text, 2 * capacity);
+        if (grown == NULL) {
+            free(*text);
+            *text = NULL; /* says "out of memory" to the caller */
+            break;
+        }
+        *text = grown;
+        capacity *= 2;
+    }
+    return false;
+}
+
+/* The whole file at path, at most max_bytes, in a malloc'ed *text that is
+ * NUL-terminated (a last stop for strtol and friends). */
 static bool read_file(const char *path, long max_bytes, char **text, size_t *length,
                       scene_error *err)
 {
     FILE *in = fopen(path, "rb");
     if (in == NULL)
         return file_error(err, path, strerror(errno));
-    *text = malloc((size_t)max_bytes + 1);
-    *length = *text ? fread(*text, 1, (size_t)max_bytes + 1, in) : 0;
-    bool ok = false;
-    if (*text == NULL)
-        file_error(err, path, "out of memory");
-    else if (ferror(in))
-        file_error(err, path, strerror(errno));
-    else if (*length > (size_t)max_bytes)
-        file_error(err, path, "larger than such a file may be");
-    else
-        ok = true, (*text)[*length] = '\0'; /* a last stop for strtol and friends */
+    bool ok = read_all(in, max_bytes, text, length);
+    if (ferror(in))
+        ok = file_error(err, path, strerror(errno));
+    else if (!ok)
+        file_error(err, path, *text ? "larger than such a file may be" : "out of memory");
     fclose(in);
-    if (!ok) {
+    if (ok) {
+        (*text)[*length] = '\0'; /* there is room: length < capacity */
+    } else {
         free(*text);
         *text = NULL;
     }

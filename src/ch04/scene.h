@@ -76,6 +76,10 @@ bool scene_add_light(scene *s, light L);
  * (the OBJ file's line and column) and returns false, m then holding what
  * was read so far for mesh_free. */
 bool mesh_load_obj(mesh *m, const char *path, scene_error *err);
+
+/* The same for OBJ text already in memory, text[0..length), called name. */
+bool mesh_parse_obj(mesh *m, const char *text, size_t length, const char *name,
+                    scene_error *err);
 bool scene_add_mesh(scene *s, mesh m);
 
 #endif

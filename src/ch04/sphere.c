@@ -19,7 +19,11 @@ void sphere_fill_hit(const sphere *sp, ray r, double t, hit *h)
     h->point = ray_at(r, t);
     /* Normalised rather than divided by the radius: unit length even when
      * the point carries the rounding error of a long ray. */
-    h->normal = vec3_normalize(vec3_sub(h->point, sp->center));
+    vec3 out = vec3_sub(h->point, sp->center);
+    double length = vec3_length(out);
+    /* A sphere far smaller than the rounding of its distance can put the hit
+     * point exactly on its centre; facing the ray is then the best guess. */
+    h->normal = length > 0 ? vec3_scale(out, 1 / length) : vec3_scale(r.dir, -1);
     h->color = sp->color;
     h->material = sp->material;
 }
