@@ -200,6 +200,50 @@ chart-%: $(B)/bench/% | deps
 charts: deps $(BENCHES)
 	@for b in $(notdir $(BENCHES)); do $(MAKE) --no-print-directory chart-$$b || exit 1; done
 
+# ---------------------------------------------------------------- fuzzing
+# make fuzz FUZZ_SECONDS=60: each libFuzzer target for that long, built with
+# clang, ASan and UBSan against the latest chapter's program. New inputs go to
+# build/fuzz/corpus/NAME; the committed seeds in fuzz/corpus/NAME are read only.
+# A finding leaves its input in build/fuzz/NAME-crash-* (or leak-, timeout-).
+FUZZ_SECONDS ?= 60
+FUZZ_CHAPTER := $(lastword $(NUMS))
+FUZZ_TARGETS := tangle scene obj
+FUZZ_FLAGS   := $(CSTD) -g -O1 -fno-omit-frame-pointer -fsanitize=address,undefined \
+                -fno-sanitize-recover=all
+FUZZ_LIB     := $(patsubst %.c,build/fuzz/obj/%.o,$(filter-out main.c,$(call c_files,$(FUZZ_CHAPTER))))
+
+.PHONY: fuzz fuzz-deps fuzz-build
+fuzz-deps:
+	@sh tools/deps.sh clang libclang-rt-dev
+
+build/fuzz/obj/%.o: build/tangle/ch$(FUZZ_CHAPTER)/%.c | fuzz-deps
+	@mkdir -p $(@D)
+	clang $(FUZZ_FLAGS) -fsanitize=fuzzer-no-link $(PNG_CFLAGS) -Ibuild/tangle/ch$(FUZZ_CHAPTER) -c -o $@ $<
+
+build/fuzz/tangle_fuzz: fuzz/tangle_fuzz.c tools/tangle.c | fuzz-deps
+	@mkdir -p $(@D)
+	clang $(FUZZ_FLAGS) -fsanitize=fuzzer -Dmain=tangle_main -o $@ $^
+
+build/fuzz/%_fuzz: fuzz/%_fuzz.c $(FUZZ_LIB) | fuzz-deps
+	@mkdir -p $(@D)
+	clang $(FUZZ_FLAGS) -fsanitize=fuzzer $(PNG_CFLAGS) -Ibuild/tangle/ch$(FUZZ_CHAPTER) \
+	  -o $@ $^ $(PNG_LIBS) -lm
+
+fuzz-build: $(foreach t,$(FUZZ_TARGETS),build/fuzz/$(t)_fuzz)
+
+# Runs from an empty scratch folder, so that a scene's mesh paths find nothing.
+fuzz: fuzz-build
+	@for t in $(FUZZ_TARGETS); do \
+	  mkdir -p build/fuzz/corpus/$$t build/fuzz/scratch; \
+	  echo "== fuzzing $$t for $(FUZZ_SECONDS) s"; \
+	  (cd build/fuzz/scratch && ../$${t}_fuzz ../corpus/$$t ../../../fuzz/corpus/$$t \
+	    -dict=../../../fuzz/$$t.dict -max_total_time=$(FUZZ_SECONDS) -timeout=10 \
+	    -rss_limit_mb=2048 -print_final_stats=1 -close_fd_mask=3 \
+	    -artifact_prefix=../$$t- > ../$$t.log 2>&1); status=$$?; \
+	  grep -E '^(#[0-9]+.*DONE|stat::|==[0-9]+==ERROR|SUMMARY)' build/fuzz/$$t.log; \
+	  [ $$status = 0 ] || { echo "fuzz: $$t found a problem: see build/fuzz/$$t.log"; exit 1; }; \
+	done
+
 # ---------------------------------------------------------------- book
 CHARTS := $(wildcard figures/ch[0-9][0-9]-*.svg)
 

@@ -448,6 +448,31 @@ START_TEST(test_cli_reports_obj_errors_and_writes_nothing)
 }
 END_TEST
 
+START_TEST(test_fuzz_collinear_triangle_is_not_hit)
+{
+    /* Found by fuzz/obj_fuzz: a ray aimed exactly at a zero-area triangle made
+     * the watertight test report a hit whose normal was NaN. */
+    mesh m = {0};
+    scene_error err;
+    ck_assert_msg(mesh_load_obj(&m, "tests/data/fuzz-obj-collinear-triangle.obj", &err), "%s",
+                  err.message);
+    mesh_compute_bounds(&m);
+    vec3 origin = {1.6, 0.6, -1}; /* the fuzz target's: in front of the box */
+    for (double x = 0; x <= 8; x += 0.5) {
+        ray r = {origin, vec3_normalize(vec3_sub((vec3){x, 0, 0}, origin))};
+        hit h;
+        long long tests = 0;
+        ck_assert(!mesh_intersect(&m, r, 0, INFINITY, &h, &tests));
+        triangle_hit th;
+        for (int k = 0; k < N_METHODS; k++)
+            ck_assert_msg(!methods[k].test(m.vertices[0], m.vertices[1], m.vertices[2], r, 0,
+                                           INFINITY, &th),
+                          "%s hits at x = %g", methods[k].name, x);
+    }
+    mesh_free(&m);
+}
+END_TEST
+
 Suite *ch04_triangles_suite(void)
 {
     Suite *s = suite_create("ch04 triangles");
@@ -464,6 +489,7 @@ Suite *ch04_triangles_suite(void)
     tcase_add_test(edges, test_t_outside_the_interval_is_rejected);
     tcase_add_test(edges, test_watertight_leaks_no_ray_where_others_do);
     tcase_add_test(edges, test_bounding_box_never_culls_a_grazing_ray);
+    tcase_add_test(edges, test_fuzz_collinear_triangle_is_not_hit);
     suite_add_tcase(s, edges);
 
     TCase *bad = tcase_create("bad input");

@@ -83,7 +83,9 @@ static vec3 shading_normal(const mesh *m, const mesh_triangle *tri, const double
         if (length > 0 && isfinite(length))
             return vec3_scale(n, 1 / length);
     }
-    return vec3_normalize(triangle_normal(m, tri)); /* non-zero: the triangle was hit */
+    vec3 n = triangle_normal(m, tri);
+    double length = vec3_length(n);
+    return length > 0 && isfinite(length) ? vec3_scale(n, 1 / length) : (vec3){0, 0, 0};
 }
 
 static void mesh_fill_hit(const mesh *m, int k, ray r, const triangle_hit *th, hit *h)
@@ -91,6 +93,8 @@ static void mesh_fill_hit(const mesh *m, int k, ray r, const triangle_hit *th, h
     h->t = th->t;
     h->point = ray_at(r, th->t);
     h->normal = shading_normal(m, &m->triangles[k], th->b);
+    if (h->normal.x == 0 && h->normal.y == 0 && h->normal.z == 0)
+        h->normal = vec3_scale(r.dir, -1); /* too small for a normal: face the ray */
     h->color = m->color;
     h->material = m->material;
 }

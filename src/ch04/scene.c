@@ -547,21 +547,22 @@ static bool obj_texcoord(parser *p, mesh *m)
 /* One OBJ index at *at, resolved against count definitions so far. */
 static bool read_obj_index(parser *p, const char **at, int count, const char *what, int *out)
 {
-    char *stop = (char *)*at;
+    const char *c = *at;
+    bool negative = c < p->end && *c == '-';
+    const char *digits = c += negative;
     long k = 0;
-    bool number = *at < p->end && (**at == '-' || (**at >= '0' && **at <= '9'));
-    if (number) /* strtol would skip blanks, even into the next line */
-        k = strtol(*at, &stop, 10);
-    if (stop == *at || !(stop == p->end || *stop == '/' || *stop == ' ' || *stop == '\t' ||
-                         *stop == '\r' || *stop == '#'))
+    for (; c < p->end && *c >= '0' && *c <= '9'; c++)
+        if (k < MESH_MAX_VERTICES) /* past every count; stops the growth */
+            k = 10 * k + (*c - '0');
+    if (c == digits || !(c == p->end || *c == '/' || is_blank(*c) || *c == '#'))
         return fail_at(p, *at, "expected a %s index (a whole number)", what);
     if (k == 0)
         return fail_at(p, *at, "%s index 0: OBJ indices start at 1", what);
-    if (k > count || -k > count)
-        return fail_at(p, *at, "%s index %ld is out of range (%d defined so far)", what, k,
-                       count);
-    *out = k > 0 ? (int)k - 1 : count + (int)k;
-    *at = stop;
+    if (k > count)
+        return fail_at(p, *at, "%s index %.*s is out of range (%d defined so far)", what,
+                       (int)(c - *at), *at, count);
+    *out = negative ? count - (int)k : (int)k - 1;
+    *at = c;
     return true;
 }
 

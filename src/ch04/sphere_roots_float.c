@@ -21,6 +21,13 @@ static inline rvec rvec_cross(rvec a, rvec b)
     return (rvec){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 
+/* Zero area: the three points lie on a line (or coincide). */
+static inline bool is_degenerate(rvec a, rvec b, rvec c)
+{
+    rvec n = rvec_cross(rvec_sub(b, a), rvec_sub(c, a));
+    return n.x == 0 && n.y == 0 && n.z == 0;
+}
+
 /* Sheet 1.4 for any origin: a = <c - o, d>, D^2 = |c - o|^2 - a^2,
  * t = a -+ sqrt(r^2 - D^2). Needs |d| = 1. */
 int SPHERE_FORM(geometric)(vec3 center, double radius, ray r, double t[2])

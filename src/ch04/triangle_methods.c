@@ -22,6 +22,13 @@ static inline rvec rvec_cross(rvec a, rvec b)
     return (rvec){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 
+/* Zero area: the three points lie on a line (or coincide). */
+static inline bool is_degenerate(rvec a, rvec b, rvec c)
+{
+    rvec n = rvec_cross(rvec_sub(b, a), rvec_sub(c, a));
+    return n.x == 0 && n.y == 0 && n.z == 0;
+}
+
 bool TRIANGLE_METHOD(sheet)(vec3 a, vec3 b, vec3 c, ray r, double t_min, double t_max,
                            triangle_hit *out)
 {
@@ -102,7 +109,7 @@ bool TRIANGLE_METHOD(watertight)(vec3 a, vec3 b, vec3 c, ray r, double t_min, do
     if (det == 0)
         return false; /* parallel, or degenerate */
     real t = (u * sz * A[kz] + v * sz * B[kz] + w * sz * C[kz]) / det;
-    if (!(t > t_min && t < t_max))
+    if (!(t > t_min && t < t_max) || is_degenerate(pa, pb, pc))
         return false;
     *out = (triangle_hit){t, {u / det, v / det, w / det}};
     return true;
