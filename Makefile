@@ -113,7 +113,7 @@ $$(O$(1))/tests/%.o: tests/%.c $$(T$(1))/.stamp | deps
 	@mkdir -p $$(@D)
 	$$(CC) $$(ALL_CFLAGS) $$(PNG_CFLAGS) $$(CHECK_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
 
-$$(O$(1))/tests/runner.o: tests/runner.c | deps
+$$(O$(1))/tests/runner.o: tests/runner.c $$(SUITES$(1)) | deps
 	@mkdir -p $$(@D)
 	$$(CC) $$(ALL_CFLAGS) $$(CHECK_CFLAGS) \
 	  '-DSUITE_LIST=$$(foreach s,$$(SUITES$(1)),X($$(basename $$(notdir $$(s)))))' -c -o $$@ $$<
@@ -243,6 +243,27 @@ fuzz: fuzz-build
 	  grep -E '^(#[0-9]+.*DONE|stat::|==[0-9]+==ERROR|SUMMARY)' build/fuzz/$$t.log; \
 	  [ $$status = 0 ] || { echo "fuzz: $$t found a problem: see build/fuzz/$$t.log"; exit 1; }; \
 	done
+
+# ---------------------------------------------------------------- valgrind
+# make valgrind: every test binary (Check not forking, so that valgrind sees
+# the tests themselves) and every chapter binary on each of its scenes, small.
+VALGRIND := valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=all -q
+
+.PHONY: valgrind
+valgrind: all $(B)/test/tangle $(foreach n,$(NUMS),$(B)/test/ch$(n))
+	@mkdir -p build/valgrind
+	CK_FORK=no TANGLE=$(TANGLE) $(VALGRIND) $(B)/test/tangle
+	$(VALGRIND) $(TANGLE) --line --strict -o build/valgrind/tangle $(CHAPTERS)
+	@for n in $(NUMS); do \
+	  echo "== valgrind: suites 01..$$n and bin/ch$$n"; \
+	  CK_FORK=no CHAPTER_BIN=$(BIN)/ch$$n $(VALGRIND) $(B)/test/ch$$n || exit 1; \
+	  $(VALGRIND) $(BIN)/ch$$n --size 64x48 -o build/valgrind/ch$$n.png || exit 1; \
+	  for scene in build/tangle/ch$$n/scenes/ch$$n-*.scene; do \
+	    [ -f $$scene ] || continue; \
+	    $(VALGRIND) $(BIN)/ch$$n $$scene --size 64x48 -o build/valgrind/ch$$n.png || exit 1; \
+	  done; \
+	done
+	@echo "make valgrind: clean"
 
 # ---------------------------------------------------------------- book
 CHARTS := $(wildcard figures/ch[0-9][0-9]-*.svg)

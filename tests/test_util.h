@@ -12,6 +12,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <signal.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -68,7 +70,7 @@ static inline bool file_exists(const char *path)
 /* How many entries the folder has (. and .. not counted). */
 static inline int count_entries(const char *dir)
 {
-    char command[160];
+    char command[256];
     snprintf(command, sizeof command, "ls -A '%s' | wc -l", dir);
     FILE *p = popen(command, "r");
     int n = -1;
@@ -79,9 +81,28 @@ static inline int count_entries(const char *dir)
     return n;
 }
 
-/* Runs $CHAPTER_BIN with the NULL-ended args; returns its exit status and
- * puts what it wrote on stderr into errors[size]. */
-static inline int run_bin(const char *const *args, char *errors, size_t size)
+/* How run_bin_limited restricts the child before it runs the binary. */
+typedef struct {
+    bool as_nobody;      /* when run as root: drop to uid/gid 65534 */
+    long max_file_bytes; /* > 0: RLIMIT_FSIZE, a disk that is full past this */
+} run_limits;
+
+static inline void apply_limits(run_limits limits)
+{
+    if (limits.max_file_bytes > 0) {
+        struct rlimit r = {(rlim_t)limits.max_file_bytes, (rlim_t)limits.max_file_bytes};
+        signal(SIGXFSZ, SIG_IGN); /* a write past the limit fails instead of killing */
+        if (setrlimit(RLIMIT_FSIZE, &r) != 0)
+            _exit(126);
+    }
+    if (limits.as_nobody && geteuid() == 0 && (setgid(65534) != 0 || setuid(65534) != 0))
+        _exit(126);
+}
+
+/* Runs $CHAPTER_BIN with the NULL-ended args under the limits; returns its
+ * exit status and puts what it wrote on stderr into errors[size]. */
+static inline int run_bin_limited(const char *const *args, char *errors, size_t size,
+                                  run_limits limits)
 {
     const char *bin = getenv("CHAPTER_BIN");
     ck_assert_msg(bin != NULL, "set CHAPTER_BIN to the chapter's binary");
@@ -95,6 +116,7 @@ static inline int run_bin(const char *const *args, char *errors, size_t size)
             argv[k + 1] = args[k];
         if (freopen(err_path, "w", stderr) == NULL || freopen("/dev/null", "w", stdout) == NULL)
             _exit(127);
+        apply_limits(limits);
         execv(bin, (char *const *)argv);
         _exit(127);
     }
@@ -106,6 +128,11 @@ static inline int run_bin(const char *const *args, char *errors, size_t size)
     if (f)
         fclose(f);
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+}
+
+static inline int run_bin(const char *const *args, char *errors, size_t size)
+{
+    return run_bin_limited(args, errors, size, (run_limits){0});
 }
 
 /* scene_init, then parse text[0..length) as the file called name. */
