@@ -58,7 +58,7 @@ suites_upto = $(foreach n,$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS)),$(wildcard
 previous = $(lastword $(filter-out $(1),$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS))))
 
 .PHONY: all test deps src figures charts book clean check-src check-figures \
-        check-book check-lines test-tangle tools benches
+        check-book check-lines check-quotes test-tangle tools benches
 
 all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures benches book
 
@@ -289,8 +289,12 @@ test-tangle: $(B)/test/tangle $(TANGLE)
 check-lines: $(TANGLE) | deps
 	@sh tools/check_line_directives.sh $(TANGLE) chapters/01-camera.md 'double half_width = tan('
 
+# The numbers the chapters quote must be the ones in the CSV files of make charts.
+check-quotes:
+	@sh tools/check_quotes.sh bench/quotes.txt
+
 test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures check-book \
-      check-lines
+      check-lines check-quotes
 	@echo "make test: all passed"
 
 clean:
