@@ -80,7 +80,10 @@ static bool write_png_stream(FILE *out, const image *img, const unsigned char *b
     info.format = PNG_FORMAT_RGB;
     /* convert_to_8bit = 0: the bytes are already sRGB codes. */
     if (!png_image_write_to_stdio(&info, out, 0, bytes, 0, NULL)) {
-        snprintf(why, why_size, "cannot encode PNG: %s", info.message);
+        if (ferror(out)) /* the stream failed (a full disk), not the encoder */
+            snprintf(why, why_size, "cannot write: %s", strerror(errno));
+        else
+            snprintf(why, why_size, "cannot encode PNG: %s", info.message);
         png_image_free(&info);
         return false;
     }
