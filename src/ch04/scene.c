@@ -739,7 +739,8 @@ static bool parse_mesh(parser *p, scene *s)
         else if (token_is(p, "material"))
             ok = read_material_name(p, s, &m.material);
         else
-            ok = expected(p, "expected a mesh setting (file, scale, offset, smooth, color, material)");
+            ok = expected(p, "expected a mesh setting "
+                             "(file, scale, offset, smooth, color, material)");
         if (!ok)
             return false;
     }

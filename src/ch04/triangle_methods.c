@@ -92,7 +92,9 @@ bool TRIANGLE_METHOD(watertight)(vec3 a, vec3 b, vec3 c, ray r, double t_min, do
     }
     real sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = 1 / d[kz];
     rvec o = rvec_from(r.origin);
-    rvec pa = rvec_sub(rvec_from(a), o), pb = rvec_sub(rvec_from(b), o), pc = rvec_sub(rvec_from(c), o);
+    rvec pa = rvec_sub(rvec_from(a), o);
+    rvec pb = rvec_sub(rvec_from(b), o);
+    rvec pc = rvec_sub(rvec_from(c), o);
     real A[3] = {pa.x, pa.y, pa.z}, B[3] = {pb.x, pb.y, pb.z}, C[3] = {pc.x, pc.y, pc.z};
     real ax = A[kx] - sx * A[kz], ay = A[ky] - sy * A[kz];
     real bx = B[kx] - sx * B[kz], by = B[ky] - sy * B[kz];
