@@ -104,18 +104,10 @@ bool mesh_intersect(const mesh *m, ray r, double t_min, double t_max, hit *h,
 {
     if (!box_hit(m->lo, m->hi, r, t_min, t_max))
         return false; /* missing the box, the ray misses every triangle */
-    int nearest = -1;
-    triangle_hit best, th;
-    for (int k = 0; k < m->triangle_count; k++) {
-        const int *v = m->triangles[k].v;
-        (*tests)++;
-        if (triangle_hit_watertight(m->vertices[v[0]], m->vertices[v[1]], m->vertices[v[2]], r,
-                                    t_min, t_max, &th)) {
-            best = th;
-            t_max = th.t;
-            nearest = k;
-        }
-    }
+    *tests += m->triangle_count;
+    triangle_hit best;
+    int nearest = triangle_nearest_watertight(m->vertices, m->triangles, m->triangle_count, r,
+                                              t_min, t_max, &best);
     if (nearest < 0)
         return false;
     mesh_fill_hit(m, nearest, r, &best, h);

@@ -12,11 +12,6 @@
 #define MESH_MAX_TRIANGLES (1 << 23) /* 8.4 million */
 
 typedef struct {
-    int v[3]; /* indices into vertices */
-    int n[3]; /* indices into normals, or -1 when the triangle has none */
-} mesh_triangle;
-
-typedef struct {
     vec3 *vertices;
     int vertex_count, vertex_capacity;
     vec3 *normals;

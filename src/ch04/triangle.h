@@ -21,6 +21,18 @@ typedef struct {
 typedef bool (*triangle_method)(vec3 a, vec3 b, vec3 c, ray r, double t_min, double t_max,
                                 triangle_hit *out);
 
+/* A triangle of a mesh: indices into its vertices and (-1: none) normals. */
+typedef struct {
+    int v[3];
+    int n[3];
+} mesh_triangle;
+
+/* The nearest of count triangles that r hits in (t_min, t_max), by the
+ * watertight test with the ray's shear computed once: its index, its hit in
+ * *out; or -1. */
+int triangle_nearest_watertight(const vec3 *vertices, const mesh_triangle *triangles, int count,
+                                ray r, double t_min, double t_max, triangle_hit *out);
+
 bool triangle_hit_sheet(vec3 a, vec3 b, vec3 c, ray r, double t_min, double t_max,
                         triangle_hit *out);
 bool triangle_hit_moller_trumbore(vec3 a, vec3 b, vec3 c, ray r, double t_min, double t_max,

@@ -79,26 +79,39 @@ bool TRIANGLE_METHOD(moller_trumbore)(vec3 a, vec3 b, vec3 c, ray r, double t_mi
     return true;
 }
 
-bool TRIANGLE_METHOD(watertight)(vec3 a, vec3 b, vec3 c, ray r, double t_min, double t_max,
-                                triangle_hit *out)
+/* The ray's origin, its axes permuted so that it runs along z, and the
+ * shear that turns it into the z axis: all the edge functions need of it. */
+typedef struct {
+    int kx, ky, kz;
+    real sx, sy, sz;
+    rvec origin;
+} sheared_ray;
+
+static sheared_ray shear_ray(ray r)
 {
+    sheared_ray s = {.origin = rvec_from(r.origin)};
     real d[3] = {(real)r.dir.x, (real)r.dir.y, (real)r.dir.z};
-    int kz = fabs((double)d[0]) > fabs((double)d[1]) ? 0 : 1;
-    kz = fabs((double)d[2]) > fabs((double)d[kz]) ? 2 : kz;
-    int kx = (kz + 1) % 3, ky = (kz + 2) % 3;
-    if (d[kz] < 0) {
-        int swap = kx;
-        kx = ky, ky = swap;
+    s.kz = fabs((double)d[0]) > fabs((double)d[1]) ? 0 : 1;
+    s.kz = fabs((double)d[2]) > fabs((double)d[s.kz]) ? 2 : s.kz;
+    s.kx = (s.kz + 1) % 3, s.ky = (s.kz + 2) % 3;
+    if (d[s.kz] < 0) {
+        int swap = s.kx;
+        s.kx = s.ky, s.ky = swap;
     }
-    real sx = d[kx] / d[kz], sy = d[ky] / d[kz], sz = 1 / d[kz];
-    rvec o = rvec_from(r.origin);
-    rvec pa = rvec_sub(rvec_from(a), o);
-    rvec pb = rvec_sub(rvec_from(b), o);
-    rvec pc = rvec_sub(rvec_from(c), o);
+    s.sx = d[s.kx] / d[s.kz], s.sy = d[s.ky] / d[s.kz], s.sz = 1 / d[s.kz];
+    return s;
+}
+
+static bool hit_sheared(const sheared_ray *s, vec3 a, vec3 b, vec3 c, double t_min,
+                        double t_max, triangle_hit *out)
+{
+    rvec pa = rvec_sub(rvec_from(a), s->origin);
+    rvec pb = rvec_sub(rvec_from(b), s->origin);
+    rvec pc = rvec_sub(rvec_from(c), s->origin);
     real A[3] = {pa.x, pa.y, pa.z}, B[3] = {pb.x, pb.y, pb.z}, C[3] = {pc.x, pc.y, pc.z};
-    real ax = A[kx] - sx * A[kz], ay = A[ky] - sy * A[kz];
-    real bx = B[kx] - sx * B[kz], by = B[ky] - sy * B[kz];
-    real cx = C[kx] - sx * C[kz], cy = C[ky] - sy * C[kz];
+    real ax = A[s->kx] - s->sx * A[s->kz], ay = A[s->ky] - s->sy * A[s->kz];
+    real bx = B[s->kx] - s->sx * B[s->kz], by = B[s->ky] - s->sy * B[s->kz];
+    real cx = C[s->kx] - s->sx * C[s->kz], cy = C[s->ky] - s->sy * C[s->kz];
     real u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
     if (u == 0 || v == 0 || w == 0) { /* exactly on an edge: decide more precisely */
         u = (real)((wider)cx * by - (wider)cy * bx);
@@ -110,9 +123,16 @@ bool TRIANGLE_METHOD(watertight)(vec3 a, vec3 b, vec3 c, ray r, double t_min, do
     real det = u + v + w;
     if (det == 0)
         return false; /* parallel, or degenerate */
-    real t = (u * sz * A[kz] + v * sz * B[kz] + w * sz * C[kz]) / det;
+    real t = (u * s->sz * A[s->kz] + v * s->sz * B[s->kz] + w * s->sz * C[s->kz]) / det;
     if (!(t > t_min && t < t_max) || is_degenerate(pa, pb, pc))
         return false;
     *out = (triangle_hit){t, {u / det, v / det, w / det}};
     return true;
+}
+
+bool TRIANGLE_METHOD(watertight)(vec3 a, vec3 b, vec3 c, ray r, double t_min, double t_max,
+                                triangle_hit *out)
+{
+    sheared_ray s = shear_ray(r);
+    return hit_sheared(&s, a, b, c, t_min, t_max, out);
 }
