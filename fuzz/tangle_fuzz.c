@@ -13,10 +13,12 @@ int tangle_main(int argc, char **argv);
 
 static char chapter[256], outdir[256];
 
-/* A scratch folder for the whole run, made on the first input. */
+/* A scratch folder for the whole run, made on the first input in the
+ * current folder (make fuzz runs from build/fuzz/scratch, which make clean
+ * removes). */
 static void make_scratch(void)
 {
-    char folder[] = "/tmp/tangle-fuzz-XXXXXX";
+    char folder[] = "tangle-fuzz-XXXXXX";
     if (mkdtemp(folder) == NULL)
         abort();
     snprintf(chapter, sizeof chapter, "%s/01-fuzz.md", folder);
