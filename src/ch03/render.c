@@ -13,10 +13,10 @@ bool scene_intersect(const scene *s, ray r, double t_min, double t_max, hit *h,
             nearest = &s->spheres[k];
         }
     }
-    if (nearest != NULL)
+    bool found = false; /* set when another kind of shape is hit nearer, and fills h */
+    if (!found && nearest != NULL)
         sphere_fill_hit(nearest, r, t_max, h);
-    bool found = nearest != NULL;
-    return found;
+    return found || nearest != NULL;
 }
 
 vec3 background_color(const background *bg, vec3 dir)

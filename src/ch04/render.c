@@ -13,16 +13,16 @@ bool scene_intersect(const scene *s, ray r, double t_min, double t_max, hit *h,
             nearest = &s->spheres[k];
         }
     }
-    if (nearest != NULL)
-        sphere_fill_hit(nearest, r, t_max, h);
-    bool found = nearest != NULL;
+    bool found = false; /* set when another kind of shape is hit nearer, and fills h */
     for (int k = 0; k < s->mesh_count; k++) {
         if (mesh_intersect(&s->meshes[k], r, t_min, t_max, h, &stats->triangle_tests)) {
             t_max = h->t; /* a nearer hit than any before */
             found = true;
         }
     }
-    return found;
+    if (!found && nearest != NULL)
+        sphere_fill_hit(nearest, r, t_max, h);
+    return found || nearest != NULL;
 }
 
 #include <stdio.h>
