@@ -87,7 +87,7 @@ typedef struct {
     rvec origin;
 } sheared_ray;
 
-static sheared_ray shear_ray(ray r)
+static inline sheared_ray shear_ray(ray r)
 {
     sheared_ray s = {.origin = rvec_from(r.origin)};
     real d[3] = {(real)r.dir.x, (real)r.dir.y, (real)r.dir.z};
@@ -102,7 +102,7 @@ static sheared_ray shear_ray(ray r)
     return s;
 }
 
-static bool hit_sheared(const sheared_ray *s, vec3 a, vec3 b, vec3 c, double t_min,
+static inline bool hit_sheared(const sheared_ray *s, vec3 a, vec3 b, vec3 c, double t_min,
                         double t_max, triangle_hit *out)
 {
     rvec pa = rvec_sub(rvec_from(a), s->origin);
