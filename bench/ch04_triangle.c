@@ -28,7 +28,7 @@
 #include <time.h>
 
 #include "mesh.h"
-#include "scene.h"
+#include "obj.h"
 #include "bench_util.h"
 
 static const struct {
@@ -213,14 +213,14 @@ static double ns_per_test(triangle_method test)
 static void brute_force(const char *path)
 {
     mesh bunny = {0};
-    scene_error err;
+    parse_error err;
     if (!mesh_load_obj(&bunny, path, &err)) {
         fprintf(stderr, "%s:%d:%d: error: %s\n", err.file, err.line, err.col, err.message);
         exit(1);
     }
     mesh_compute_bounds(&bunny);
-    vec3 centre = vec3_scale(vec3_add(bunny.lo, bunny.hi), 0.5);
-    vec3 size = vec3_sub(bunny.hi, bunny.lo);
+    vec3 centre = vec3_scale(vec3_add(bunny.bounds.lo, bunny.bounds.hi), 0.5);
+    vec3 size = vec3_sub(bunny.bounds.hi, bunny.bounds.lo);
     enum { RAYS = 200 };
     ray probe[RAYS];
     for (int k = 0; k < RAYS; k++) { /* from the front, into the box */

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 
 #include "render.h"
+#include "scene_file.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

@@ -94,7 +94,7 @@ END_TEST
 
 START_TEST(test_origin_inside_sees_the_far_side)
 {
-    sphere sp = {.center = {0, 0, 0}, .radius = 2, .color = {1, 1, 1}};
+    sphere sp = {.center = {0, 0, 0}, .radius = 2};
     ray r = {ORIGIN, PLUS_Z};
     double t;
     ck_assert(sphere_hit_t(&sp, r, 0, INFINITY, &t));
@@ -268,8 +268,9 @@ START_TEST(test_nearest_of_several_spheres_wins)
     scene_init(&s);
     const double zs[] = {10, 5, 20};
     for (int k = 0; k < 3; k++)
-        ck_assert(scene_add_sphere(&s, (sphere){.center = {0, 0, zs[k]}, .radius = 1,
-                                               .color = {k, 0, 0}}));
+        ck_assert(scene_add_object(&s, (object){.kind = SHAPE_SPHERE,
+                                                .sphere = {{0, 0, zs[k]}, 1},
+                                                .color = {k, 0, 0}}));
     render_stats stats = {0};
     hit h;
     ray r = {ORIGIN, PLUS_Z};
@@ -291,12 +292,13 @@ START_TEST(test_sphere_statement_defaults_and_settings)
     scene s;
     scene_error err;
     ck_assert(parse_text(&s, "sphere\nsphere radius 2 color 0 0.5 1 center -1 2.5 1e3\n", &err));
-    ck_assert_int_eq(s.sphere_count, 2);
-    ck_assert(s.spheres[0].radius == 1 && s.spheres[0].center.z == 5);
-    ck_assert(s.spheres[1].radius == 2 && s.spheres[1].center.x == -1 &&
-              s.spheres[1].center.z == 1000 && s.spheres[1].color.z == 1);
+    ck_assert_int_eq(s.object_count, 2);
+    ck_assert(s.objects[0].kind == SHAPE_SPHERE && s.objects[1].kind == SHAPE_SPHERE);
+    ck_assert(s.objects[0].sphere.radius == 1 && s.objects[0].sphere.center.z == 5);
+    ck_assert(s.objects[1].sphere.radius == 2 && s.objects[1].sphere.center.x == -1 &&
+              s.objects[1].sphere.center.z == 1000 && s.objects[1].color.z == 1);
     scene_free(&s);
-    ck_assert_ptr_null(s.spheres);
+    ck_assert_ptr_null(s.objects);
 }
 END_TEST
 
@@ -323,14 +325,15 @@ START_TEST(test_sphere_statement_rejects_bad_centres_and_settings)
 }
 END_TEST
 
-START_TEST(test_scene_add_sphere_grows)
+START_TEST(test_scene_add_object_grows)
 {
     scene s;
     scene_init(&s);
     for (int k = 0; k < 1000; k++)
-        ck_assert(scene_add_sphere(&s, (sphere){.center = {k, 0, 0}, .radius = 1}));
-    ck_assert_int_eq(s.sphere_count, 1000);
-    ck_assert(s.spheres[999].center.x == 999);
+        ck_assert(scene_add_object(&s, (object){.kind = SHAPE_SPHERE,
+                                                .sphere = {{k, 0, 0}, 1}}));
+    ck_assert_int_eq(s.object_count, 1000);
+    ck_assert(s.objects[999].sphere.center.x == 999);
     scene_free(&s);
 }
 END_TEST
@@ -359,7 +362,7 @@ Suite *ch02_spheres_suite(void)
     tcase_add_test(bad, test_sphere_statement_defaults_and_settings);
     tcase_add_test(bad, test_sphere_statement_rejects_bad_radii);
     tcase_add_test(bad, test_sphere_statement_rejects_bad_centres_and_settings);
-    tcase_add_test(bad, test_scene_add_sphere_grows);
+    tcase_add_test(bad, test_scene_add_object_grows);
     suite_add_tcase(s, bad);
     return s;
 }

@@ -266,12 +266,12 @@ START_TEST(test_material_light_and_tonemap_statements)
     ck_assert_msg(parse_text(&s, text, &err), "%d:%d %s", err.line, err.col, err.message);
     ck_assert(s.ambient.z == 0.3 && s.tone.alpha == 1.5 && s.tone.beta == 0.8);
     ck_assert_int_eq(s.material_count, 1);
-    const material *shiny = scene_material(&s, s.spheres[0].material);
+    const material *shiny = scene_material(&s, s.objects[0].material);
     ck_assert_str_eq(shiny->name, "shiny");
     ck_assert(shiny->specular == 0.9 && shiny->shininess == 80 &&
               shiny->highlight == HIGHLIGHT_BLINN && shiny->emission.x == 1);
     ck_assert(shiny->diffuse == 0.8); /* the built-in default, not the redefined one */
-    ck_assert(scene_material(&s, s.spheres[1].material)->diffuse == 0.5);
+    ck_assert(scene_material(&s, s.objects[1].material)->diffuse == 0.5);
     ck_assert_int_eq(s.light_count, 2);
     ck_assert(s.lights[0].attenuation[1] == 0.5 && s.lights[0].attenuation[2] == 0.25);
     ck_assert(s.lights[1].direction.y == -1);    /* normalised */

@@ -12,6 +12,7 @@
 #include <unistd.h>
 
 #include "mesh.h"
+#include "obj.h"
 #include "render.h"
 #include "scene.h"
 #include "triangle.h"
@@ -126,7 +127,7 @@ START_TEST(test_winding_decides_the_normal)
     vec3 corners[3] = {A, B, C};
     m.vertices = corners;
     m.vertex_count = 3;
-    mesh_triangle tri = {{0, 1, 2}, {-1, -1, -1}};
+    mesh_triangle tri = {{0, 1, 2}};
     m.triangles = &tri;
     m.triangle_count = 1;
     mesh_compute_bounds(&m);
@@ -134,7 +135,7 @@ START_TEST(test_winding_decides_the_normal)
     long long tests = 0;
     ck_assert(mesh_intersect(&m, (ray){{0.5, 0.5, 0}, {0, 0, 1}}, 0, INFINITY, &h, &tests));
     ck_assert(h.normal.x == 0 && h.normal.y == 0 && h.normal.z == 1);
-    tri = (mesh_triangle){{0, 2, 1}, {-1, -1, -1}};
+    tri = (mesh_triangle){{0, 2, 1}};
     ck_assert(mesh_intersect(&m, (ray){{0.5, 0.5, 0}, {0, 0, 1}}, 0, INFINITY, &h, &tests));
     ck_assert(h.normal.z == -1);
     ck_assert_int_eq(tests, 2);
@@ -228,7 +229,7 @@ START_TEST(test_smooth_normals_are_unit_and_blend_the_vertices)
 {
     /* Two triangles folded along the y axis: the shared vertices get the mean. */
     vec3 v[4] = {{0, 0, 2}, {0, 2, 2}, {1, 0, 1}, {-1, 0, 1}};
-    mesh_triangle t[2] = {{{0, 1, 2}, {-1, -1, -1}}, {{0, 3, 1}, {-1, -1, -1}}};
+    mesh_triangle t[2] = {{{0, 1, 2}}, {{0, 3, 1}}};
     mesh m = {0};
     m.vertices = malloc(sizeof v);
     m.triangles = malloc(sizeof t);
@@ -273,7 +274,7 @@ START_TEST(test_obj_reads_every_face_form)
     ck_assert_int_eq(m.normal_count, 1);
     ck_assert_int_eq(m.texcoord_count, 3);
     ck_assert_int_eq(m.triangle_count, 6);
-    ck_assert(m.triangles[0].n[0] == -1 && m.triangles[2].n[2] == 0);
+    ck_assert(m.triangle_normals[0].v[0] == -1 && m.triangle_normals[2].v[2] == 0);
     /* The fan of the quad: (1, 2, 3) and (1, 3, 4), zero-based. */
     ck_assert(m.triangles[4].v[0] == 0 && m.triangles[4].v[1] == 1 && m.triangles[4].v[2] == 2);
     ck_assert(m.triangles[5].v[0] == 0 && m.triangles[5].v[1] == 2 && m.triangles[5].v[2] == 3);
@@ -381,12 +382,14 @@ START_TEST(test_triangle_and_mesh_statements)
                        "mesh file tri.obj scale 2 offset 1 1 10 smooth color 0 1 0\n";
     ck_assert_msg(parse_named(&s, text, strlen(text), scene_path, &err), "%d:%d %s", err.line, err.col,
                   err.message);
-    ck_assert_int_eq(s.mesh_count, 2);
-    ck_assert(s.meshes[0].triangle_count == 1 && s.meshes[0].color.x == 1);
-    const mesh *m = &s.meshes[1];
+    ck_assert_int_eq(s.object_count, 2);
+    ck_assert_int_eq(s.mesh_count, 1); /* a triangle statement costs no mesh */
+    ck_assert(s.objects[0].kind == SHAPE_TRIANGLE && s.objects[0].color.x == 1);
+    ck_assert(s.objects[1].kind == SHAPE_MESH && s.objects[1].color.y == 1);
+    const mesh *m = &s.meshes[s.objects[1].mesh];
     ck_assert(m->vertices[1].x == 3 && m->vertices[1].z == 10); /* 2 * 1 + 1 */
     ck_assert(m->normal_count == 3);                             /* smooth */
-    ck_assert(m->lo.x == 1 && m->hi.y == 3);
+    ck_assert(m->bounds.lo.x == 1 && m->bounds.hi.y == 3);
     render_stats stats = {0};
     hit h;
     ck_assert(scene_intersect(&s, (ray){{0.2, 0.2, 0}, {0, 0, 1}}, 0, INFINITY, &h, &stats));

@@ -1,14 +1,15 @@
-/* scene.h: what to render, and the scene file parser (chapter 01).
+/* scene.h: what to render (chapter 01).
  *
- * scene_init fills in the defaults; scene_parse and scene_load apply a scene
- * file on top of them. A parser never prints: on bad input it returns false
- * and describes the first problem in a scene_error. */
+ * scene_init fills in the defaults, scene_free releases what the scene
+ * owns. Later chapters add objects, materials, lights, and the queries that
+ * find what a ray hits. The scene does not read files: scene_file.h does. */
 #ifndef SCENE_H
 #define SCENE_H
 
 #include <stdbool.h>
 #include <stddef.h>
 #include "camera.h"
+#include "stats.h"
 
 typedef enum { BACKGROUND_SOLID, BACKGROUND_GRADIENT } background_kind;
 
@@ -17,28 +18,14 @@ typedef struct {
     vec3 bottom, top; /* a solid background uses bottom only */
 } background;
 
+
 typedef struct {
     camera cam;
     background bg;
 } scene;
 
-#define SCENE_MAX_BYTES (16L << 20) /* a scene file is text, not data */
-
-typedef struct {
-    char file[256];
-    int line, col; /* 1-based; line 0: the problem is the file as a whole */
-    char message[256];
-} scene_error;
-
 void scene_init(scene *s);
 void scene_free(scene *s);
-
-/* Reads statements from text[0..length); name is the file name for errors. */
-bool scene_parse(scene *s, const char *text, size_t length, const char *name,
-                 scene_error *err);
-
-/* Reads the scene file at path (at most SCENE_MAX_BYTES) and parses it. */
-bool scene_load(scene *s, const char *path, scene_error *err);
 
 
 #endif

@@ -1,251 +1,11 @@
-/* scene.c: scene defaults and the scene file parser (chapter 01). */
+/* scene.c: the scene's defaults, its contents, and the queries over them
+ * (chapter 01). */
 #include "scene.h"
 
-#include <errno.h>
-#include <stdarg.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include "image.h"
 
-typedef struct {
-    const char *name;        /* file name, for errors */
-    const char *line, *end;  /* current line [line, end) */
-    const char *next;        /* where the next token search starts */
-    int line_number;
-    const char *token;       /* last token read: [token, token + token_length) */
-    int token_length;
-    scene_error *err;
-} parser;
-
-static int column_of(const parser *p, const char *at) { return (int)(at - p->line) + 1; }
-
-static bool fail_at(parser *p, const char *at, const char *format, ...)
-{
-    scene_error *err = p->err;
-    snprintf(err->file, sizeof err->file, "%s", p->name);
-    err->line = p->line_number;
-    err->col = column_of(p, at);
-    va_list args;
-    va_start(args, format);
-    vsnprintf(err->message, sizeof err->message, format, args);
-    va_end(args);
-    return false;
-}
-
-/* "EXPECTATION, found 'TOKEN'", located at the token just read. */
-static bool expected(parser *p, const char *format, ...)
-{
-    char what[160];
-    va_list args;
-    va_start(args, format);
-    vsnprintf(what, sizeof what, format, args);
-    va_end(args);
-    if (p->token_length == 0)
-        return fail_at(p, p->token, "%s, found end of line", what);
-    int shown = p->token_length > 40 ? 40 : p->token_length;
-    return fail_at(p, p->token, "%s, found '%.*s%s'", what, shown, p->token,
-                   shown < p->token_length ? "..." : "");
-}
-
-static bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
-
-static bool next_token(parser *p)
-{
-    const char *c = p->next;
-    while (c < p->end && is_blank(*c))
-        c++;
-    p->token = c;
-    p->token_length = 0;
-    if (c == p->end || *c == '#')
-        return false;
-    while (c < p->end && !is_blank(*c))
-        c++;
-    p->token_length = (int)(c - p->token);
-    p->next = c;
-    return true;
-}
-
-static bool token_is(const parser *p, const char *word)
-{
-    return (size_t)p->token_length == strlen(word) &&
-           memcmp(p->token, word, (size_t)p->token_length) == 0;
-}
-
-/* Reads the next token as a finite number; what names it in errors. */
-static bool read_number(parser *p, const char *what, double *out)
-{
-    char text[64];
-    if (!next_token(p) || p->token_length >= (int)sizeof text)
-        return expected(p, "expected %s", what);
-    memcpy(text, p->token, (size_t)p->token_length);
-    text[p->token_length] = '\0';
-    char *stop;
-    double value = strtod(text, &stop);
-    if (stop == text || *stop != '\0')
-        return expected(p, "expected %s", what);
-    if (!isfinite(value))
-        return expected(p, "expected %s (a finite number)", what);
-    *out = value;
-    return true;
-}
-
-static bool read_int(parser *p, const char *what, long *out)
-{
-    double value;
-    if (!read_number(p, what, &value))
-        return false;
-    if (value != floor(value) || fabs(value) > 1e15) /* 1e15: exact in a double */
-        return expected(p, "expected %s (a whole number)", what);
-    *out = (long)value;
-    return true;
-}
-
-/* Light adds up and is multiplied; keeping every colour and intensity at
- * most 1e6 keeps any sum of products far from overflowing to infinity. */
-#define SCENE_MAX_INTENSITY 1e6
-
-static bool read_color(parser *p, const char *what, vec3 *out)
-{
-    double c[3];
-    for (int k = 0; k < 3; k++) {
-        if (!read_number(p, what, &c[k]))
-            return false;
-        if (!(c[k] >= 0 && c[k] <= SCENE_MAX_INTENSITY))
-            return expected(p, "expected %s from 0 to 1e6", what);
-    }
-    *out = (vec3){c[0], c[1], c[2]};
-    return true;
-}
-
-#define SCENE_MAX_COORDINATE 1e50 /* fourth powers of coordinates stay finite */
-
-static bool read_point(parser *p, const char *what, vec3 *out)
-{
-    double c[3];
-    for (int k = 0; k < 3; k++) {
-        if (!read_number(p, what, &c[k]))
-            return false;
-        if (fabs(c[k]) > SCENE_MAX_COORDINATE)
-            return expected(p, "expected %s between -1e50 and 1e50", what);
-    }
-    *out = (vec3){c[0], c[1], c[2]};
-    return true;
-}
-
-/* Room for one more element: returns items (moved if it had to grow), or
- * NULL, leaving items as they were, at max or when memory runs out. */
-static void *grow_array(void *items, int count, int *capacity, int max, size_t size)
-{
-    if (count < *capacity)
-        return items;
-    if (*capacity >= max)
-        return NULL;
-    int wanted = *capacity ? 2 * *capacity : 8;
-    wanted = wanted < max ? wanted : max;
-    void *grown = realloc(items, (size_t)wanted * size);
-    if (grown != NULL)
-        *capacity = wanted;
-    return grown;
-}
-
-bool scene_add_sphere(scene *s, sphere sp)
-{
-    sphere *grown = grow_array(s->spheres, s->sphere_count, &s->sphere_capacity,
-                               SCENE_MAX_SPHERES, sizeof sp);
-    if (grown == NULL)
-        return false;
-    s->spheres = grown;
-    s->spheres[s->sphere_count++] = sp;
-    return true;
-}
-
-static bool parse_camera(parser *p, scene *s)
-{
-    if (!next_token(p))
-        return expected(p, "expected a camera setting such as 'fov'");
-    do {
-        if (token_is(p, "fov")) {
-            double fov;
-            if (!read_number(p, "a field of view in degrees", &fov))
-                return false;
-            if (!(fov > 0 && fov < 180))
-                return expected(p, "expected a field of view between 0 and 180 degrees");
-            s->cam.fov_deg = fov;
-        }
-        else
-            return expected(p, "expected a camera setting such as 'fov'");
-    } while (next_token(p));
-    return true;
-}
-
-static bool read_side(parser *p, const char *what, int *out)
-{
-    long n = 0;
-    if (!read_int(p, what, &n))
-        return false;
-    if (n < 1 || n > IMAGE_MAX_SIDE)
-        return expected(p, "expected %s from 1 to %d pixels", what, IMAGE_MAX_SIDE);
-    *out = (int)n;
-    return true;
-}
-
-static bool parse_image(parser *p, scene *s)
-{
-    int w, h;
-    if (!read_side(p, "an image width", &w) || !read_side(p, "an image height", &h))
-        return false;
-    if ((long)w * h > IMAGE_MAX_PIXELS)
-        return expected(p, "expected at most %ld pixels in all (%dx%d is %ld)",
-                        IMAGE_MAX_PIXELS, w, h, (long)w * h);
-    s->cam.width = w;
-    s->cam.height = h;
-    return true;
-}
-
-static bool parse_background(parser *p, scene *s)
-{
-    const char *rest = p->next;
-    if (next_token(p) && token_is(p, "gradient")) {
-        s->bg.kind = BACKGROUND_GRADIENT;
-        return read_color(p, "a bottom colour component", &s->bg.bottom) &&
-               read_color(p, "a top colour component", &s->bg.top);
-    }
-    p->next = rest; /* not "gradient": read that token again as a number */
-    s->bg.kind = BACKGROUND_SOLID;
-    return read_color(p, "a colour component", &s->bg.bottom);
-}
-
-static bool read_radius(parser *p, double *radius)
-{
-    if (!read_number(p, "a radius", radius))
-        return false;
-    if (!(*radius >= 1e-50 && *radius <= 1e50))
-        return expected(p, "expected a radius between 1e-50 and 1e50");
-    return true;
-}
-
-static bool parse_sphere(parser *p, scene *s)
-{
-    sphere sp = {.center = {0, 0, 5}, .radius = 1, .color = {0.8, 0.8, 0.8}};
-    while (next_token(p)) {
-        if (token_is(p, "center")) {
-            if (!read_point(p, "a centre coordinate", &sp.center))
-                return false;
-        } else if (token_is(p, "radius")) {
-            if (!read_radius(p, &sp.radius))
-                return false;
-        } else if (token_is(p, "color")) {
-            if (!read_color(p, "a colour component", &sp.color))
-                return false;
-        }
-        else
-            return expected(p, "expected a sphere setting (center, radius, color)");
-    }
-    if (!scene_add_sphere(s, sp))
-        return fail_at(p, p->line, "more than %d spheres", SCENE_MAX_SPHERES);
-    return true;
-}
+#include "array.h"
 
 void scene_init(scene *s)
 {
@@ -260,132 +20,75 @@ void scene_init(scene *s)
 
 void scene_free(scene *s)
 {
-    (void)s; /* nothing is allocated yet */
-    free(s->spheres);
-    s->spheres = NULL;
-    s->sphere_count = s->sphere_capacity = 0;
+    free(s->objects);
+    memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
 }
 
-typedef bool (*statement_parser)(parser *p, scene *s);
-
-static const struct {
-    const char *keyword;
-    statement_parser parse;
-} statements[] = {
-    {"camera", parse_camera},
-    {"image", parse_image},
-    {"background", parse_background},
-    {"sphere", parse_sphere},
-};
-
-static bool parse_statement(parser *p, void *target)
+bool scene_add_object(scene *s, object o)
 {
-    scene *s = target;
-    if (!next_token(p))
-        return true; /* a blank line or a comment */
-    for (size_t k = 0; k < sizeof statements / sizeof statements[0]; k++) {
-        if (token_is(p, statements[k].keyword)) {
-            if (!statements[k].parse(p, s))
-                return false;
-            return next_token(p) ? expected(p, "expected end of line") : true;
-        }
-    }
-    return expected(p, "expected a statement keyword");
-}
-
-typedef bool (*line_parser)(parser *p, void *target);
-
-/* Calls parse_line on every line of text[0..length), stopping at the first error. */
-static bool parse_lines(parser *p, const char *text, size_t length, line_parser parse_line,
-                        void *target)
-{
-    const char *end = text + length;
-    const char *line = text;
-    while (line < end) {
-        const char *eol = memchr(line, '\n', (size_t)(end - line));
-        if (eol == NULL)
-            eol = end;
-        p->line = p->next = line;
-        p->end = eol;
-        p->line_number++;
-        const char *nul = memchr(line, '\0', (size_t)(eol - line));
-        if (nul != NULL)
-            return fail_at(p, nul, "unexpected NUL byte: this is not a text file");
-        if (!parse_line(p, target))
-            return false;
-        line = eol < end ? eol + 1 : end;
-    }
+    object *grown = array_grow(s->objects, s->object_count,
+                               &s->object_capacity, SCENE_MAX_OBJECTS,
+                               sizeof o);
+    if (grown == NULL)
+        return false;
+    s->objects = grown;
+    s->objects[s->object_count++] = o;
     return true;
 }
 
-bool scene_parse(scene *s, const char *text, size_t length, const char *name,
-                 scene_error *err)
-{
-    parser p = {.name = name, .err = err};
-    return parse_lines(&p, text, length, parse_statement, s);
-}
+/* What the search keeps of the nearest hit so far. */
+typedef struct {
+    const object *object; /* NULL: nothing hit yet */
+    double t;             /* its distance: the search's t_max */
+    int primitive;        /* which triangle of a mesh; 0 otherwise */
+    double b[3];          /* where on that triangle: barycentrics */
+} nearest_hit;
 
-static bool file_error(scene_error *err, const char *path, const char *message)
-{
-    snprintf(err->file, sizeof err->file, "%s", path);
-    err->line = err->col = 0;
-    snprintf(err->message, sizeof err->message, "%s", message);
-    return false;
-}
+typedef struct {
+    ray r;
+    double t_min;
+    nearest_hit best;
+    render_stats *stats;
+} scene_search;
 
-/* Reads from in until the end, growing *text by doubling; false when it
- * would pass max_bytes or memory runs out. */
-static bool read_all(FILE *in, long max_bytes, char **text, size_t *length)
+
+/* Narrows q->best when q->r hits o nearer than q->best.t. */
+static void object_intersect(const scene *s, const object *o, scene_search *q)
 {
-    size_t capacity = 4096;
-    *text = malloc(capacity);
-    *length = 0;
-    while (*text != NULL) {
-        *length += fread(*text + *length, 1, capacity - *length, in);
-        if (*length < capacity || *length > (size_t)max_bytes)
-            return *length <= (size_t)max_bytes; /* the end, or too much */
-        char *grown = realloc(*text, 2 * capacity);
-        if (grown == NULL) {
-            free(*text);
-            *text = NULL; /* says "out of memory" to the caller */
-            break;
-        }
-        *text = grown;
-        capacity *= 2;
+    (void)s; /* chapter 04's meshes live in the scene */
+    double t;
+    switch (o->kind) {
+    case SHAPE_SPHERE:
+        q->stats->sphere_tests++;
+        if (sphere_hit_t(&o->sphere, q->r, q->t_min, q->best.t, &t))
+            q->best = (nearest_hit){.object = o, .t = t};
+        break;
     }
-    return false;
 }
 
-/* The whole file at path, at most max_bytes, in a malloc'ed *text that is
- * NUL-terminated (a last stop for strtol and friends). */
-static bool read_file(const char *path, long max_bytes, char **text, size_t *length,
-                      scene_error *err)
+/* Fills h for the nearest hit best, found along r. */
+static void object_fill_hit(const scene *s, const nearest_hit *best, ray r,
+                            hit *h)
 {
-    FILE *in = fopen(path, "rb");
-    if (in == NULL)
-        return file_error(err, path, strerror(errno));
-    bool ok = read_all(in, max_bytes, text, length);
-    if (ferror(in))
-        ok = file_error(err, path, strerror(errno));
-    else if (!ok)
-        file_error(err, path, *text ? "larger than such a file may be" : "out of memory");
-    fclose(in);
-    if (ok) {
-        (*text)[*length] = '\0'; /* there is room: length < capacity */
-    } else {
-        free(*text);
-        *text = NULL;
+    (void)s;
+    const object *o = best->object;
+    switch (o->kind) {
+    case SHAPE_SPHERE:
+        sphere_fill_hit(&o->sphere, r, best->t, h);
+        break;
     }
-    return ok;
+    h->color = o->color;
 }
 
-bool scene_load(scene *s, const char *path, scene_error *err)
+bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
+                     hit *h, render_stats *stats)
 {
-    char *text;
-    size_t length;
-    if (!read_file(path, SCENE_MAX_BYTES, &text, &length, err))
+    scene_search q = {.r = r, .t_min = t_min, .stats = stats,
+                      .best = {.object = NULL, .t = t_max}};
+    for (int k = 0; k < s->object_count; k++)
+        object_intersect(s, &s->objects[k], &q);
+    if (q.best.object == NULL)
         return false;
-    bool ok = scene_parse(s, text, length, path, err);
-    free(text);
-    return ok;
+    object_fill_hit(s, &q.best, r, h);
+    return true;
 }

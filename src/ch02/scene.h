@@ -1,14 +1,15 @@
-/* scene.h: what to render, and the scene file parser (chapter 01).
+/* scene.h: what to render (chapter 01).
  *
- * scene_init fills in the defaults; scene_parse and scene_load apply a scene
- * file on top of them. A parser never prints: on bad input it returns false
- * and describes the first problem in a scene_error. */
+ * scene_init fills in the defaults, scene_free releases what the scene
+ * owns. Later chapters add objects, materials, lights, and the queries that
+ * find what a ray hits. The scene does not read files: scene_file.h does. */
 #ifndef SCENE_H
 #define SCENE_H
 
 #include <stdbool.h>
 #include <stddef.h>
 #include "camera.h"
+#include "stats.h"
 #include "sphere.h"
 
 typedef enum { BACKGROUND_SOLID, BACKGROUND_GRADIENT } background_kind;
@@ -18,34 +19,38 @@ typedef struct {
     vec3 bottom, top; /* a solid background uses bottom only */
 } background;
 
+typedef enum {
+    SHAPE_SPHERE,
+} shape_kind;
+
+/* An object: a shape, and how it looks. Zero means default: a zeroed
+ * object with a shape set is a valid object. */
+typedef struct {
+    shape_kind kind;
+    union {
+        sphere sphere; /* SHAPE_SPHERE */
+    };
+    vec3 color;
+} object;
+
 typedef struct {
     camera cam;
     background bg;
-    sphere *spheres;
-    int sphere_count, sphere_capacity;
+    object *objects;
+    int object_count, object_capacity;
 } scene;
-
-#define SCENE_MAX_BYTES (16L << 20) /* a scene file is text, not data */
-
-typedef struct {
-    char file[256];
-    int line, col; /* 1-based; line 0: the problem is the file as a whole */
-    char message[256];
-} scene_error;
-
-#define SCENE_MAX_SPHERES (1 << 20) /* a million: far beyond what ch02 can render */
 
 void scene_init(scene *s);
 void scene_free(scene *s);
 
-/* Reads statements from text[0..length); name is the file name for errors. */
-bool scene_parse(scene *s, const char *text, size_t length, const char *name,
-                 scene_error *err);
+/* A million: far beyond what a renderer without a tree can draw. */
+#define SCENE_MAX_OBJECTS (1 << 20)
 
-/* Reads the scene file at path (at most SCENE_MAX_BYTES) and parses it. */
-bool scene_load(scene *s, const char *path, scene_error *err);
+/* Appends o; false when out of memory or SCENE_MAX_OBJECTS is reached. */
+bool scene_add_object(scene *s, object o);
 
-/* Appends sp; false when out of memory or SCENE_MAX_SPHERES is reached. */
-bool scene_add_sphere(scene *s, sphere sp);
+/* The nearest hit along r with t in (t_min, t_max), filled into h. */
+bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
+                     hit *h, render_stats *stats);
 
 #endif

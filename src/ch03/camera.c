@@ -7,17 +7,32 @@ double camera_pixel_size(const camera *cam)
     return 2.0 * half_width / cam->width;
 }
 
-vec3 camera_image_point(const camera *cam, double u, double v)
+camera_view camera_view_of(const camera *cam)
 {
     double s = camera_pixel_size(cam);
-    double left = -0.5 * cam->width * s; /* = -tan(fov/2) */
-    double top = 0.5 * cam->height * s;
-    return (vec3){left + u * s, top - v * s, 1.0};
+    camera_view view = {.pixel_size = s,
+                        .left = -0.5 * cam->width * s, /* = -tan(fov/2) */
+                        .top = 0.5 * cam->height * s};
+    return view;
+}
+
+vec3 camera_image_point(const camera *cam, double u, double v)
+{
+    camera_view view = camera_view_of(cam);
+    double s = view.pixel_size;
+    return (vec3){view.left + u * s, view.top - v * s, 1.0};
+}
+
+ray camera_view_ray(const camera_view *view, int i, int j)
+{
+    double s = view->pixel_size;
+    vec3 on_plane = {view->left + (i + 0.5) * s, view->top - (j + 0.5) * s, 1.0};
+    ray r = {{0.0, 0.0, 0.0}, vec3_normalize(on_plane)};
+    return r;
 }
 
 ray camera_ray(const camera *cam, int i, int j)
 {
-    vec3 on_plane = camera_image_point(cam, i + 0.5, j + 0.5);
-    ray r = {{0.0, 0.0, 0.0}, vec3_normalize(on_plane)};
-    return r;
+    camera_view view = camera_view_of(cam);
+    return camera_view_ray(&view, i, j);
 }

@@ -3,7 +3,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 #include "render.h"
+#include "scene_file.h"
 
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
@@ -144,6 +146,30 @@ static void print_stats(const render_stats *st, double load_s, double render_s, 
             1e3 * load_s, 1e3 * render_s, 1e3 * write_s);
 }
 
+enum { BAND_ROWS = 8 }; /* small enough for smooth progress, large enough to
+                           cost nothing */
+
+/* "rendering: row j of h" on a terminal, once the render has taken 1 s. */
+static void show_progress(double start, int rows_done, int rows)
+{
+    if (seconds_now() - start < 1.0 || !isatty(STDERR_FILENO))
+        return;
+    fprintf(stderr, "\rrendering: row %d of %d", rows_done, rows);
+    if (rows_done == rows)
+        fputc('\n', stderr);
+}
+
+static void render_in_bands(const scene *s, image *img, render_stats *stats)
+{
+    double start = seconds_now();
+    for (int first = 0; first < img->height; first += BAND_ROWS) {
+        int last = first + BAND_ROWS < img->height ? first + BAND_ROWS
+                                                   : img->height;
+        render_rows(s, img, first, last, stats);
+        show_progress(start, last, img->height);
+    }
+}
+
 int main(int argc, char **argv)
 {
     options opt;
@@ -167,7 +193,7 @@ int main(int argc, char **argv)
         goto done;
     }
     double loaded = seconds_now();
-    render(&s, &img, &stats);
+    render_in_bands(&s, &img, &stats);
     double rendered = seconds_now();
     if (!image_write_png(&img, opt.output, why, sizeof why)) {
         fprintf(stderr, "%s: error: %s\n", opt.output, why);

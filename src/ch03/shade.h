@@ -1,4 +1,4 @@
-/* shade.h: materials, lights and the Phong model (chapter 03).
+/* shade.h: the Phong model, lights and tone mapping (chapter 03).
  *
  * Vectors: n is the unit surface normal, l the unit vector towards a light,
  * v the unit vector towards the viewer. The highlight functions assume
@@ -7,30 +7,7 @@
 #ifndef SHADE_H
 #define SHADE_H
 
-#include "vec.h"
-
-typedef enum { HIGHLIGHT_PHONG, HIGHLIGHT_BLINN } highlight_model;
-
-typedef struct {
-    char name[32];
-    int line;                              /* where the scene defined it; 0: built in */
-    vec3 emission;                         /* I_e */
-    double ambient, diffuse, specular;     /* rho_a, rho_d, rho_s in [0, 1] */
-    double shininess;                      /* k >= 1 */
-    highlight_model highlight;
-} material;
-
-typedef enum { LIGHT_POINT, LIGHT_DIRECTIONAL, LIGHT_SPOT } light_kind;
-
-typedef struct {
-    light_kind kind;
-    vec3 position;         /* point and spot */
-    vec3 direction;        /* directional and spot: unit, the way the light travels */
-    vec3 intensity;        /* I_j, RGB, may exceed 1 */
-    double attenuation[3]; /* point and spot: 1 / (a1 + a2 r + a3 r^2) */
-    double cos_cutoff;     /* spot: cos Theta_L */
-    double exponent;       /* spot: k in cos^k Theta */
-} light;
+#include "scene.h"
 
 /* What a light delivers at a point: the unit direction towards it, the
  * distance to it (INFINITY for a directional light), and the intensity
@@ -57,5 +34,9 @@ light_sample light_toward(const light *L, vec3 point);
 
 /* min(alpha I^beta, 1) for I >= 0; 0 for I <= 0 or NaN. */
 double tone_map(double I, double alpha, double beta);
+
+/* The local light at the hit h seen from the unit direction v: emission,
+ * ambient, and each light's diffuse and specular terms. */
+vec3 shade(const scene *s, const hit *h, vec3 v, render_stats *stats);
 
 #endif

@@ -1,7 +1,6 @@
-/* mesh.c: bounding boxes and ray-mesh intersection (chapter 04). */
+/* mesh.c: meshes, their normals, and ray-mesh intersection (chapter 04). */
 #include "mesh.h"
 
-#include <float.h>
 #include <stdlib.h>
 
 void mesh_free(mesh *m)
@@ -9,107 +8,134 @@ void mesh_free(mesh *m)
     free(m->vertices);
     free(m->normals);
     free(m->triangles);
-    m->vertices = m->normals = NULL;
-    m->triangles = NULL;
-    m->vertex_count = m->normal_count = m->triangle_count = 0;
+    free(m->triangle_normals);
+    *m = (mesh){0};
 }
 
 void mesh_compute_bounds(mesh *m)
 {
-    m->lo = (vec3){INFINITY, INFINITY, INFINITY};
-    m->hi = (vec3){-INFINITY, -INFINITY, -INFINITY};
+    vec3 lo = {INFINITY, INFINITY, INFINITY};
+    vec3 hi = {-INFINITY, -INFINITY, -INFINITY};
     for (int k = 0; k < m->vertex_count; k++) {
         vec3 v = m->vertices[k];
-        m->lo = (vec3){fmin(m->lo.x, v.x), fmin(m->lo.y, v.y), fmin(m->lo.z, v.z)};
-        m->hi = (vec3){fmax(m->hi.x, v.x), fmax(m->hi.y, v.y), fmax(m->hi.z, v.z)};
+        lo = (vec3){fmin(lo.x, v.x), fmin(lo.y, v.y), fmin(lo.z, v.z)};
+        hi = (vec3){fmax(hi.x, v.x), fmax(hi.y, v.y), fmax(hi.z, v.z)};
     }
+    m->bounds = (box){lo, hi};
 }
 
-/* pbrt's gamma(3) = 3u / (1 - 3u), u = 2^-53: the error bound of 3 roundings. */
-#define GAMMA3 (3 * (DBL_EPSILON / 2) / (1 - 3 * (DBL_EPSILON / 2)))
-
-bool box_hit(vec3 lo, vec3 hi, ray r, double t_min, double t_max)
+/* (b - a) x (c - a): the sheet's n, twice the area long. */
+static vec3 face_normal(vec3 a, vec3 b, vec3 c)
 {
-    const double o[3] = {r.origin.x, r.origin.y, r.origin.z}, d[3] = {r.dir.x, r.dir.y, r.dir.z};
-    const double l[3] = {lo.x, lo.y, lo.z}, h[3] = {hi.x, hi.y, hi.z};
-    for (int k = 0; k < 3; k++) {
-        double inv = 1.0 / d[k]; /* +-infinity for a ray parallel to the slab */
-        double near = (l[k] - o[k]) * inv, far = (h[k] - o[k]) * inv;
-        if (near > far) {
-            double swap = near;
-            near = far, far = swap;
-        }
-        far *= 1 + 2 * GAMMA3; /* rounding must never cull a grazing ray */
-        t_min = near > t_min ? near : t_min; /* a NaN leaves the interval alone */
-        t_max = far < t_max ? far : t_max;
-        if (t_min > t_max)
-            return false;
-    }
-    return true;
+    return vec3_cross(vec3_sub(b, a), vec3_sub(c, a));
 }
 
-/* (p1 - p0) x (p2 - p0): the sheet's n, twice the area long. */
 static vec3 triangle_normal(const mesh *m, const mesh_triangle *tri)
 {
-    vec3 p0 = m->vertices[tri->v[0]];
-    return vec3_cross(vec3_sub(m->vertices[tri->v[1]], p0), vec3_sub(m->vertices[tri->v[2]], p0));
+    const vec3 *p = m->vertices;
+    return face_normal(p[tri->v[0]], p[tri->v[1]], p[tri->v[2]]);
 }
 
 bool mesh_smooth_normals(mesh *m)
 {
-    vec3 *normals = calloc((size_t)m->vertex_count + 1, sizeof *normals);
-    if (normals == NULL)
+    size_t count = (size_t)m->vertex_count + 1, faces = (size_t)m->triangle_count;
+    vec3 *normals = calloc(count, sizeof *normals);
+    mesh_triangle *corners = malloc((faces + 1) * sizeof *corners);
+    if (normals == NULL || corners == NULL) {
+        free(normals), free(corners);
         return false;
+    }
     for (int k = 0; k < m->triangle_count; k++) {
+        const int *v = m->triangles[k].v;
         vec3 n = triangle_normal(m, &m->triangles[k]);
         for (int i = 0; i < 3; i++)
-            normals[m->triangles[k].v[i]] = vec3_add(normals[m->triangles[k].v[i]], n);
-        for (int i = 0; i < 3; i++)
-            m->triangles[k].n[i] = m->triangles[k].v[i];
+            normals[v[i]] = vec3_add(normals[v[i]], n);
+        corners[k] = m->triangles[k]; /* vertex i uses normal i */
     }
-    free(m->normals);
+    free(m->normals), free(m->triangle_normals);
     m->normals = normals;
     m->normal_count = m->normal_capacity = m->vertex_count;
+    m->triangle_normals = corners;
+    m->triangle_normals_capacity = m->triangle_count;
     return true;
 }
 
-static vec3 shading_normal(const mesh *m, const mesh_triangle *tri, const double b[3])
+/* n normalised, or the zero vector when it has no usable length. */
+static vec3 unit_or_zero(vec3 n)
 {
-    if (tri->n[0] >= 0 && tri->n[1] >= 0 && tri->n[2] >= 0) {
-        vec3 n = {0, 0, 0};
-        for (int i = 0; i < 3; i++)
-            n = vec3_add(n, vec3_scale(m->normals[tri->n[i]], b[i]));
-        double length = vec3_length(n);
-        if (length > 0 && isfinite(length))
-            return vec3_scale(n, 1 / length);
-    }
-    vec3 n = triangle_normal(m, tri);
     double length = vec3_length(n);
-    return length > 0 && isfinite(length) ? vec3_scale(n, 1 / length) : (vec3){0, 0, 0};
+    return length > 0 && isfinite(length) ? vec3_scale(n, 1 / length)
+                                          : (vec3){0, 0, 0};
 }
 
-static void mesh_fill_hit(const mesh *m, int k, ray r, const triangle_hit *th, hit *h)
+static bool is_zero(vec3 n) { return n.x == 0 && n.y == 0 && n.z == 0; }
+
+static vec3 blended_normal(const mesh *m, int k, const double b[3])
 {
-    h->t = th->t;
-    h->point = ray_at(r, th->t);
-    h->normal = shading_normal(m, &m->triangles[k], th->b);
-    if (h->normal.x == 0 && h->normal.y == 0 && h->normal.z == 0)
-        h->normal = vec3_scale(r.dir, -1); /* too small for a normal: face the ray */
-    h->color = m->color;
-    h->material = m->material;
+    if (m->triangle_normals == NULL)
+        return (vec3){0, 0, 0};
+    const int *n = m->triangle_normals[k].v;
+    if (n[0] < 0 || n[1] < 0 || n[2] < 0)
+        return (vec3){0, 0, 0};
+    vec3 sum = {0, 0, 0};
+    for (int i = 0; i < 3; i++)
+        sum = vec3_add(sum, vec3_scale(m->normals[n[i]], b[i]));
+    return unit_or_zero(sum);
+}
+
+/* Point, normals and side for a hit with geometric normal n_g and shading
+ * normal n (either may be zero: unusable). */
+static void fill_triangle_hit(vec3 n_g, vec3 n, ray r, double t, hit *h)
+{
+    h->t = t;
+    h->point = ray_at(r, t);
+    if (is_zero(n_g))
+        n_g = vec3_scale(r.dir, -1); /* too small for a normal: face the ray */
+    h->geometric_normal = n_g;
+    h->normal = is_zero(n) ? n_g : n;
+    h->inside = vec3_dot(r.dir, n_g) > 0;
+}
+
+void triangle_fill_hit(vec3 a, vec3 b, vec3 c, ray r, double t, hit *h)
+{
+    fill_triangle_hit(unit_or_zero(face_normal(a, b, c)), (vec3){0, 0, 0},
+                      r, t, h);
+}
+
+void mesh_fill_hit(const mesh *m, int k, ray r, const triangle_hit *th,
+                   hit *h)
+{
+    vec3 n_g = unit_or_zero(triangle_normal(m, &m->triangles[k]));
+    fill_triangle_hit(n_g, blended_normal(m, k, th->b), r, th->t, h);
+}
+
+mesh_ray mesh_ray_of(ray r)
+{
+    return (mesh_ray){r, ray_inverse_dir(r), watertight_ray_of(r)};
+}
+
+int mesh_nearest(const mesh *m, const mesh_ray *mr, double t_min,
+                 double t_max, triangle_hit *out, render_stats *stats)
+{
+    stats->box_tests++;
+    double near = t_min, far = t_max;
+    if (!box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
+        return -1; /* missing the box, the ray misses every triangle */
+    stats->triangle_tests += m->triangle_count;
+    return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
+                                       m->triangle_count, t_min, t_max, out);
 }
 
 bool mesh_intersect(const mesh *m, ray r, double t_min, double t_max, hit *h,
                     long long *tests)
 {
-    if (!box_hit(m->lo, m->hi, r, t_min, t_max))
-        return false; /* missing the box, the ray misses every triangle */
-    *tests += m->triangle_count;
-    triangle_hit best;
-    int nearest = triangle_nearest_watertight(m->vertices, m->triangles, m->triangle_count, r,
-                                              t_min, t_max, &best);
-    if (nearest < 0)
+    mesh_ray mr = mesh_ray_of(r);
+    render_stats stats = {0};
+    triangle_hit th;
+    int k = mesh_nearest(m, &mr, t_min, t_max, &th, &stats);
+    *tests += stats.triangle_tests;
+    if (k < 0)
         return false;
-    mesh_fill_hit(m, nearest, r, &best, h);
+    mesh_fill_hit(m, k, r, &th, h);
     return true;
 }

@@ -1,11 +1,14 @@
 /* mesh.h: indexed triangle meshes and their intersection (chapter 04).
  *
  * A mesh owns its arrays; mesh_free releases them. Triangles index into
- * vertices and, where the file gave them, into normals. */
+ * vertices; triangle_normals, when not NULL, gives for each triangle the
+ * indices of its corners' normals (-1: none). */
 #ifndef MESH_H
 #define MESH_H
 
-#include "sphere.h"
+#include "box.h"
+#include "hit.h"
+#include "stats.h"
 #include "triangle.h"
 
 #define MESH_MAX_VERTICES (1 << 22)  /* 4.2 million: 100 MB of vertices */
@@ -18,25 +21,43 @@ typedef struct {
     int normal_count, normal_capacity;
     mesh_triangle *triangles;
     int triangle_count, triangle_capacity;
+    mesh_triangle *triangle_normals; /* NULL: flat shading */
+    int triangle_normals_capacity;
     int texcoord_count; /* only counted: OBJ indices must refer to them */
-    vec3 lo, hi;        /* the bounding box of the vertices */
-    vec3 color;
-    int material;
+    box bounds;         /* of the vertices */
 } mesh;
 
 void mesh_free(mesh *m);
 void mesh_compute_bounds(mesh *m);
 
-/* Gives every vertex the area-weighted mean of its triangles' normals and
+/* Gives every vertex the area-weighted sum of its triangles' normals and
  * makes every triangle use them; false when out of memory. */
 bool mesh_smooth_normals(mesh *m);
 
-/* Does r meet the box [lo, hi] for some t in (t_min, t_max)? Never says no
- * for a ray that touches the box. */
-bool box_hit(vec3 lo, vec3 hi, ray r, double t_min, double t_max);
+/* The hit record of a hit at th on the triangle (a, b, c): flat shaded. */
+void triangle_fill_hit(vec3 a, vec3 b, vec3 c, ray r, double t, hit *h);
 
-/* The nearest hit on m with t in (t_min, t_max), by the watertight test,
- * filled into h; *tests counts the triangles tested. */
+/* The hit record of a hit th on triangle k of m. */
+void mesh_fill_hit(const mesh *m, int k, ray r, const triangle_hit *th,
+                   hit *h);
+
+/* A ray with what every box and triangle test of a mesh needs of it,
+ * computed once per ray. */
+typedef struct {
+    ray r;
+    vec3 inv_dir;        /* 1 / r.dir, for the boxes */
+    watertight_ray shear; /* for the triangles */
+} mesh_ray;
+
+mesh_ray mesh_ray_of(ray r);
+
+/* The nearest triangle of m that mr hits in (t_min, t_max): its index and
+ * its hit in *out; or -1. Counts the tests in stats. */
+int mesh_nearest(const mesh *m, const mesh_ray *mr, double t_min,
+                 double t_max, triangle_hit *out, render_stats *stats);
+
+/* The nearest hit on m, filled into h: mesh_nearest and mesh_fill_hit for
+ * a single ray; *tests counts the triangles tested. */
 bool mesh_intersect(const mesh *m, ray r, double t_min, double t_max, hit *h,
                     long long *tests);
 

@@ -1,79 +1,27 @@
-/* render.c: tracing rays and rendering an image (chapter 01). */
+/* render.c: rendering a scene into an image (chapter 01). */
 #include "render.h"
 
-bool scene_intersect(const scene *s, ray r, double t_min, double t_max, hit *h,
-                     render_stats *stats)
-{
-    const sphere *nearest = NULL;
-    double t;
-    for (int k = 0; k < s->sphere_count; k++) {
-        stats->sphere_tests++;
-        if (sphere_hit_t(&s->spheres[k], r, t_min, t_max, &t)) {
-            t_max = t; /* from now on only nearer hits count */
-            nearest = &s->spheres[k];
-        }
-    }
-    bool found = false; /* set when another kind of shape is hit nearer, and fills h */
-    for (int k = 0; k < s->mesh_count; k++) {
-        if (mesh_intersect(&s->meshes[k], r, t_min, t_max, h, &stats->triangle_tests)) {
-            t_max = h->t; /* a nearer hit than any before */
-            found = true;
-        }
-    }
-    if (!found && nearest != NULL)
-        sphere_fill_hit(nearest, r, t_max, h);
-    return found || nearest != NULL;
-}
+#include "shade.h"
 
-#include <stdio.h>
-#include <time.h>
-#include <unistd.h>
-
-/* After a second of rendering, "rendering: row j of h" on a terminal. */
-static void show_progress(int rows_done, int rows)
+void render_rows(const scene *s, image *img, int first, int last,
+                 render_stats *stats)
 {
-    static struct timespec start;
-    struct timespec now;
-    clock_gettime(CLOCK_MONOTONIC, &now);
-    if (rows_done == 1)
-        start = now;
-    double elapsed = (double)(now.tv_sec - start.tv_sec) + 1e-9 * (now.tv_nsec - start.tv_nsec);
-    if (elapsed < 1.0 || !isatty(STDERR_FILENO))
-        return;
-    fprintf(stderr, "\rrendering: row %d of %d", rows_done, rows);
-    if (rows_done == rows)
-        fputc('\n', stderr);
-}
-
-vec3 background_color(const background *bg, vec3 dir)
-{
-    if (bg->kind == BACKGROUND_SOLID)
-        return bg->bottom;
-    double t = 0.5 * (dir.y + 1.0); /* dir.y in [-1, 1] -> t in [0, 1] */
-    return vec3_lerp(bg->bottom, bg->top, t);
-}
-
-vec3 trace(const scene *s, ray r, render_stats *stats)
-{
-    hit h;
-    if (!scene_intersect(s, r, 0.0, INFINITY, &h, stats))
-        return background_color(&s->bg, r.dir);
-    return shade(s, &h, vec3_scale(r.dir, -1), stats);
-}
-
-void render(const scene *s, image *img, render_stats *stats)
-{
-    for (int j = 0; j < img->height; j++) {
+    camera_view view = camera_view_of(&s->cam);
+    for (int j = first; j < last; j++) {
         for (int i = 0; i < img->width; i++) {
-            ray r = camera_ray(&s->cam, i, j);
+            ray r = camera_view_ray(&view, i, j);
             stats->primary_rays++;
-            vec3 c = trace(s, r, stats);
+            vec3 c = trace(s, r, 0, stats);
             if (s->tone.alpha != 1 || s->tone.beta != 1) /* the defaults only clip */
                 c = (vec3){tone_map(c.x, s->tone.alpha, s->tone.beta),
                            tone_map(c.y, s->tone.alpha, s->tone.beta),
                            tone_map(c.z, s->tone.alpha, s->tone.beta)};
             image_set(img, i, j, c);
         }
-        show_progress(j + 1, img->height);
     }
+}
+
+void render(const scene *s, image *img, render_stats *stats)
+{
+    render_rows(s, img, 0, img->height, stats);
 }

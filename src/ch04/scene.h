@@ -1,16 +1,18 @@
-/* scene.h: what to render, and the scene file parser (chapter 01).
+/* scene.h: what to render (chapter 01).
  *
- * scene_init fills in the defaults; scene_parse and scene_load apply a scene
- * file on top of them. A parser never prints: on bad input it returns false
- * and describes the first problem in a scene_error. */
+ * scene_init fills in the defaults, scene_free releases what the scene
+ * owns. Later chapters add objects, materials, lights, and the queries that
+ * find what a ray hits. The scene does not read files: scene_file.h does. */
 #ifndef SCENE_H
 #define SCENE_H
 
 #include <stdbool.h>
 #include <stddef.h>
 #include "camera.h"
+#include "stats.h"
 #include "sphere.h"
-#include "shade.h"
+#include "light.h"
+#include "material.h"
 #include "mesh.h"
 
 typedef enum { BACKGROUND_SOLID, BACKGROUND_GRADIENT } background_kind;
@@ -20,11 +22,30 @@ typedef struct {
     vec3 bottom, top; /* a solid background uses bottom only */
 } background;
 
+typedef enum {
+    SHAPE_SPHERE,
+    SHAPE_TRIANGLE,
+    SHAPE_MESH,
+} shape_kind;
+
+/* An object: a shape, and how it looks. Zero means default: a zeroed
+ * object with a shape set is a valid object. */
+typedef struct {
+    shape_kind kind;
+    union {
+        sphere sphere; /* SHAPE_SPHERE */
+        vec3 corners[3]; /* SHAPE_TRIANGLE */
+        int mesh;        /* SHAPE_MESH: index into the scene's meshes */
+    };
+    vec3 color;
+    int material; /* 0: the scene's default material; k: the scene's k-th */
+} object;
+
 typedef struct {
     camera cam;
     background bg;
-    sphere *spheres;
-    int sphere_count, sphere_capacity;
+    object *objects;
+    int object_count, object_capacity;
     vec3 ambient; /* I_a */
     struct {
         double alpha, beta;
@@ -39,32 +60,21 @@ typedef struct {
     int mesh_count, mesh_capacity;
 } scene;
 
-#define SCENE_MAX_BYTES (16L << 20) /* a scene file is text, not data */
-
-typedef struct {
-    char file[256];
-    int line, col; /* 1-based; line 0: the problem is the file as a whole */
-    char message[256];
-} scene_error;
-
-#define SCENE_MAX_SPHERES (1 << 20) /* a million: far beyond what ch02 can render */
-#define SCENE_MAX_MATERIALS 4096
-#define SCENE_MAX_LIGHTS 4096 /* every light costs every shaded point */
-#define SCENE_MAX_MESHES 65536 /* each mesh is tested by every ray: keep them few */
-#define OBJ_MAX_BYTES (512L << 20)
-
 void scene_init(scene *s);
 void scene_free(scene *s);
 
-/* Reads statements from text[0..length); name is the file name for errors. */
-bool scene_parse(scene *s, const char *text, size_t length, const char *name,
-                 scene_error *err);
+/* A million: far beyond what a renderer without a tree can draw. */
+#define SCENE_MAX_OBJECTS (1 << 20)
 
-/* Reads the scene file at path (at most SCENE_MAX_BYTES) and parses it. */
-bool scene_load(scene *s, const char *path, scene_error *err);
+/* Appends o; false when out of memory or SCENE_MAX_OBJECTS is reached. */
+bool scene_add_object(scene *s, object o);
 
-/* Appends sp; false when out of memory or SCENE_MAX_SPHERES is reached. */
-bool scene_add_sphere(scene *s, sphere sp);
+/* The nearest hit along r with t in (t_min, t_max), filled into h. */
+bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
+                     hit *h, render_stats *stats);
+
+#define SCENE_MAX_MATERIALS 4096
+#define SCENE_MAX_LIGHTS 4096 /* every light costs every shaded point */
 
 /* The material with the given index: 0 is the default material. */
 const material *scene_material(const scene *s, int index);
@@ -72,14 +82,10 @@ const material *scene_material(const scene *s, int index);
 bool scene_add_material(scene *s, material m);
 bool scene_add_light(scene *s, light L);
 
-/* Reads the OBJ file at path into the zeroed mesh m; on bad input fills err
- * (the OBJ file's line and column) and returns false, m then holding what
- * was read so far for mesh_free. */
-bool mesh_load_obj(mesh *m, const char *path, scene_error *err);
+#define SCENE_MAX_MESHES 65536 /* meshes loaded; objects may share them */
 
-/* The same for OBJ text already in memory, text[0..length), called name. */
-bool mesh_parse_obj(mesh *m, const char *text, size_t length, const char *name,
-                    scene_error *err);
-bool scene_add_mesh(scene *s, mesh m);
+/* Takes m over and returns its index in the scene, or -1 (out of memory,
+ * or SCENE_MAX_MESHES reached: m is then the caller's to free). */
+int scene_add_mesh(scene *s, mesh m);
 
 #endif

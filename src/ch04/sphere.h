@@ -9,34 +9,41 @@
 #define SPHERE_H
 
 #include <stdbool.h>
-#include "vec.h"
+#include "hit.h"
 
 typedef struct {
     vec3 center;
     double radius; /* > 0 */
-    vec3 color;
-    int material; /* 0: the scene's default material; k: the scene's k-th */
 } sphere;
 
-typedef struct {
-    double t;     /* distance along the ray */
-    vec3 point;   /* o + t d */
-    vec3 normal;  /* unit, pointing out of the surface */
-    vec3 color;
-    int material;
-} hit;
+typedef int (*sphere_roots_fn)(vec3 center, double radius, ray r,
+                               double t[2]);
 
 int sphere_roots_geometric(vec3 center, double radius, ray r, double t[2]);
 int sphere_roots_quadratic(vec3 center, double radius, ray r, double t[2]);
 int sphere_roots_robust(vec3 center, double radius, ray r, double t[2]);
-int sphere_roots_geometric_float(vec3 center, double radius, ray r, double t[2]);
-int sphere_roots_quadratic_float(vec3 center, double radius, ray r, double t[2]);
-int sphere_roots_robust_float(vec3 center, double radius, ray r, double t[2]);
+int sphere_roots_geometric_float(vec3 center, double radius, ray r,
+                                 double t[2]);
+int sphere_roots_quadratic_float(vec3 center, double radius, ray r,
+                                 double t[2]);
+int sphere_roots_robust_float(vec3 center, double radius, ray r,
+                              double t[2]);
+
+/* The six forms by name ("geometric", "quadratic", "robust") and
+ * precision ("double", "float"). */
+typedef struct {
+    const char *name, *precision;
+    sphere_roots_fn roots;
+} sphere_roots_method;
+
+#define SPHERE_ROOTS_METHOD_COUNT 6
+extern const sphere_roots_method SPHERE_ROOTS_METHODS[SPHERE_ROOTS_METHOD_COUNT];
 
 /* The nearest root in (t_min, t_max), by the robust form; false if none. */
-bool sphere_hit_t(const sphere *sp, ray r, double t_min, double t_max, double *t);
+bool sphere_hit_t(const sphere *sp, ray r, double t_min, double t_max,
+                  double *t);
 
-/* Fills h for the hit at t: point, outward unit normal, colour. */
+/* Fills the geometry of h for the hit at t: t, point, normals, side. */
 void sphere_fill_hit(const sphere *sp, ray r, double t, hit *h);
 
 #endif

@@ -137,14 +137,46 @@ bool TRIANGLE_METHOD(watertight)(vec3 a, vec3 b, vec3 c, ray r, double t_min, do
     return hit_sheared(&s, a, b, c, t_min, t_max, out);
 }
 
-int triangle_nearest_watertight(const vec3 *vertices, const mesh_triangle *triangles, int count,
-                                ray r, double t_min, double t_max, triangle_hit *out)
+const triangle_method_entry TRIANGLE_METHODS[TRIANGLE_METHOD_COUNT] = {
+    {"sheet", "double", triangle_hit_sheet},
+    {"moller-trumbore", "double", triangle_hit_moller_trumbore},
+    {"watertight", "double", triangle_hit_watertight},
+    {"sheet", "float", triangle_hit_sheet_float},
+    {"moller-trumbore", "float", triangle_hit_moller_trumbore_float},
+    {"watertight", "float", triangle_hit_watertight_float},
+};
+
+watertight_ray watertight_ray_of(ray r)
 {
-    sheared_ray s = shear_ray(r); /* once for all the triangles */
+    sheared_ray s = shear_ray(r);
+    return (watertight_ray){s.kx, s.ky, s.kz, s.sx, s.sy, s.sz, r.origin};
+}
+
+/* The same numbers in the form hit_sheared reads (here real is double). */
+static inline sheared_ray sheared_from(const watertight_ray *w)
+{
+    return (sheared_ray){w->kx, w->ky, w->kz, w->sx, w->sy, w->sz,
+                         rvec_from(w->origin)};
+}
+
+bool triangle_hit_prepared(const watertight_ray *w, vec3 a, vec3 b, vec3 c,
+                           double t_min, double t_max, triangle_hit *out)
+{
+    sheared_ray s = sheared_from(w);
+    return hit_sheared(&s, a, b, c, t_min, t_max, out);
+}
+
+int triangle_nearest_watertight(const watertight_ray *w, const vec3 *vertices,
+                                const mesh_triangle *triangles, int count,
+                                double t_min, double t_max,
+                                triangle_hit *out)
+{
+    sheared_ray s = sheared_from(w);
     int nearest = -1;
     for (int k = 0; k < count; k++) {
         const int *v = triangles[k].v;
-        if (hit_sheared(&s, vertices[v[0]], vertices[v[1]], vertices[v[2]], t_min, t_max, out)) {
+        if (hit_sheared(&s, vertices[v[0]], vertices[v[1]], vertices[v[2]],
+                        t_min, t_max, out)) {
             t_max = out->t;
             nearest = k;
         }

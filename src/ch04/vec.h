@@ -51,7 +51,8 @@ static inline vec3 vec3_lerp(vec3 a, vec3 b, double t)
 
 static inline vec3 vec3_cross(vec3 a, vec3 b)
 {
-    return (vec3){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+    return (vec3){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
+                  a.x * b.y - a.y * b.x};
 }
 
 /* The half-line origin + t dir, t >= 0. Rays made by the renderer have

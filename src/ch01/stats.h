@@ -1,0 +1,12 @@
+/* stats.h: counts of the work a render does, for --stats (chapter 01).
+ *
+ * Each chapter adds the counters of its work to the hook. All members are
+ * counts, so that two render_stats add member by member. */
+#ifndef STATS_H
+#define STATS_H
+
+typedef struct {
+    long long primary_rays;
+} render_stats;
+
+#endif

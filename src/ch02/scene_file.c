@@ -1,0 +1,166 @@
+/* scene_file.c: the statements of a scene file (chapter 01). */
+#include "scene_file.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "image.h"
+
+
+static bool parse_camera(parser *p, scene *s)
+{
+    if (!parse_next_token(p))
+        return parse_expected(p, "expected a camera setting such as 'fov'");
+    do {
+        if (parse_token_is(p, "fov")) {
+            double fov;
+            if (!parse_number(p, "a field of view in degrees", &fov))
+                return false;
+            if (!(fov > 0 && fov < 180))
+                return parse_expected(p, "expected a field of view between "
+                                         "0 and 180 degrees");
+            s->cam.fov_deg = fov;
+        }
+        else
+            return parse_expected(p, "expected a camera setting such as "
+                                     "'fov'");
+    } while (parse_next_token(p));
+    return true;
+}
+
+static bool read_side(parser *p, const char *what, int *out)
+{
+    long n = 0;
+    if (!parse_int(p, what, &n))
+        return false;
+    if (n < 1 || n > IMAGE_MAX_SIDE)
+        return parse_expected(p, "expected %s from 1 to %d pixels", what,
+                              IMAGE_MAX_SIDE);
+    *out = (int)n;
+    return true;
+}
+
+static bool parse_image(parser *p, scene *s)
+{
+    int w = 0, h = 0; /* set by read_side before any use */
+    if (!read_side(p, "an image width", &w) ||
+        !read_side(p, "an image height", &h))
+        return false;
+    if ((long)w * h > IMAGE_MAX_PIXELS)
+        return parse_expected(p, "expected at most %ld pixels in all "
+                                 "(%dx%d is %ld)",
+                              IMAGE_MAX_PIXELS, w, h, (long)w * h);
+    s->cam.width = w;
+    s->cam.height = h;
+    return true;
+}
+
+static bool parse_background(parser *p, scene *s)
+{
+    const char *rest = p->next;
+    if (parse_next_token(p) && parse_token_is(p, "gradient")) {
+        s->bg.kind = BACKGROUND_GRADIENT;
+        return parse_color(p, "a bottom colour component", &s->bg.bottom) &&
+               parse_color(p, "a top colour component", &s->bg.top);
+    }
+    p->next = rest; /* not "gradient": read that token again as a number */
+    s->bg.kind = BACKGROUND_SOLID;
+    return parse_color(p, "a colour component", &s->bg.bottom);
+}
+
+/* The settings every object statement accepts, for error messages. */
+static const char object_setting_names[] =
+    "color"
+    ;
+
+/* Reads the setting the token just read names, if every object has it:
+ * *known says whether it was one; false on bad input. */
+static bool parse_object_setting(parser *p, scene *s, object *o, bool *known)
+{
+    (void)s; /* chapter 03 looks materials up in the scene */
+    *known = true;
+    if (parse_token_is(p, "color"))
+        return parse_color(p, "a colour component", &o->color);
+    *known = false;
+    return true;
+}
+
+static bool read_radius(parser *p, double *radius)
+{
+    if (!parse_number(p, "a radius", radius))
+        return false;
+    if (!(*radius >= 1e-50 && *radius <= 1e50))
+        return parse_expected(p, "expected a radius between 1e-50 and 1e50");
+    return true;
+}
+
+static bool parse_sphere(parser *p, scene *s)
+{
+    object o = {.kind = SHAPE_SPHERE, .sphere = {{0, 0, 5}, 1},
+                .color = {0.8, 0.8, 0.8}};
+    while (parse_next_token(p)) {
+        bool ok, known = true;
+        if (parse_token_is(p, "center"))
+            ok = parse_point(p, "a centre coordinate", &o.sphere.center);
+        else if (parse_token_is(p, "radius"))
+            ok = read_radius(p, &o.sphere.radius);
+        else
+            ok = parse_object_setting(p, s, &o, &known);
+        if (!known)
+            return parse_expected(p, "expected a sphere setting "
+                                     "(center, radius, %s)",
+                                  object_setting_names);
+        if (!ok)
+            return false;
+    }
+    if (!scene_add_object(s, o))
+        return parse_fail_at(p, p->line, "more than %d objects",
+                             SCENE_MAX_OBJECTS);
+    return true;
+}
+
+typedef bool (*statement_parser)(parser *p, scene *s);
+
+static const struct {
+    const char *keyword;
+    statement_parser parse;
+} statements[] = {
+    {"camera", parse_camera},
+    {"image", parse_image},
+    {"background", parse_background},
+    {"sphere", parse_sphere},
+};
+
+static bool parse_statement(parser *p, void *target)
+{
+    scene *s = target;
+    if (!parse_next_token(p))
+        return true; /* a blank line or a comment */
+    for (size_t k = 0; k < sizeof statements / sizeof statements[0]; k++) {
+        if (parse_token_is(p, statements[k].keyword)) {
+            if (!statements[k].parse(p, s))
+                return false;
+            return parse_next_token(p) ? parse_expected(p, "expected end of "
+                                                           "line")
+                                       : true;
+        }
+    }
+    return parse_expected(p, "expected a statement keyword");
+}
+
+bool scene_parse(scene *s, const char *text, size_t length, const char *name,
+                 scene_error *err)
+{
+    return parse_lines(text, length, name, err, parse_statement, s);
+}
+
+bool scene_load(scene *s, const char *path, scene_error *err)
+{
+    char *text;
+    size_t length;
+    if (!parse_read_file(path, SCENE_MAX_BYTES, &text, &length, err))
+        return false;
+    bool ok = scene_parse(s, text, length, path, err);
+    free(text);
+    return ok;
+}
