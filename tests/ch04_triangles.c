@@ -288,11 +288,7 @@ static void expect_obj_error(const char *text, int line, int col, const char *pa
     mesh m = {0};
     scene_error err;
     ck_assert_msg(!mesh_load_obj(&m, path, &err), "accepted: %s", text);
-    ck_assert_str_eq(err.file, path);
-    ck_assert_msg(err.line == line && err.col == col, "'%s': %d:%d (%s), expected %d:%d", text,
-                  err.line, err.col, err.message, line, col);
-    ck_assert_msg(strstr(err.message, part) != NULL, "'%s': '%s' lacks '%s'", text, err.message,
-                  part);
+    expect_error_at(&err, path, line, col, part, text);
     mesh_free(&m);
 }
 

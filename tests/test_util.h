@@ -148,6 +148,18 @@ static inline bool parse_text(scene *s, const char *text, scene_error *err)
     return parse_named(s, text, strlen(text), "test.scene", err);
 }
 
+/* Asserts that err is an error in file at line:col whose message contains
+ * part; what names the rejected input in a failure message. */
+static inline void expect_error_at(const parse_error *err, const char *file, int line, int col,
+                                   const char *part, const char *what)
+{
+    ck_assert_str_eq(err->file, file);
+    ck_assert_msg(err->line == line && err->col == col, "'%s': error at %d:%d (%s), expected %d:%d",
+                  what, err->line, err->col, err->message, line, col);
+    ck_assert_msg(strstr(err->message, part) != NULL, "'%s': message '%s' lacks '%s'", what,
+                  err->message, part);
+}
+
 /* Asserts that the text is rejected with an error at line:col of the file
  * called name, whose message contains part. */
 static inline void expect_parse_error_named(const char *name, const char *text, size_t length,
@@ -156,11 +168,7 @@ static inline void expect_parse_error_named(const char *name, const char *text, 
     scene s;
     scene_error err;
     ck_assert_msg(!parse_named(&s, text, length, name, &err), "accepted: %s", text);
-    ck_assert_str_eq(err.file, name);
-    ck_assert_msg(err.line == line && err.col == col, "'%s': error at %d:%d (%s), expected %d:%d",
-                  text, err.line, err.col, err.message, line, col);
-    ck_assert_msg(strstr(err.message, part) != NULL, "'%s': message '%s' lacks '%s'", text,
-                  err.message, part);
+    expect_error_at(&err, name, line, col, part, text);
     scene_free(&s);
 }
 

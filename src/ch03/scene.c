@@ -60,8 +60,9 @@ typedef struct {
 } scene_search;
 
 
-/* Narrows q->best when q->r hits o nearer than q->best.t. */
-static void object_intersect(const scene *s, const object *o, scene_search *q)
+/* Narrows q->best when q->r, the ray in o's own space, hits o's shape
+ * nearer than q->best.t. */
+static void shape_intersect(const scene *s, const object *o, scene_search *q)
 {
     (void)s; /* chapter 04's meshes live in the scene */
     double t;
@@ -74,9 +75,14 @@ static void object_intersect(const scene *s, const object *o, scene_search *q)
     }
 }
 
-/* Fills h for the nearest hit best, found along r. */
-static void object_fill_hit(const scene *s, const nearest_hit *best, ray r,
-                            hit *h)
+static void object_intersect(const scene *s, const object *o, scene_search *q)
+{
+    shape_intersect(s, o, q);
+}
+
+/* Fills the geometry of h for the nearest hit best, found along r. */
+static void shape_fill_hit(const scene *s, const nearest_hit *best, ray r,
+                           hit *h)
 {
     (void)s;
     const object *o = best->object;
@@ -85,8 +91,23 @@ static void object_fill_hit(const scene *s, const nearest_hit *best, ray r,
         sphere_fill_hit(&o->sphere, r, best->t, h);
         break;
     }
+}
+
+static void object_fill_hit(const scene *s, const nearest_hit *best, ray r,
+                            hit *h)
+{
+    const object *o = best->object;
+    ray local = r; /* the ray in o's own space: the same until chapter 05 */
+    shape_fill_hit(s, best, local, h);
     h->color = o->color;
     h->material = o->material;
+}
+
+/* Tests every object in turn. */
+static void search_objects(const scene *s, scene_search *q)
+{
+    for (int k = 0; k < s->object_count; k++)
+        object_intersect(s, &s->objects[k], q);
 }
 
 bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
@@ -94,8 +115,7 @@ bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
 {
     scene_search q = {.r = r, .t_min = t_min, .stats = stats,
                       .best = {.object = NULL, .t = t_max}};
-    for (int k = 0; k < s->object_count; k++)
-        object_intersect(s, &s->objects[k], &q);
+    search_objects(s, &q);
     if (q.best.object == NULL)
         return false;
     object_fill_hit(s, &q.best, r, h);

@@ -248,7 +248,9 @@ static bool read_light_setting(parser *p, light *L)
     static const char *const settings[] = {
         [LIGHT_POINT] = "position, intensity, attenuation",
         [LIGHT_DIRECTIONAL] = "direction, intensity",
-        [LIGHT_SPOT] = "position, direction, angle, exponent, intensity, attenuation"};
+        [LIGHT_SPOT] = "position, direction, angle, exponent, intensity, "
+                       "attenuation",
+    };
     bool placed = L->kind != LIGHT_DIRECTIONAL, aimed = L->kind != LIGHT_POINT;
     if (parse_token_is(p, "intensity"))
         return parse_color(p, "a light intensity", &L->intensity);
@@ -263,6 +265,9 @@ static bool read_light_setting(parser *p, light *L)
     return parse_expected(p, "expected a setting of this light (%s)", settings[L->kind]);
 }
 
+static const char other_light_kinds[] = ""
+    ;
+
 static bool parse_light(parser *p, scene *s)
 {
     light L = {.position = {0, 0, 0}, .direction = {0, -1, 0}, .intensity = {1, 1, 1},
@@ -276,7 +281,8 @@ static bool parse_light(parser *p, scene *s)
     else if (named && parse_token_is(p, "spot"))
         L.kind = LIGHT_SPOT;
     else
-        return parse_expected(p, "expected a kind of light (point, directional, spot)");
+        return parse_expected(p, "expected a kind of light (point, "
+                                 "directional, spot%s)", other_light_kinds);
     while (parse_next_token(p))
         if (!read_light_setting(p, &L))
             return false;

@@ -4,7 +4,11 @@
 
 #include "vec.h"
 
-typedef enum { LIGHT_POINT, LIGHT_DIRECTIONAL, LIGHT_SPOT } light_kind;
+typedef enum {
+    LIGHT_POINT,
+    LIGHT_DIRECTIONAL,
+    LIGHT_SPOT,
+} light_kind;
 
 typedef struct {
     light_kind kind;

@@ -18,5 +18,6 @@ vec3 trace(const scene *s, ray r, int depth, render_stats *stats)
     hit h;
     if (!scene_intersect(s, r, 0.0, INFINITY, &h, stats))
         return background_color(&s->bg, r.dir);
-    return shade(s, &h, vec3_scale(r.dir, -1), stats);
+    vec3 color = shade(s, &h, vec3_scale(r.dir, -1), stats);
+    return color;
 }
