@@ -26,7 +26,8 @@ vec3 camera_image_point(const camera *cam, double u, double v)
 ray camera_view_ray(const camera_view *view, int i, int j)
 {
     double s = view->pixel_size;
-    vec3 on_plane = {view->left + (i + 0.5) * s, view->top - (j + 0.5) * s, 1.0};
+    vec3 on_plane = {view->left + (i + 0.5) * s, view->top - (j + 0.5) * s,
+                     1.0};
     ray r = {{0.0, 0.0, 0.0}, vec3_normalize(on_plane)};
     return r;
 }

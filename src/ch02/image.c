@@ -13,7 +13,8 @@ bool image_init(image *img, int width, int height)
 {
     img->width = img->height = 0;
     img->pixels = NULL;
-    if (width < 1 || height < 1 || width > IMAGE_MAX_SIDE || height > IMAGE_MAX_SIDE)
+    if (width < 1 || height < 1 || width > IMAGE_MAX_SIDE ||
+        height > IMAGE_MAX_SIDE)
         return false;
     if ((long)width * height > IMAGE_MAX_PIXELS)
         return false;
@@ -69,8 +70,9 @@ static unsigned char *encode_rows(const image *img)
 }
 
 /* Encodes the bytes as PNG into an open stream. */
-static bool write_png_stream(FILE *out, const image *img, const unsigned char *bytes,
-                             char *why, size_t why_size)
+static bool write_png_stream(FILE *out, const image *img,
+                             const unsigned char *bytes, char *why,
+                             size_t why_size)
 {
     png_image info;
     memset(&info, 0, sizeof info);
@@ -87,14 +89,16 @@ static bool write_png_stream(FILE *out, const image *img, const unsigned char *b
         png_image_free(&info);
         return false;
     }
-    if (fflush(out) != 0 || ferror(out)) { /* a full disk shows here, or at fclose */
+    /* a full disk shows here, or at fclose */
+    if (fflush(out) != 0 || ferror(out)) {
         snprintf(why, why_size, "cannot write: %s", strerror(errno));
         return false;
     }
     return true;
 }
 
-bool image_write_png_stream(const image *img, FILE *out, char *why, size_t why_size)
+bool image_write_png_stream(const image *img, FILE *out, char *why,
+                            size_t why_size)
 {
     unsigned char *bytes = encode_rows(img);
     bool ok = bytes != NULL && write_png_stream(out, img, bytes, why, why_size);
@@ -104,7 +108,8 @@ bool image_write_png_stream(const image *img, FILE *out, char *why, size_t why_s
     return ok;
 }
 
-bool image_write_png(const image *img, const char *path, char *why, size_t why_size)
+bool image_write_png(const image *img, const char *path, char *why,
+                     size_t why_size)
 {
     unsigned char *bytes = encode_rows(img);
     char *tmp = malloc(strlen(path) + sizeof ".tmp-XXXXXX");
@@ -125,10 +130,14 @@ bool image_write_png(const image *img, const char *path, char *why, size_t why_s
     fchmod(fd, 0666 & ~mask);
     ok = write_png_stream(out, img, bytes, why, why_size);
     if (fclose(out) != 0 && ok) /* a full disk may only show here */
-        ok = (snprintf(why, why_size, "cannot write %s: %s", path, strerror(errno)), false);
+        ok = (snprintf(why, why_size, "cannot write %s: %s", path,
+                       strerror(errno)),
+              false);
     out = NULL;
     if (ok && rename(tmp, path) != 0)
-        ok = (snprintf(why, why_size, "cannot rename to %s: %s", path, strerror(errno)), false);
+        ok = (snprintf(why, why_size, "cannot rename to %s: %s", path,
+                       strerror(errno)),
+              false);
 done:
     if (out == NULL && fd >= 0 && !ok)
         unlink(tmp); /* the temporary never replaces the target */

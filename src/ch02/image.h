@@ -47,10 +47,12 @@ double gamma_encode(double linear, double gamma);
 /* Writes img as an 8-bit sRGB PNG. The file appears whole or not at all: it
  * is written under a temporary name and renamed. On failure returns false
  * and puts the reason in why[why_size]. */
-bool image_write_png(const image *img, const char *path, char *why, size_t why_size);
+bool image_write_png(const image *img, const char *path, char *why,
+                     size_t why_size);
 
 /* Encodes img as PNG into the open stream out and flushes it; false, with
  * the reason, when encoding or writing fails (a full disk, say). */
-bool image_write_png_stream(const image *img, FILE *out, char *why, size_t why_size);
+bool image_write_png_stream(const image *img, FILE *out, char *why,
+                            size_t why_size);
 
 #endif

@@ -37,7 +37,8 @@ typedef struct {
 } sphere_roots_method;
 
 #define SPHERE_ROOTS_METHOD_COUNT 6
-extern const sphere_roots_method SPHERE_ROOTS_METHODS[SPHERE_ROOTS_METHOD_COUNT];
+extern const sphere_roots_method
+    SPHERE_ROOTS_METHODS[SPHERE_ROOTS_METHOD_COUNT];
 
 /* The nearest root in (t_min, t_max), by the robust form; false if none. */
 bool sphere_hit_t(const sphere *sp, ray r, double t_min, double t_max,

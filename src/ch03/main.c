@@ -10,23 +10,28 @@
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
     "# Chapter 03: spheres lit by a directional, a point and a spot light.\n"
-    "camera fov 55\n"
-    "image 320 240\n"
-    "background gradient 0.85 0.85 0.9  0.3 0.45 0.8\n"
-    "ambient 0.3 0.3 0.35\n"
-    "tonemap beta 0.85\n"
-    "material floor  ambient 0.2 diffuse 0.8 specular 0\n"
-    "material glossy ambient 0.1 diffuse 0.7 specular 0.6 shininess 60\n"
-    "material matte  ambient 0.1 diffuse 0.9 specular 0\n"
-    "sphere center 0 -1000.5 6    radius 1000 color 0.75 0.75 0.7  material floor\n"
-    "sphere center -1.15 0.1 6.3  radius 0.6  color 0.9 0.25 0.2   material glossy\n"
-    "sphere center 0.35 0 5.4     radius 0.5  color 0.2 0.55 0.9   material glossy\n"
-    "sphere center 1.5 -0.1 6.6   radius 0.4  color 0.95 0.8 0.2   material matte\n"
-    "sphere center 0.55 -0.38 4.1 radius 0.12 color 0.3 0.8 0.4\n"
-    "light directional direction -1 -1.5 1 intensity 0.35 0.38 0.45\n"
-    "light point position -2.5 1.5 4 intensity 1.5 1.3 1.0 attenuation 1 0 0.15\n"
-    "light spot position 1 4 6.4 direction -0.15 -1 0 angle 16 exponent 4 "
-    "intensity 0.9 0.9 0.8\n"
+        "camera fov 55\n"
+        "image 320 240\n"
+        "background gradient 0.85 0.85 0.9  0.3 0.45 0.8\n"
+        "ambient 0.3 0.3 0.35\n"
+        "tonemap beta 0.85\n"
+        "material floor  ambient 0.2 diffuse 0.8 specular 0\n"
+        "material glossy ambient 0.1 diffuse 0.7 specular 0.6 shininess 60\n"
+        "material matte  ambient 0.1 diffuse 0.9 specular 0\n"
+        "sphere center 0 -1000.5 6    radius 1000 color 0.75 0.75 0.7  material "
+        "floor\n"
+        "sphere center -1.15 0.1 6.3  radius 0.6  color 0.9 0.25 0.2   material "
+        "glossy\n"
+        "sphere center 0.35 0 5.4     radius 0.5  color 0.2 0.55 0.9   material "
+        "glossy\n"
+        "sphere center 1.5 -0.1 6.6   radius 0.4  color 0.95 0.8 0.2   material "
+        "matte\n"
+        "sphere center 0.55 -0.38 4.1 radius 0.12 color 0.3 0.8 0.4\n"
+        "light directional direction -1 -1.5 1 intensity 0.35 0.38 0.45\n"
+        "light point position -2.5 1.5 4 intensity 1.5 1.3 1.0 attenuation 1 0 "
+        "0.15\n"
+        "light spot position 1 4 6.4 direction -0.15 -1 0 angle 16 exponent 4 "
+        "intensity 0.9 0.9 0.8\n"
     ;
 
 typedef struct {
@@ -38,21 +43,23 @@ typedef struct {
 
 static void usage(FILE *out, const char *program)
 {
-    fprintf(out,
-            "usage: %s [SCENE] [-o OUT.png] [--size WxH] [--stats] [--help]\n"
-            "Renders SCENE (default: this chapter's built-in scene) to OUT.png\n"
-            "(default: out.png) as 8-bit sRGB.\n"
-            "  -o FILE      where to write the PNG\n"
-            "  --size WxH   image size in pixels, overriding the scene's\n"
-            "  --stats      print rays traced and time per phase on stderr\n"
-            "  --help       this text\n",
-            program);
+    fprintf(
+        out,
+        "usage: %s [SCENE] [-o OUT.png] [--size WxH] [--stats] [--help]\n"
+        "Renders SCENE (default: this chapter's built-in scene) to OUT.png\n"
+        "(default: out.png) as 8-bit sRGB.\n"
+        "  -o FILE      where to write the PNG\n"
+        "  --size WxH   image size in pixels, overriding the scene's\n"
+        "  --stats      print rays traced and time per phase on stderr\n"
+        "  --help       this text\n",
+        program);
 }
 
-static bool option_error(const char *program, const char *message, const char *found)
+static bool option_error(const char *program, const char *message,
+                         const char *found)
 {
-    fprintf(stderr, "%s: error: %s%s%s%s\n", program, message, found ? ", found '" : "",
-            found ? found : "", found ? "'" : "");
+    fprintf(stderr, "%s: error: %s%s%s%s\n", program, message,
+            found ? ", found '" : "", found ? found : "", found ? "'" : "");
     fprintf(stderr, "Try '%s --help'.\n", program);
     return false;
 }
@@ -64,8 +71,8 @@ static bool parse_size(const char *text, int *width, int *height)
     if (x == text || *x != 'x' || x[1] < '0' || x[1] > '9')
         return false;
     long h = strtol(x + 1, &end, 10);
-    if (*end != '\0' || w < 1 || h < 1 || w > IMAGE_MAX_SIDE || h > IMAGE_MAX_SIDE ||
-        w * h > IMAGE_MAX_PIXELS)
+    if (*end != '\0' || w < 1 || h < 1 || w > IMAGE_MAX_SIDE ||
+        h > IMAGE_MAX_SIDE || w * h > IMAGE_MAX_PIXELS)
         return false;
     *width = (int)w;
     *height = (int)h;
@@ -88,15 +95,18 @@ static bool parse_options(int argc, char **argv, options *opt)
             if (strcmp(arg, "-o") == 0)
                 opt->output = value;
             else if (!parse_size(value, &opt->width, &opt->height))
-                return option_error(argv[0], "--size expects WIDTHxHEIGHT within the image limits",
-                                    value);
+                return option_error(
+                    argv[0],
+                    "--size expects WIDTHxHEIGHT within the image limits",
+                    value);
         }
         else if (arg[0] == '-' && arg[1] != '\0') {
             return option_error(argv[0], "unknown option", arg);
         } else if (opt->scene_path == NULL) {
             opt->scene_path = arg;
         } else {
-            return option_error(argv[0], "only one scene file can be rendered", arg);
+            return option_error(argv[0], "only one scene file can be rendered",
+                                arg);
         }
     }
     return true;
@@ -105,7 +115,8 @@ static bool parse_options(int argc, char **argv, options *opt)
 static void print_scene_error(const scene_error *err)
 {
     if (err->line > 0)
-        fprintf(stderr, "%s:%d:%d: error: %s\n", err->file, err->line, err->col, err->message);
+        fprintf(stderr, "%s:%d:%d: error: %s\n", err->file, err->line, err->col,
+                err->message);
     else
         fprintf(stderr, "%s: error: %s\n", err->file, err->message);
 }
@@ -118,8 +129,8 @@ static bool load_scene(const options *opt, scene *s)
     scene_init(s);
     bool ok = opt->scene_path != NULL
                   ? scene_load(s, opt->scene_path, &err)
-                  : scene_parse(s, DEFAULT_SCENE, sizeof DEFAULT_SCENE - 1, "(built-in scene)",
-                                &err);
+                  : scene_parse(s, DEFAULT_SCENE, sizeof DEFAULT_SCENE - 1,
+                                "(built-in scene)", &err);
     if (!ok) {
         print_scene_error(&err);
         return false;
@@ -138,11 +149,13 @@ static double seconds_now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static void print_stats(const render_stats *st, double load_s, double render_s, double write_s)
+static void print_stats(const render_stats *st, double load_s, double render_s,
+                        double write_s)
 {
     fprintf(stderr, "primary rays       %lld\n", st->primary_rays);
     fprintf(stderr, "sphere tests       %lld\n", st->sphere_tests);
-    fprintf(stderr, "time               scene %.1f ms, render %.1f ms, write %.1f ms\n",
+    fprintf(stderr,
+            "time               scene %.1f ms, render %.1f ms, write %.1f ms\n",
             1e3 * load_s, 1e3 * render_s, 1e3 * write_s);
 }
 
@@ -188,8 +201,8 @@ int main(int argc, char **argv)
     if (!load_scene(&opt, &s))
         goto done;
     if (!image_init(&img, s.cam.width, s.cam.height)) {
-        fprintf(stderr, "%s: error: no memory for a %dx%d image\n", argv[0], s.cam.width,
-                s.cam.height);
+        fprintf(stderr, "%s: error: no memory for a %dx%d image\n", argv[0],
+                s.cam.width, s.cam.height);
         goto done;
     }
     double loaded = seconds_now();
@@ -200,7 +213,8 @@ int main(int argc, char **argv)
         goto done;
     }
     if (opt.stats)
-        print_stats(&stats, loaded - start, rendered - loaded, seconds_now() - rendered);
+        print_stats(&stats, loaded - start, rendered - loaded,
+                    seconds_now() - rendered);
     status = 0;
 done:
     image_free(&img);

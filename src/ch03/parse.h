@@ -23,7 +23,7 @@ typedef struct {
     const char *line, *end;  /* current line [line, end) */
     const char *next;        /* where the next token search starts */
     int line_number;
-    const char *token;       /* last token read: [token, token + token_length) */
+    const char *token; /* last token read: [token, token + token_length) */
     int token_length;
     parse_error *err;
 } parser;

@@ -33,11 +33,17 @@ static inline vec3 vec3_mul(vec3 a, vec3 b)
     return (vec3){a.x * b.x, a.y * b.y, a.z * b.z};
 }
 
-static inline double vec3_dot(vec3 a, vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline double vec3_dot(vec3 a, vec3 b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 static inline double vec3_length(vec3 a) { return sqrt(vec3_dot(a, a)); }
 
 /* a scaled to length 1; a must not be the zero vector. */
-static inline vec3 vec3_normalize(vec3 a) { return vec3_scale(a, 1.0 / vec3_length(a)); }
+static inline vec3 vec3_normalize(vec3 a)
+{
+    return vec3_scale(a, 1.0 / vec3_length(a));
+}
 
 /* (1 - t) a + t b: a at t = 0, b at t = 1. */
 static inline vec3 vec3_lerp(vec3 a, vec3 b, double t)
@@ -55,6 +61,9 @@ typedef struct {
     vec3 origin, dir;
 } ray;
 
-static inline vec3 ray_at(ray r, double t) { return vec3_add(r.origin, vec3_scale(r.dir, t)); }
+static inline vec3 ray_at(ray r, double t)
+{
+    return vec3_add(r.origin, vec3_scale(r.dir, t));
+}
 
 #endif

@@ -3,7 +3,7 @@
 
 #include <float.h>
 
-/* pbrt's gamma(3) = 3u / (1 - 3u), u = 2^-53: the error bound of 3 roundings. */
+/* pbrt's gamma(3) = 3u / (1 - 3u), u = 2^-53: the bound of 3 roundings */
 #define GAMMA3 (3 * (DBL_EPSILON / 2) / (1 - 3 * (DBL_EPSILON / 2)))
 
 bool box_clip(const box *b, vec3 origin, vec3 inv, double *t_min,

@@ -10,23 +10,32 @@
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
     "# Chapter 04: an octahedron of eight triangle statements.\n"
-    "camera fov 50\n"
-    "image 320 240\n"
-    "background gradient 0.85 0.85 0.9  0.3 0.45 0.8\n"
-    "ambient 0.3 0.3 0.35\n"
-    "material floor diffuse 0.8 specular 0\n"
-    "material gem ambient 0.15 diffuse 0.6 specular 0.7 shininess 80\n"
-    "sphere center 0 -1000.95 6 radius 1000 color 0.75 0.75 0.7 material floor\n"
-    "triangle a 0 0.95 5.5  b -0.257 0 6.205  c 0.705 0 5.757  color 0.9 0.3 0.3 material gem\n"
-    "triangle a 0 0.95 5.5  b -0.705 0 5.243  c -0.257 0 6.205  color 0.3 0.8 0.4 material gem\n"
-    "triangle a 0 0.95 5.5  b 0.257 0 4.795  c -0.705 0 5.243  color 0.3 0.4 0.9 material gem\n"
-    "triangle a 0 0.95 5.5  b 0.705 0 5.757  c 0.257 0 4.795  color 0.9 0.8 0.3 material gem\n"
-    "triangle a 0 -0.95 5.5  b 0.705 0 5.757  c -0.257 0 6.205  color 0.3 0.4 0.9 material gem\n"
-    "triangle a 0 -0.95 5.5  b -0.257 0 6.205  c -0.705 0 5.243  color 0.9 0.8 0.3 material gem\n"
-    "triangle a 0 -0.95 5.5  b -0.705 0 5.243  c 0.257 0 4.795  color 0.9 0.3 0.3 material gem\n"
-    "triangle a 0 -0.95 5.5  b 0.257 0 4.795  c 0.705 0 5.757  color 0.3 0.8 0.4 material gem\n"
-    "light directional direction 1 -1.5 1.2 intensity 0.5 0.5 0.5\n"
-    "light point position -3 3 2 intensity 0.9 0.85 0.8\n"
+        "camera fov 50\n"
+        "image 320 240\n"
+        "background gradient 0.85 0.85 0.9  0.3 0.45 0.8\n"
+        "ambient 0.3 0.3 0.35\n"
+        "material floor diffuse 0.8 specular 0\n"
+        "material gem ambient 0.15 diffuse 0.6 specular 0.7 shininess 80\n"
+        "sphere center 0 -1000.95 6 radius 1000 color 0.75 0.75 0.7 material "
+        "floor\n"
+        "triangle a 0 0.95 5.5  b -0.257 0 6.205  c 0.705 0 5.757  color 0.9 0.3 "
+        "0.3 material gem\n"
+        "triangle a 0 0.95 5.5  b -0.705 0 5.243  c -0.257 0 6.205  color 0.3 0.8 "
+        "0.4 material gem\n"
+        "triangle a 0 0.95 5.5  b 0.257 0 4.795  c -0.705 0 5.243  color 0.3 0.4 "
+        "0.9 material gem\n"
+        "triangle a 0 0.95 5.5  b 0.705 0 5.757  c 0.257 0 4.795  color 0.9 0.8 "
+        "0.3 material gem\n"
+        "triangle a 0 -0.95 5.5  b 0.705 0 5.757  c -0.257 0 6.205  color 0.3 0.4 "
+        "0.9 material gem\n"
+        "triangle a 0 -0.95 5.5  b -0.257 0 6.205  c -0.705 0 5.243  color 0.9 0.8 "
+        "0.3 material gem\n"
+        "triangle a 0 -0.95 5.5  b -0.705 0 5.243  c 0.257 0 4.795  color 0.9 0.3 "
+        "0.3 material gem\n"
+        "triangle a 0 -0.95 5.5  b 0.257 0 4.795  c 0.705 0 5.757  color 0.3 0.8 "
+        "0.4 material gem\n"
+        "light directional direction 1 -1.5 1.2 intensity 0.5 0.5 0.5\n"
+        "light point position -3 3 2 intensity 0.9 0.85 0.8\n"
     ;
 
 typedef struct {
@@ -38,21 +47,23 @@ typedef struct {
 
 static void usage(FILE *out, const char *program)
 {
-    fprintf(out,
-            "usage: %s [SCENE] [-o OUT.png] [--size WxH] [--stats] [--help]\n"
-            "Renders SCENE (default: this chapter's built-in scene) to OUT.png\n"
-            "(default: out.png) as 8-bit sRGB.\n"
-            "  -o FILE      where to write the PNG\n"
-            "  --size WxH   image size in pixels, overriding the scene's\n"
-            "  --stats      print rays traced and time per phase on stderr\n"
-            "  --help       this text\n",
-            program);
+    fprintf(
+        out,
+        "usage: %s [SCENE] [-o OUT.png] [--size WxH] [--stats] [--help]\n"
+        "Renders SCENE (default: this chapter's built-in scene) to OUT.png\n"
+        "(default: out.png) as 8-bit sRGB.\n"
+        "  -o FILE      where to write the PNG\n"
+        "  --size WxH   image size in pixels, overriding the scene's\n"
+        "  --stats      print rays traced and time per phase on stderr\n"
+        "  --help       this text\n",
+        program);
 }
 
-static bool option_error(const char *program, const char *message, const char *found)
+static bool option_error(const char *program, const char *message,
+                         const char *found)
 {
-    fprintf(stderr, "%s: error: %s%s%s%s\n", program, message, found ? ", found '" : "",
-            found ? found : "", found ? "'" : "");
+    fprintf(stderr, "%s: error: %s%s%s%s\n", program, message,
+            found ? ", found '" : "", found ? found : "", found ? "'" : "");
     fprintf(stderr, "Try '%s --help'.\n", program);
     return false;
 }
@@ -64,8 +75,8 @@ static bool parse_size(const char *text, int *width, int *height)
     if (x == text || *x != 'x' || x[1] < '0' || x[1] > '9')
         return false;
     long h = strtol(x + 1, &end, 10);
-    if (*end != '\0' || w < 1 || h < 1 || w > IMAGE_MAX_SIDE || h > IMAGE_MAX_SIDE ||
-        w * h > IMAGE_MAX_PIXELS)
+    if (*end != '\0' || w < 1 || h < 1 || w > IMAGE_MAX_SIDE ||
+        h > IMAGE_MAX_SIDE || w * h > IMAGE_MAX_PIXELS)
         return false;
     *width = (int)w;
     *height = (int)h;
@@ -88,15 +99,18 @@ static bool parse_options(int argc, char **argv, options *opt)
             if (strcmp(arg, "-o") == 0)
                 opt->output = value;
             else if (!parse_size(value, &opt->width, &opt->height))
-                return option_error(argv[0], "--size expects WIDTHxHEIGHT within the image limits",
-                                    value);
+                return option_error(
+                    argv[0],
+                    "--size expects WIDTHxHEIGHT within the image limits",
+                    value);
         }
         else if (arg[0] == '-' && arg[1] != '\0') {
             return option_error(argv[0], "unknown option", arg);
         } else if (opt->scene_path == NULL) {
             opt->scene_path = arg;
         } else {
-            return option_error(argv[0], "only one scene file can be rendered", arg);
+            return option_error(argv[0], "only one scene file can be rendered",
+                                arg);
         }
     }
     return true;
@@ -105,7 +119,8 @@ static bool parse_options(int argc, char **argv, options *opt)
 static void print_scene_error(const scene_error *err)
 {
     if (err->line > 0)
-        fprintf(stderr, "%s:%d:%d: error: %s\n", err->file, err->line, err->col, err->message);
+        fprintf(stderr, "%s:%d:%d: error: %s\n", err->file, err->line, err->col,
+                err->message);
     else
         fprintf(stderr, "%s: error: %s\n", err->file, err->message);
 }
@@ -118,8 +133,8 @@ static bool load_scene(const options *opt, scene *s)
     scene_init(s);
     bool ok = opt->scene_path != NULL
                   ? scene_load(s, opt->scene_path, &err)
-                  : scene_parse(s, DEFAULT_SCENE, sizeof DEFAULT_SCENE - 1, "(built-in scene)",
-                                &err);
+                  : scene_parse(s, DEFAULT_SCENE, sizeof DEFAULT_SCENE - 1,
+                                "(built-in scene)", &err);
     if (!ok) {
         print_scene_error(&err);
         return false;
@@ -138,13 +153,15 @@ static double seconds_now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static void print_stats(const render_stats *st, double load_s, double render_s, double write_s)
+static void print_stats(const render_stats *st, double load_s, double render_s,
+                        double write_s)
 {
     fprintf(stderr, "primary rays       %lld\n", st->primary_rays);
     fprintf(stderr, "sphere tests       %lld\n", st->sphere_tests);
     fprintf(stderr, "triangle tests     %lld\n", st->triangle_tests);
     fprintf(stderr, "box tests          %lld\n", st->box_tests);
-    fprintf(stderr, "time               scene %.1f ms, render %.1f ms, write %.1f ms\n",
+    fprintf(stderr,
+            "time               scene %.1f ms, render %.1f ms, write %.1f ms\n",
             1e3 * load_s, 1e3 * render_s, 1e3 * write_s);
 }
 
@@ -190,8 +207,8 @@ int main(int argc, char **argv)
     if (!load_scene(&opt, &s))
         goto done;
     if (!image_init(&img, s.cam.width, s.cam.height)) {
-        fprintf(stderr, "%s: error: no memory for a %dx%d image\n", argv[0], s.cam.width,
-                s.cam.height);
+        fprintf(stderr, "%s: error: no memory for a %dx%d image\n", argv[0],
+                s.cam.width, s.cam.height);
         goto done;
     }
     double loaded = seconds_now();
@@ -202,7 +219,8 @@ int main(int argc, char **argv)
         goto done;
     }
     if (opt.stats)
-        print_stats(&stats, loaded - start, rendered - loaded, seconds_now() - rendered);
+        print_stats(&stats, loaded - start, rendered - loaded,
+                    seconds_now() - rendered);
     status = 0;
 done:
     image_free(&img);

@@ -38,7 +38,8 @@ static vec3 triangle_normal(const mesh *m, const mesh_triangle *tri)
 
 bool mesh_smooth_normals(mesh *m)
 {
-    size_t count = (size_t)m->vertex_count + 1, faces = (size_t)m->triangle_count;
+    size_t count = (size_t)m->vertex_count + 1,
+           faces = (size_t)m->triangle_count;
     vec3 *normals = calloc(count, sizeof *normals);
     mesh_triangle *corners = malloc((faces + 1) * sizeof *corners);
     if (normals == NULL || corners == NULL) {

@@ -4,12 +4,13 @@
 #include <stdlib.h>
 #include "array.h"
 
-static bool add_vec3(parser *p, vec3 **items, int *count, int *capacity, int max,
-                     const char *plural, vec3 value)
+static bool add_vec3(parser *p, vec3 **items, int *count, int *capacity,
+                     int max, const char *plural, vec3 value)
 {
     vec3 *grown = array_grow(*items, *count, capacity, max, sizeof value);
     if (grown == NULL)
-        return parse_fail_at(p, p->line, "more than %d %s (or out of memory)", max, plural);
+        return parse_fail_at(p, p->line, "more than %d %s (or out of memory)",
+                             max, plural);
     *items = grown;
     (*items)[(*count)++] = value;
     return true;
@@ -21,8 +22,8 @@ static bool obj_vertex(parser *p, mesh *m)
     if (!parse_point(p, "a vertex coordinate", &v))
         return false;
     p->next = p->end; /* an optional w (or vertex colour) is ignored */
-    return add_vec3(p, &m->vertices, &m->vertex_count, &m->vertex_capacity, MESH_MAX_VERTICES,
-                    "vertices", v);
+    return add_vec3(p, &m->vertices, &m->vertex_count, &m->vertex_capacity,
+                    MESH_MAX_VERTICES, "vertices", v);
 }
 
 static bool obj_normal(parser *p, mesh *m)
@@ -30,8 +31,8 @@ static bool obj_normal(parser *p, mesh *m)
     vec3 n;
     if (!parse_point(p, "a normal coordinate", &n))
         return false;
-    return add_vec3(p, &m->normals, &m->normal_count, &m->normal_capacity, MESH_MAX_VERTICES,
-                    "normals", n);
+    return add_vec3(p, &m->normals, &m->normal_count, &m->normal_capacity,
+                    MESH_MAX_VERTICES, "normals", n);
 }
 
 static bool obj_texcoord(parser *p, mesh *m)
@@ -41,13 +42,15 @@ static bool obj_texcoord(parser *p, mesh *m)
         return false;
     p->next = p->end; /* v and w are optional and unused */
     if (m->texcoord_count >= MESH_MAX_VERTICES)
-        return parse_fail_at(p, p->line, "more than %d texture coordinates", MESH_MAX_VERTICES);
+        return parse_fail_at(p, p->line, "more than %d texture coordinates",
+                             MESH_MAX_VERTICES);
     m->texcoord_count++;
     return true;
 }
 
 /* One OBJ index at *at, resolved against count definitions so far. */
-static bool read_obj_index(parser *p, const char **at, int count, const char *what, int *out)
+static bool read_obj_index(parser *p, const char **at, int count,
+                           const char *what, int *out)
 {
     const char *c = *at;
     bool negative = c < p->end && *c == '-';
@@ -56,13 +59,17 @@ static bool read_obj_index(parser *p, const char **at, int count, const char *wh
     for (; c < p->end && *c >= '0' && *c <= '9'; c++)
         if (k < MESH_MAX_VERTICES) /* past every count; stops the growth */
             k = 10 * k + (*c - '0');
-    if (c == digits || !(c == p->end || *c == '/' || parse_is_blank(*c) || *c == '#'))
-        return parse_fail_at(p, *at, "expected a %s index (a whole number)", what);
+    if (c == digits ||
+        !(c == p->end || *c == '/' || parse_is_blank(*c) || *c == '#'))
+        return parse_fail_at(p, *at, "expected a %s index (a whole number)",
+                             what);
     if (k == 0)
-        return parse_fail_at(p, *at, "%s index 0: OBJ indices start at 1", what);
+        return parse_fail_at(p, *at, "%s index 0: OBJ indices start at 1",
+                             what);
     if (k > count)
-        return parse_fail_at(p, *at, "%s index %.*s is out of range (%d defined so far)", what,
-                       (int)(c - *at), *at, count);
+        return parse_fail_at(
+            p, *at, "%s index %.*s is out of range (%d defined so far)", what,
+            (int)(c - *at), *at, count);
     *out = negative ? count - (int)k : (int)k - 1;
     *at = c;
     return true;
@@ -83,12 +90,14 @@ static bool read_obj_corner(parser *p, const mesh *m, obj_corner *c)
         return true; /* v */
     at++;
     if ((at == p->end || *at != '/') &&
-        !read_obj_index(p, &at, m->texcoord_count, "texture coordinate", &unused))
+        !read_obj_index(p, &at, m->texcoord_count, "texture coordinate",
+                        &unused))
         return false; /* v/vt */
     if (at == p->end || *at != '/')
         return true;
     at++;
-    return read_obj_index(p, &at, m->normal_count, "normal", &c->n); /* v//vn or v/vt/vn */
+    return read_obj_index(p, &at, m->normal_count, "normal",
+                          &c->n); /* v//vn or v/vt/vn */
 }
 
 /* Appends the triangle (a, b, c) and its corners' normal indices. */

@@ -185,13 +185,15 @@ static bool parse_material(parser *p, scene *s)
 {
     material m = material_default();
     if (!parse_next_token(p) || p->token_length >= (int)sizeof m.name)
-        return parse_expected(p, "expected a material name of 1 to %d characters",
-                        (int)sizeof m.name - 1);
+        return parse_expected(p,
+                              "expected a material name of 1 to %d characters",
+                              (int)sizeof m.name - 1);
     int existing = find_material(s, p);
     bool redefining_default = existing == 0 && s->default_material.line == 0;
     if (existing >= 0 && !redefining_default)
-        return parse_expected(p, "expected a new material name (defined on line %d)",
-                        scene_material(s, existing)->line);
+        return parse_expected(
+            p, "expected a new material name (defined on line %d)",
+            scene_material(s, existing)->line);
     memcpy(m.name, p->token, (size_t)p->token_length);
     m.name[p->token_length] = '\0';
     m.line = p->line_number;
@@ -201,7 +203,8 @@ static bool parse_material(parser *p, scene *s)
     if (redefining_default)
         s->default_material = m;
     else if (!scene_add_material(s, m))
-        return parse_fail_at(p, p->line, "more than %d materials", SCENE_MAX_MATERIALS);
+        return parse_fail_at(p, p->line, "more than %d materials",
+                             SCENE_MAX_MATERIALS);
     return true;
 }
 
@@ -217,11 +220,15 @@ static bool read_attenuation(parser *p, double a[3])
     const char *problem = NULL;
     int bad = 0;
     if (!(a[0] >= 1e-6 && a[0] <= 1e6))
-        bad = 0, problem = "a1 from 1e-6 to 1e6, so that the light is finite at its position";
+        bad = 0,
+        problem =
+            "a1 from 1e-6 to 1e6, so that the light is finite at its position";
     else if (!(a[1] >= 0 && a[1] <= 1e6))
-        bad = 1, problem = "a2 from 0 to 1e6, so that the denominator stays at least a1";
+        bad = 1,
+        problem = "a2 from 0 to 1e6, so that the denominator stays at least a1";
     else if (!(a[2] >= 0 && a[2] <= 1e6))
-        bad = 2, problem = "a3 from 0 to 1e6, so that the denominator stays at least a1";
+        bad = 2,
+        problem = "a3 from 0 to 1e6, so that the denominator stays at least a1";
     if (problem == NULL)
         return true;
     p->token = where[bad], p->token_length = length[bad];
@@ -235,13 +242,15 @@ static bool read_spot_setting(parser *p, light *L)
         if (!parse_number(p, "a cone angle", &value))
             return false;
         if (!(value > 0 && value < 180))
-            return parse_expected(p, "expected a cone angle between 0 and 180 degrees");
+            return parse_expected(
+                p, "expected a cone angle between 0 and 180 degrees");
         L->cos_cutoff = cos(value * (M_PI / 180.0));
         return true;
     }
     if (!parse_number(p, "a spot exponent", &L->exponent))
         return false;
-    return L->exponent >= 0 || parse_expected(p, "expected a spot exponent of at least 0");
+    return L->exponent >= 0 ||
+           parse_expected(p, "expected a spot exponent of at least 0");
 }
 
 static bool read_light_setting(parser *p, light *L)
@@ -261,9 +270,11 @@ static bool read_light_setting(parser *p, light *L)
         return parse_direction(p, "a light direction", &L->direction);
     if (placed && parse_token_is(p, "attenuation"))
         return read_attenuation(p, L->attenuation);
-    if (L->kind == LIGHT_SPOT && (parse_token_is(p, "angle") || parse_token_is(p, "exponent")))
+    if (L->kind == LIGHT_SPOT &&
+        (parse_token_is(p, "angle") || parse_token_is(p, "exponent")))
         return read_spot_setting(p, L);
-    return parse_expected(p, "expected a setting of this light (%s)", settings[L->kind]);
+    return parse_expected(p, "expected a setting of this light (%s)",
+                          settings[L->kind]);
 }
 
 static const char other_light_kinds[] = ""
@@ -271,8 +282,11 @@ static const char other_light_kinds[] = ""
 
 static bool parse_light(parser *p, scene *s)
 {
-    light L = {.position = {0, 0, 0}, .direction = {0, -1, 0}, .intensity = {1, 1, 1},
-               .attenuation = {1, 0, 0}, .cos_cutoff = cos(30 * (M_PI / 180.0)),
+    light L = {.position = {0, 0, 0},
+               .direction = {0, -1, 0},
+               .intensity = {1, 1, 1},
+               .attenuation = {1, 0, 0},
+               .cos_cutoff = cos(30 * (M_PI / 180.0)),
                .exponent = 2};
     bool named = parse_next_token(p);
     if (named && parse_token_is(p, "point"))
@@ -288,7 +302,8 @@ static bool parse_light(parser *p, scene *s)
         if (!read_light_setting(p, &L))
             return false;
     if (!scene_add_light(s, L))
-        return parse_fail_at(p, p->line, "more than %d lights", SCENE_MAX_LIGHTS);
+        return parse_fail_at(p, p->line, "more than %d lights",
+                             SCENE_MAX_LIGHTS);
     return true;
 }
 
@@ -342,11 +357,14 @@ static bool parse_triangle(parser *p, scene *s)
 }
 
 /* PATH of the token, relative to the folder of the file being parsed. */
-static bool resolve_path(const parser *p, const char *token, int length, char *out, size_t size)
+static bool resolve_path(const parser *p, const char *token, int length,
+                         char *out, size_t size)
 {
     const char *slash = strrchr(p->name, '/');
-    int folder = token[0] == '/' || slash == NULL ? 0 : (int)(slash - p->name) + 1;
-    return snprintf(out, size, "%.*s%.*s", folder, p->name, length, token) < (int)size;
+    int folder =
+        token[0] == '/' || slash == NULL ? 0 : (int)(slash - p->name) + 1;
+    return snprintf(out, size, "%.*s%.*s", folder, p->name, length, token) <
+           (int)size;
 }
 
 static bool load_mesh_file(parser *p, const char *file, int length, mesh *m)
@@ -359,7 +377,8 @@ static bool load_mesh_file(parser *p, const char *file, int length, mesh *m)
     if (p->err->line == 0) { /* unreadable: say which scene line asked for it */
         char why[sizeof p->err->message];
         snprintf(why, sizeof why, "%s", p->err->message);
-        return parse_fail_at(p, file, "cannot read mesh file '%s': %s", path, why);
+        return parse_fail_at(p, file, "cannot read mesh file '%s': %s", path,
+                             why);
     }
     return false; /* the OBJ file's own line and column */
 }
@@ -372,18 +391,21 @@ static bool read_scale(parser *p, double *scale)
            parse_expected(p, "expected a scale between 1e-100 and 1e100");
 }
 
-static bool place_mesh(parser *p, mesh *m, double scale, vec3 offset, bool smooth)
+static bool place_mesh(parser *p, mesh *m, double scale, vec3 offset,
+                       bool smooth)
 {
     for (int k = 0; k < m->vertex_count; k++) {
         vec3 v = vec3_add(vec3_scale(m->vertices[k], scale), offset);
         double largest = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
         if (!(largest <= PARSE_MAX_COORDINATE))
-            return parse_fail_at(p, p->line, "vertex %d of the mesh lies beyond 1e50 once placed",
-                           k + 1);
+            return parse_fail_at(
+                p, p->line,
+                "vertex %d of the mesh lies beyond 1e50 once placed", k + 1);
         m->vertices[k] = v;
     }
     if (smooth && m->normal_count == 0 && !mesh_smooth_normals(m))
-        return parse_fail_at(p, p->line, "out of memory for the mesh's normals");
+        return parse_fail_at(p, p->line,
+                             "out of memory for the mesh's normals");
     mesh_compute_bounds(m);
     return true;
 }

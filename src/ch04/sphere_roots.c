@@ -1,4 +1,4 @@
-/* sphere_roots.c: the three ray-sphere forms in double precision (chapter 02). */
+/* sphere_roots.c: the three ray-sphere forms in double (chapter 02). */
 #include "sphere.h"
 
 typedef double real;
@@ -9,16 +9,32 @@ typedef struct {
     real x, y, z;
 } rvec;
 
-static inline rvec rvec_from(vec3 v) { return (rvec){(real)v.x, (real)v.y, (real)v.z}; }
-static inline rvec rvec_sub(rvec a, rvec b) { return (rvec){a.x - b.x, a.y - b.y, a.z - b.z}; }
-static inline rvec rvec_scale(rvec a, real s) { return (rvec){a.x * s, a.y * s, a.z * s}; }
-static inline real rvec_dot(rvec a, rvec b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline rvec rvec_from(vec3 v)
+{
+    return (rvec){(real)v.x, (real)v.y, (real)v.z};
+}
+static inline rvec rvec_sub(rvec a, rvec b)
+{
+    return (rvec){a.x - b.x, a.y - b.y, a.z - b.z};
+}
+static inline rvec rvec_scale(rvec a, real s)
+{
+    return (rvec){a.x * s, a.y * s, a.z * s};
+}
+static inline real rvec_dot(rvec a, rvec b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 /* sqrt in double then rounded: correctly rounded in float as well. */
 static inline real real_sqrt(real x) { return (real)sqrt((double)x); }
-static inline rvec rvec_add(rvec a, rvec b) { return (rvec){a.x + b.x, a.y + b.y, a.z + b.z}; }
+static inline rvec rvec_add(rvec a, rvec b)
+{
+    return (rvec){a.x + b.x, a.y + b.y, a.z + b.z};
+}
 static inline rvec rvec_cross(rvec a, rvec b)
 {
-    return (rvec){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+    return (rvec){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
+                  a.x * b.y - a.y * b.x};
 }
 
 /* Zero area: the three points lie on a line (or coincide). */
@@ -35,7 +51,7 @@ int SPHERE_FORM(geometric)(vec3 center, double radius, ray r, double t[2])
     rvec oc = rvec_sub(rvec_from(center), rvec_from(r.origin));
     rvec d = rvec_from(r.dir);
     real rr = (real)radius * (real)radius;
-    real a = rvec_dot(oc, d);           /* along the ray to the point nearest c */
+    real a = rvec_dot(oc, d); /* along the ray to the point nearest c */
     real D2 = rvec_dot(oc, oc) - a * a; /* may round below 0: still a hit */
     if (D2 > rr)
         return 0;
@@ -45,7 +61,7 @@ int SPHERE_FORM(geometric)(vec3 center, double radius, ray r, double t[2])
     return 2;
 }
 
-/* a t^2 + b t + c = 0 with a = <d,d>, b = 2<f,d>, c = <f,f> - r^2, f = o - c. */
+/* a t^2 + b t + c = 0: a = <d,d>, b = 2<f,d>, c = <f,f> - r^2, f = o - c */
 int SPHERE_FORM(quadratic)(vec3 center, double radius, ray r, double t[2])
 {
     rvec f = rvec_sub(rvec_from(r.origin), rvec_from(center));
@@ -71,14 +87,16 @@ int SPHERE_FORM(robust)(vec3 center, double radius, ray r, double t[2])
     real rr = (real)radius * (real)radius;
     real a = rvec_dot(d, d);
     real beta = rvec_dot(f, d);
-    rvec to_line = rvec_sub(f, rvec_scale(d, beta / a)); /* c to the line's nearest point */
-    real delta = rr - rvec_dot(to_line, to_line);          /* (beta^2 - a c) / a */
+    rvec to_line = rvec_sub(
+        f, rvec_scale(d, beta / a)); /* c to the line's nearest point */
+    real delta = rr - rvec_dot(to_line, to_line); /* (beta^2 - a c) / a */
     if (delta < 0)
         return 0;
     real c = rvec_dot(f, f) - rr;
-    /* -beta - sign(beta) sqrt(a delta): two terms of one sign, no cancelling. */
+    /* -beta - sign(beta) sqrt(a delta): one sign, nothing cancels */
     real q = -beta - (real)copysign(sqrt((double)(a * delta)), (double)beta);
-    real near = q / a, far = q != 0 ? c / q : near; /* q = 0: both roots are 0 */
+    real near = q / a,
+         far = q != 0 ? c / q : near; /* q = 0: both roots are 0 */
     t[0] = (double)(near < far ? near : far);
     t[1] = (double)(near < far ? far : near);
     return 2;

@@ -10,16 +10,32 @@ typedef struct {
     real x, y, z;
 } rvec;
 
-static inline rvec rvec_from(vec3 v) { return (rvec){(real)v.x, (real)v.y, (real)v.z}; }
-static inline rvec rvec_sub(rvec a, rvec b) { return (rvec){a.x - b.x, a.y - b.y, a.z - b.z}; }
-static inline rvec rvec_scale(rvec a, real s) { return (rvec){a.x * s, a.y * s, a.z * s}; }
-static inline real rvec_dot(rvec a, rvec b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline rvec rvec_from(vec3 v)
+{
+    return (rvec){(real)v.x, (real)v.y, (real)v.z};
+}
+static inline rvec rvec_sub(rvec a, rvec b)
+{
+    return (rvec){a.x - b.x, a.y - b.y, a.z - b.z};
+}
+static inline rvec rvec_scale(rvec a, real s)
+{
+    return (rvec){a.x * s, a.y * s, a.z * s};
+}
+static inline real rvec_dot(rvec a, rvec b)
+{
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
 /* sqrt in double then rounded: correctly rounded in float as well. */
 static inline real real_sqrt(real x) { return (real)sqrt((double)x); }
-static inline rvec rvec_add(rvec a, rvec b) { return (rvec){a.x + b.x, a.y + b.y, a.z + b.z}; }
+static inline rvec rvec_add(rvec a, rvec b)
+{
+    return (rvec){a.x + b.x, a.y + b.y, a.z + b.z};
+}
 static inline rvec rvec_cross(rvec a, rvec b)
 {
-    return (rvec){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+    return (rvec){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
+                  a.x * b.y - a.y * b.x};
 }
 
 /* Zero area: the three points lie on a line (or coincide). */
@@ -29,8 +45,8 @@ static inline bool is_degenerate(rvec a, rvec b, rvec c)
     return n.x == 0 && n.y == 0 && n.z == 0;
 }
 
-bool TRIANGLE_METHOD(sheet)(vec3 a, vec3 b, vec3 c, ray r, double t_min, double t_max,
-                           triangle_hit *out)
+bool TRIANGLE_METHOD(sheet)(vec3 a, vec3 b, vec3 c, ray r, double t_min,
+                            double t_max, triangle_hit *out)
 {
     rvec p[3] = {rvec_from(a), rvec_from(b), rvec_from(c)};
     rvec o = rvec_from(r.origin), d = rvec_from(r.dir);
@@ -45,17 +61,20 @@ bool TRIANGLE_METHOD(sheet)(vec3 a, vec3 b, vec3 c, ray r, double t_min, double 
     real twice_area = real_sqrt(rvec_dot(n, n));
     real w[3];
     for (int i = 0; i < 3; i++) {
-        rvec ni = rvec_cross(rvec_sub(p[(i + 1) % 3], x), rvec_sub(p[(i + 2) % 3], x));
+        rvec ni = rvec_cross(rvec_sub(p[(i + 1) % 3], x),
+                             rvec_sub(p[(i + 2) % 3], x));
         w[i] = real_sqrt(rvec_dot(ni, ni)) * (rvec_dot(ni, n) < 0 ? -1 : 1);
         if (w[i] < 0)
             return false; /* beyond the edge opposite p_i */
     }
-    *out = (triangle_hit){t, {w[0] / twice_area, w[1] / twice_area, w[2] / twice_area}};
+    *out = (triangle_hit){
+        t, {w[0] / twice_area, w[1] / twice_area, w[2] / twice_area}};
     return true;
 }
 
-bool TRIANGLE_METHOD(moller_trumbore)(vec3 a, vec3 b, vec3 c, ray r, double t_min,
-                                     double t_max, triangle_hit *out)
+bool TRIANGLE_METHOD(moller_trumbore)(vec3 a, vec3 b, vec3 c, ray r,
+                                      double t_min, double t_max,
+                                      triangle_hit *out)
 {
     rvec p0 = rvec_from(a), d = rvec_from(r.dir);
     rvec e1 = rvec_sub(rvec_from(b), p0), e2 = rvec_sub(rvec_from(c), p0);
@@ -102,18 +121,20 @@ static inline sheared_ray shear_ray(ray r)
     return s;
 }
 
-static inline bool hit_sheared(const sheared_ray *s, vec3 a, vec3 b, vec3 c, double t_min,
-                        double t_max, triangle_hit *out)
+static inline bool hit_sheared(const sheared_ray *s, vec3 a, vec3 b, vec3 c,
+                               double t_min, double t_max, triangle_hit *out)
 {
     rvec pa = rvec_sub(rvec_from(a), s->origin);
     rvec pb = rvec_sub(rvec_from(b), s->origin);
     rvec pc = rvec_sub(rvec_from(c), s->origin);
-    real A[3] = {pa.x, pa.y, pa.z}, B[3] = {pb.x, pb.y, pb.z}, C[3] = {pc.x, pc.y, pc.z};
+    real A[3] = {pa.x, pa.y, pa.z}, B[3] = {pb.x, pb.y, pb.z},
+         C[3] = {pc.x, pc.y, pc.z};
     real ax = A[s->kx] - s->sx * A[s->kz], ay = A[s->ky] - s->sy * A[s->kz];
     real bx = B[s->kx] - s->sx * B[s->kz], by = B[s->ky] - s->sy * B[s->kz];
     real cx = C[s->kx] - s->sx * C[s->kz], cy = C[s->ky] - s->sy * C[s->kz];
     real u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
-    if (u == 0 || v == 0 || w == 0) { /* exactly on an edge: decide more precisely */
+    /* exactly on an edge: decide more precisely */
+    if (u == 0 || v == 0 || w == 0) {
         u = (real)((wider)cx * by - (wider)cy * bx);
         v = (real)((wider)ax * cy - (wider)ay * cx);
         w = (real)((wider)bx * ay - (wider)by * ax);
@@ -123,15 +144,17 @@ static inline bool hit_sheared(const sheared_ray *s, vec3 a, vec3 b, vec3 c, dou
     real det = u + v + w;
     if (det == 0)
         return false; /* parallel, or degenerate */
-    real t = (u * s->sz * A[s->kz] + v * s->sz * B[s->kz] + w * s->sz * C[s->kz]) / det;
+    real t =
+        (u * s->sz * A[s->kz] + v * s->sz * B[s->kz] + w * s->sz * C[s->kz]) /
+        det;
     if (!(t > t_min && t < t_max) || is_degenerate(pa, pb, pc))
         return false;
     *out = (triangle_hit){t, {u / det, v / det, w / det}};
     return true;
 }
 
-bool TRIANGLE_METHOD(watertight)(vec3 a, vec3 b, vec3 c, ray r, double t_min, double t_max,
-                                triangle_hit *out)
+bool TRIANGLE_METHOD(watertight)(vec3 a, vec3 b, vec3 c, ray r, double t_min,
+                                 double t_max, triangle_hit *out)
 {
     sheared_ray s = shear_ray(r);
     return hit_sheared(&s, a, b, c, t_min, t_max, out);
