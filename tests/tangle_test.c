@@ -135,19 +135,29 @@ static void assert_nothing_written(void)
 
 /* ---- running programs ---------------------------------------------- */
 
+/* How a program is run, beyond its arguments. */
+struct run_options {
+    unsigned deadline;  /* seconds before SIGALRM kills it; 0: none */
+    bool stdin_pipe;    /* stdin is a pipe that never ends (the program
+                           itself holds its write end) */
+};
+
 /* Runs ARGV inside the test directory, capturing stdout and stderr. */
-static struct run run_in_work_dir(char *const argv[])
+static struct run run_with(const struct run_options *options, char *const argv[])
 {
     pid_t pid = fork();
     ck_assert_int_ne(pid, -1);
     if (pid == 0) {
-        int out = -1, err = -1;
+        int out = -1, err = -1, pipe_ends[2];
         if (chdir(work_dir) == 0) {
             out = open(".stdout", O_WRONLY | O_CREAT | O_TRUNC, 0600);
             err = open(".stderr", O_WRONLY | O_CREAT | O_TRUNC, 0600);
         }
         if (out < 0 || err < 0 || dup2(out, 1) < 0 || dup2(err, 2) < 0)
             _exit(126);
+        if (options->stdin_pipe && (pipe(pipe_ends) != 0 || dup2(pipe_ends[0], 0) < 0))
+            _exit(126);
+        alarm(options->deadline); /* survives exec */
         execvp(argv[0], argv);
         _exit(127);
     }
@@ -165,6 +175,12 @@ static struct run run_in_work_dir(char *const argv[])
     return r;
 }
 
+static struct run run_in_work_dir(char *const argv[])
+{
+    static const struct run_options plain = {0};
+    return run_with(&plain, argv);
+}
+
 /* Runs the tangler with the arguments given, up to a NULL. */
 static struct run tangle(const char *arg, ...)
 {
@@ -176,6 +192,13 @@ static struct run tangle(const char *arg, ...)
         argv[n++] = (char *)a;
     va_end(ap);
     return run_in_work_dir(argv);
+}
+
+/* The tangler with ARGV[1..] (ARGV[0] is replaced), run as OPTIONS say. */
+static struct run tangle_with(const struct run_options *options, char *argv[])
+{
+    argv[0] = tangle_path;
+    return run_with(options, argv);
 }
 
 static struct run compile(const char *file)
@@ -267,7 +290,7 @@ START_TEST(test_append_adds_to_end_of_definition)
         "int two;\n"
         "```\n");
     expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
-    assert_file("out/a.c", "int one;\nint two;\n");
+    assert_file("out/a.c", "/* <<decls>> ch01 */\nint one;\nint two;\n");
 }
 END_TEST
 
@@ -290,7 +313,7 @@ START_TEST(test_replace_discards_whole_body_and_later_append_extends_it)
         "new2;\n"
         "```\n");
     expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
-    assert_file("out/a.c", "new1;\nnew2;\n");
+    assert_file("out/a.c", "/* <<shade>> ch01 */\nnew1;\nnew2;\n");
 }
 END_TEST
 
@@ -309,7 +332,11 @@ START_TEST(test_append_works_across_chapter_files)
         "second();\n"
         "```\n");
     expect_success(tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL));
-    assert_file("out/a.c", "first();\nsecond();\n");
+    assert_file("out/a.c",
+                "/* <<body>> ch01 */\n"
+                "first();\n"
+                "/* <<body>> += ch02 */\n"
+                "second();\n");
 }
 END_TEST
 
@@ -345,7 +372,7 @@ START_TEST(test_files_and_chunks_are_separate_namespaces)
         "from the chunk;\n"
         "```\n");
     expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
-    assert_file("out/x.c", "from the chunk;\n");
+    assert_file("out/x.c", "/* <<x.c>> ch01 */\nfrom the chunk;\n");
 }
 END_TEST
 
@@ -398,7 +425,9 @@ START_TEST(test_nested_references_are_indented_cumulatively)
     assert_file("out/f.c",
                 "void f(void)\n"
                 "{\n"
+                "    /* <<outer>> ch01 */\n"
                 "    if (a) {\n"
+                "    \t/* <<inner>> ch01 */\n"
                 "    \tg();\n"
                 "    \th();\n"
                 "    }\n"
@@ -420,7 +449,7 @@ START_TEST(test_empty_lines_are_not_indented)
         "b();\n"
         "```\n");
     expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
-    assert_file("out/f.c", "{\n    a();\n\n    b();\n}\n");
+    assert_file("out/f.c", "{\n    /* <<body>> ch01 */\n    a();\n\n    b();\n}\n");
 }
 END_TEST
 
@@ -507,7 +536,7 @@ START_TEST(test_attribute_variants_are_accepted)
         "hi;\n"
         "```\n");
     expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
-    assert_file("out/main.c", "hi;\n");
+    assert_file("out/main.c", "/* <<say \"hi\">> ch01 */\nhi;\n");
 }
 END_TEST
 
@@ -522,7 +551,7 @@ START_TEST(test_crlf_line_endings_end_lines)
         "\r\n"
         "```\r\n");
     expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
-    assert_file("out/f.c", "    a;\n\n");
+    assert_file("out/f.c", "    /* <<x>> ch01 */\n    a;\n\n");
 }
 END_TEST
 
@@ -573,7 +602,7 @@ START_TEST(test_many_chunks_are_tangled)
     fputs("```\n", m);
     for (int i = 0; i < N; i++) {
         fprintf(m, "```{.c chunk=\"c%d\"}\nint v%d;\n```\n", i, i);
-        fprintf(e, "int v%d;\n", i);
+        fprintf(e, "/* <<c%d>> ch01 */\nint v%d;\n", i, i);
     }
     fclose(m);
     fclose(e);
@@ -611,7 +640,7 @@ START_TEST(test_unchanged_output_keeps_its_mtime)
     set_mtime("out/a.c", 1000000000);
     expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
     ck_assert_int_eq(mtime_of("out/a.c"), 1000000000);
-    assert_file("out/a.c", "    x;\n");
+    assert_file("out/a.c", "    /* <<x>> ch01 */\n    x;\n");
 }
 END_TEST
 
@@ -680,7 +709,7 @@ START_TEST(test_no_line_directives_without_line_option)
 {
     put("chapters/01-a.md", small_chapter);
     expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
-    assert_file("out/a.c", "    x;\n");
+    assert_file("out/a.c", "    /* <<x>> ch01 */\n    x;\n");
 }
 END_TEST
 
@@ -1087,7 +1116,7 @@ START_TEST(test_unreadable_input_is_an_error)
     free(dir);
     expect_failure(tangle("-o", "out", "chapters/01-a.md", "chapters/02-missing.md", "adir", NULL),
                    "chapters/02-missing.md: error: cannot read: No such file or directory\n"
-                   "adir: error: cannot read: Is a directory\n");
+                   "adir: error: cannot read: not a regular file but a directory\n");
 }
 END_TEST
 
@@ -1154,9 +1183,17 @@ static void put_chain(int n)
 
 START_TEST(test_nesting_of_999_chunks_is_accepted)
 {
+    char *expected = NULL;
+    size_t len;
+    FILE *e = open_memstream(&expected, &len);
+    for (int i = 1; i <= 999; i++)
+        fprintf(e, "/* <<c%d>> ch01 */\n", i);
+    fputs("leaf;\n", e);
+    fclose(e);
     put_chain(999);
     expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
-    assert_file("out/deep.c", "leaf;\n");
+    assert_file("out/deep.c", expected);
+    free(expected);
 }
 END_TEST
 
@@ -1185,14 +1222,481 @@ START_TEST(test_exponential_expansion_is_stopped)
 }
 END_TEST
 
+/* ---- markers -------------------------------------------------------- */
+
+START_TEST(test_marker_names_chunk_and_chapter_at_expansion_indent)
+{
+    put("chapters/03-phong.md",
+        "```{.c file=\"a.c\"}\n"
+        "void f(void)\n"
+        "{\n"
+        "    <<shade the hit>>\n"
+        "}\n"
+        "```\n"
+        "```{.c chunk=\"shade the hit\"}\n"
+        "if (hit) {\n"
+        "\t<<inner>>\n"
+        "}\n"
+        "```\n"
+        "```{.c chunk=\"inner\"}\n"
+        "light();\n"
+        "```\n");
+    expect_success(tangle("-o", "out", "chapters/03-phong.md", NULL));
+    assert_file("out/a.c",
+                "void f(void)\n"
+                "{\n"
+                "    /* <<shade the hit>> ch03 */\n"
+                "    if (hit) {\n"
+                "    \t/* <<inner>> ch03 */\n"
+                "    \tlight();\n"
+                "    }\n"
+                "}\n");
+}
+END_TEST
+
+START_TEST(test_marker_names_chapter_by_leading_digits_or_file_name)
+{
+    put("chapters/007.md",
+        "```{.c file=\"a.c\"}\n"
+        "<<x>>\n"
+        "<<y>>\n"
+        "```\n"
+        "```{.c chunk=\"x\"}\n"
+        "x;\n"
+        "```\n");
+    put("appendix/notes.md",
+        "```{.c chunk=\"y\"}\n"
+        "y;\n"
+        "```\n");
+    put("chapters/12-more.md",
+        "```{.c chunk=\"y\" .append}\n"
+        "more;\n"
+        "```\n");
+    expect_success(tangle("-o", "out", "chapters/007.md", "appendix/notes.md",
+                          "chapters/12-more.md", NULL));
+    assert_file("out/a.c",
+                "/* <<x>> ch007 */\n"
+                "x;\n"
+                "/* <<y>> notes.md */\n"
+                "y;\n"
+                "/* <<y>> += ch12 */\n"
+                "more;\n");
+}
+END_TEST
+
+START_TEST(test_empty_hook_gets_no_marker)
+{
+    put("chapters/01-a.md",
+        "```{.c file=\"a.c\"}\n"
+        "<<hook>>\n"
+        "<<empty>>\n"
+        "<<only empty hooks>>\n"
+        "end;\n"
+        "```\n"
+        "```{.c chunk=\"hook\"}\n"
+        "```\n"
+        "```{.c chunk=\"empty\"}\n"
+        "```\n"
+        "```{.c chunk=\"only empty hooks\"}\n"
+        "<<empty>>\n"
+        "```\n");
+    put("chapters/02-b.md",
+        "```{.c chunk=\"hook\" .append}\n"
+        "filled;\n"
+        "```\n");
+    expect_success(tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL));
+    /* the hook's lines come from chapter 02, and its marker says so */
+    assert_file("out/a.c", "/* <<hook>> ch02 */\nfilled;\nend;\n");
+}
+END_TEST
+
+START_TEST(test_later_chapters_pieces_are_marked_after_replace)
+{
+    put("chapters/01-a.md",
+        "```{.c file=\"a.c\"}\n"
+        "<<shade>>\n"
+        "```\n"
+        "```{.c chunk=\"shade\"}\n"
+        "old;\n"
+        "```\n");
+    put("chapters/02-b.md",
+        "```{.c chunk=\"shade\" .append}\n"
+        "older;\n"
+        "```\n");
+    put("chapters/03-c.md",
+        "```{.c chunk=\"shade\" .replace}\n"
+        "new;\n"
+        "```\n"
+        "```{.c chunk=\"shade\" .append}\n"
+        "also new;\n"
+        "```\n");
+    put("chapters/04-d.md",
+        "```{.c chunk=\"shade\" .append}\n"
+        "newer;\n"
+        "```\n");
+    expect_success(tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md",
+                          "chapters/03-c.md", "chapters/04-d.md", NULL));
+    assert_file("out/a.c",
+                "/* <<shade>> ch03 */\n"
+                "new;\n"
+                "also new;\n"
+                "/* <<shade>> += ch04 */\n"
+                "newer;\n");
+}
+END_TEST
+
+START_TEST(test_markers_only_in_c_and_h_files)
+{
+    put("chapters/01-a.md",
+        "```{.scene file=\"scenes/a.scene\"}\n"
+        "<<x>>\n"
+        "```\n"
+        "```{.txt file=\"b.txt\"}\n"
+        "<<x>>\n"
+        "```\n"
+        "```{.c file=\"c.h\"}\n"
+        "<<x>>\n"
+        "```\n"
+        "```{.c file=\"d.c\"}\n"
+        "<<x>>\n"
+        "```\n"
+        "```{.c chunk=\"x\"}\n"
+        "x\n"
+        "```\n");
+    expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
+    assert_file("out/scenes/a.scene", "x\n");
+    assert_file("out/b.txt", "x\n");
+    assert_file("out/c.h", "/* <<x>> ch01 */\nx\n");
+    assert_file("out/d.c", "/* <<x>> ch01 */\nx\n");
+}
+END_TEST
+
+START_TEST(test_line_option_writes_no_markers)
+{
+    put("chapters/01-a.md", small_chapter);
+    put("chapters/02-b.md",
+        "```{.c chunk=\"x\" .append}\n"
+        "y;\n"
+        "```\n");
+    expect_success(tangle("--line", "-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL));
+    assert_file("out/a.c",
+                "#line 5 \"chapters/01-a.md\"\n"
+                "    x;\n"
+                "#line 2 \"chapters/02-b.md\"\n"
+                "    y;\n");
+}
+END_TEST
+
+START_TEST(test_no_marker_inside_a_comment_or_a_spliced_line)
+{
+    put("chapters/01-a.md",
+        "```{.c file=\"a.c\"}\n"
+        "/* licence:\n"
+        "<<licence>>\n"
+        "*/\n"
+        "#define TWICE(x) \\\n"
+        "    <<twice body>>\n"
+        "int after = TWICE(1);\n"
+        "const char *s = \"/* not a comment\";\n"
+        "char c = '\"';\n"
+        "// nor this /*\n"
+        "<<tail>>\n"
+        "```\n"
+        "```{.c chunk=\"licence\"}\n"
+        "free to use\n"
+        "```\n"
+        "```{.c chunk=\"twice body\"}\n"
+        "((x) + (x))\n"
+        "```\n"
+        "```{.c chunk=\"tail\"}\n"
+        "int tail;\n"
+        "```\n");
+    expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
+    assert_file("out/a.c",
+                "/* licence:\n"
+                "free to use\n"
+                "*/\n"
+                "#define TWICE(x) \\\n"
+                "    ((x) + (x))\n"
+                "int after = TWICE(1);\n"
+                "const char *s = \"/* not a comment\";\n"
+                "char c = '\"';\n"
+                "// nor this /*\n"
+                "/* <<tail>> ch01 */\n"
+                "int tail;\n");
+    struct run cc = compile("out/a.c");
+    ck_assert_msg(cc.status == 0, "cc failed:\n%s", cc.err);
+    free_run(&cc);
+}
+END_TEST
+
+START_TEST(test_marker_cannot_end_its_comment_early)
+{
+    put("chapters/01-a.md",
+        "```{.c file=\"a.c\"}\n"
+        "<<a */ b /* c **/ \001>>\n"
+        "```\n"
+        "```{.c chunk=\"a */ b /* c **/ \001\"}\n"
+        "int x;\n"
+        "```\n");
+    expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
+    assert_file("out/a.c", "/* <<a * / b / * c ** / \\x01>> ch01 */\nint x;\n");
+    struct run cc = compile("out/a.c");
+    ck_assert_msg(cc.status == 0, "cc failed:\n%s", cc.err);
+    free_run(&cc);
+}
+END_TEST
+
+START_TEST(test_plain_output_with_markers_compiles_with_cc)
+{
+    put_book("puts(\"done\");");
+    expect_success(tangle("-o", "out", "chapters/01-camera.md", "chapters/02-shade.md", NULL));
+    char *text = slurp("out/main.c", NULL);
+    ck_assert_ptr_nonnull(strstr(text, "    /* <<main body>> ch01 */\n"));
+    ck_assert_ptr_nonnull(strstr(text, "    /* <<main body>> += ch02 */\n"));
+    ck_assert_ptr_nonnull(strstr(text, "        /* <<report>> ch02 */\n"));
+    free(text);
+    struct run cc = compile("out/main.c");
+    ck_assert_msg(cc.status == 0, "cc failed:\n%s", cc.err);
+    free_run(&cc);
+}
+END_TEST
+
+/* ---- inputs and outputs --------------------------------------------- */
+
+static void make_link(const char *target, const char *name)
+{
+    char *path = work_path(name);
+    ck_assert_msg(symlink(target, path) == 0, "symlink %s: %s", path, strerror(errno));
+    free(path);
+}
+
+static void make_dir(const char *name)
+{
+    char *path = work_path(name);
+    ck_assert_msg(mkdir(path, 0777) == 0, "mkdir %s: %s", path, strerror(errno));
+    free(path);
+}
+
+START_TEST(test_output_through_a_symbolic_link_is_refused)
+{
+    put("meshes/bunny.obj", "v 0 0 0\n");
+    make_dir("out");
+    make_dir("out/scenes");
+    make_link("../../meshes", "out/scenes/meshes");
+    put("chapters/01-a.md",
+        "```{.c file=\"a.c\"}\n"
+        "a;\n"
+        "```\n"
+        "```{.obj file=\"scenes/meshes/bunny.obj\"}\n"
+        "overwritten\n"
+        "```\n");
+    struct run r = tangle("-o", "out", "chapters/01-a.md", NULL);
+    ck_assert_int_eq(r.status, 1);
+    ck_assert_str_eq(r.err, "chapters/01-a.md:4: error: output path "
+                            "'scenes/meshes/bunny.obj' passes through a symbolic link\n");
+    free_run(&r);
+    assert_file("meshes/bunny.obj", "v 0 0 0\n");
+    ck_assert(!exists("out/a.c"));
+}
+END_TEST
+
+START_TEST(test_output_file_that_is_a_symbolic_link_is_refused)
+{
+    put("target.c", "keep\n");
+    make_dir("out");
+    make_link("../target.c", "out/a.c");
+    put("chapters/01-a.md", "```{.c file=\"a.c\"}\nnew;\n```\n");
+    struct run r = tangle("-o", "out", "chapters/01-a.md", NULL);
+    ck_assert_int_eq(r.status, 1);
+    ck_assert_str_eq(r.err, "chapters/01-a.md:1: error: output path 'a.c' "
+                            "passes through a symbolic link\n");
+    free_run(&r);
+    assert_file("target.c", "keep\n");
+}
+END_TEST
+
+START_TEST(test_outdir_itself_may_be_a_symbolic_link)
+{
+    make_dir("real");
+    make_link("real", "out");
+    put("chapters/01-a.md", "```{.c file=\"sub/a.c\"}\na;\n```\n");
+    expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
+    assert_file("real/sub/a.c", "a;\n");
+}
+END_TEST
+
+START_TEST(test_output_through_a_plain_file_is_refused_before_writing)
+{
+    put("out/sub", "a file, not a directory\n");
+    make_dir("out/d.c");
+    put("chapters/01-a.md",
+        "```{.c file=\"first.c\"}\n"
+        "first;\n"
+        "```\n"
+        "```{.c file=\"sub/x.c\"}\n"
+        "x;\n"
+        "```\n"
+        "```{.c file=\"d.c\"}\n"
+        "d;\n"
+        "```\n");
+    struct run r = tangle("-o", "out", "chapters/01-a.md", NULL);
+    ck_assert_int_eq(r.status, 1);
+    ck_assert_str_eq(r.err, "chapters/01-a.md:4: error: output path 'sub/x.c' "
+                            "passes through a file that is not a directory\n"
+                            "chapters/01-a.md:7: error: output path 'd.c' names a directory\n");
+    free_run(&r);
+    ck_assert(!exists("out/first.c"));
+}
+END_TEST
+
+START_TEST(test_outputs_over_256_mib_in_all_are_refused)
+{
+    /* Five files of exactly 64 MiB each (allowed one by one): 64 lines of
+       1 MiB, by doubling a chunk six times. */
+    enum { LINE = 1 << 20 };
+    char *md = NULL;
+    size_t len;
+    FILE *f = open_memstream(&md, &len);
+    for (int i = 1; i <= 5; i++)
+        fprintf(f, "```{.txt file=\"f%d.txt\"}\n<<d0>>\n```\n", i);
+    for (int i = 0; i < 6; i++)
+        fprintf(f, "```{.txt chunk=\"d%d\"}\n<<d%d>>\n<<d%d>>\n```\n", i, i + 1, i + 1);
+    fputs("```{.txt chunk=\"d6\"}\n", f);
+    for (int i = 0; i < LINE - 1; i++)
+        putc('x', f);
+    fputs("\n```\n", f);
+    fclose(f);
+    put("chapters/01-a.md", md);
+    free(md);
+    expect_failure(tangle("-o", "out", "chapters/01-a.md", NULL),
+                   "chapters/01-a.md:13: error: file 'f5.txt' would take all outputs "
+                   "together over 268435456 bytes\n");
+}
+END_TEST
+
+START_TEST(test_fifo_as_chapter_is_refused_without_hanging)
+{
+    put("chapters/01-a.md", good_root);
+    char *fifo = work_path("chapters/02-fifo.md");
+    ck_assert_int_eq(mkfifo(fifo, 0600), 0);
+    free(fifo);
+    struct run_options deadline = {.deadline = 10};
+    char *argv[] = {NULL, "-o", "out", "chapters/01-a.md", "chapters/02-fifo.md", NULL};
+    expect_failure(tangle_with(&deadline, argv),
+                   "chapters/02-fifo.md: error: cannot read: not a regular file but a FIFO\n");
+}
+END_TEST
+
+START_TEST(test_endless_stdin_as_chapter_is_refused_without_hanging)
+{
+    put("chapters/01-a.md", good_root);
+    struct run_options endless_pipe = {.deadline = 10, .stdin_pipe = true};
+    char *argv[] = {NULL, "-o", "out", "chapters/01-a.md", "/dev/stdin", NULL};
+    expect_failure(tangle_with(&endless_pipe, argv),
+                   "/dev/stdin: error: cannot read: not a regular file but a FIFO\n");
+}
+END_TEST
+
+START_TEST(test_device_as_chapter_is_refused)
+{
+    put("chapters/01-a.md", good_root);
+    struct run_options deadline = {.deadline = 10};
+    char *argv[] = {NULL, "-o", "out", "chapters/01-a.md", "/dev/zero", NULL};
+    expect_failure(tangle_with(&deadline, argv),
+                   "/dev/zero: error: cannot read: not a regular file but a device\n");
+}
+END_TEST
+
+START_TEST(test_chapter_over_16_mib_is_refused)
+{
+    put("chapters/01-a.md", good_root);
+    put("chapters/02-big.md", "```{.c file=\"big.c\"}\nbig;\n```\n");
+    char *big = work_path("chapters/02-big.md");
+    ck_assert_int_eq(truncate(big, (16 << 20) + 1), 0); /* sparse: quick */
+    free(big);
+    expect_failure(tangle("-o", "out", "chapters/01-a.md", "chapters/02-big.md", NULL),
+                   "chapters/02-big.md: error: cannot read: larger than 16777216 bytes, "
+                   "too large for a chapter\n");
+}
+END_TEST
+
+START_TEST(test_chapter_of_exactly_16_mib_is_read)
+{
+    put("chapters/01-a.md", good_root);
+    char *path = work_path("chapters/01-a.md");
+    ck_assert_int_eq(truncate(path, 16 << 20), 0); /* NUL bytes after the block */
+    free(path);
+    expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
+    assert_file("out/good.c", "good;\n");
+}
+END_TEST
+
+/* ---- what messages show --------------------------------------------- */
+
+START_TEST(test_long_paths_and_names_are_not_cut_short)
+{
+    char dir[3 * 201 + 1] = "", name[1001] = "";
+    for (int i = 0; i < 3; i++) {
+        memset(dir + 201 * i, 'd' + i, 200);
+        dir[201 * i + 200] = '/';
+    }
+    memset(name, 'n', 1000);
+    char *chapter = NULL, *md = NULL, *expected = NULL;
+    size_t len;
+    FILE *f = open_memstream(&chapter, &len);
+    fprintf(f, "chapters/%s01-a.md", dir);
+    fclose(f);
+    f = open_memstream(&md, &len);
+    fprintf(f, "```{.c file=\"a.c\"}\n<<%s>>\n```\n", name);
+    fclose(f);
+    f = open_memstream(&expected, &len);
+    fprintf(f, "%s:2: error: reference to undefined chunk '%s'\n", chapter, name);
+    fclose(f);
+    put(chapter, md);
+    expect_failure(tangle("-o", "out", chapter, NULL), expected);
+    free(chapter);
+    free(md);
+    free(expected);
+}
+END_TEST
+
+START_TEST(test_unprintable_bytes_in_messages_are_escaped)
+{
+    static const char md[] =
+        "```{.c file=\"a.c\"}\n"
+        "<<esc\033[31m>>\n"
+        "<<nul\0byte>>\n"
+        "<<bad\377 utf8 \302\233 c1>>\n"
+        "<<fine \303\251>>\n"
+        "```\n";
+    put_bytes("chapters/01-\033[2J.md", md, sizeof md - 1);
+    put("chapters/02-b.md", "```{.c file=\"/abs\a.c\"}\nx;\n```\n");
+    expect_failure(tangle("-o", "out", "chapters/01-\033[2J.md", "chapters/02-b.md",
+                          "chapters/03-\033]0;title\a.md", NULL),
+                   "chapters/02-b.md:1: error: file path '/abs\\x07.c' is absolute\n"
+                   "chapters/03-\\x1B]0;title\\x07.md: error: cannot read: "
+                   "No such file or directory\n"
+                   "chapters/01-\\x1B[2J.md:2: error: reference to undefined chunk 'esc\\x1B[31m'\n"
+                   "chapters/01-\\x1B[2J.md:3: error: reference to undefined chunk 'nul\\x00byte'\n"
+                   "chapters/01-\\x1B[2J.md:4: error: reference to undefined chunk "
+                   "'bad\\xFF utf8 \\xC2\\x9B c1'\n"
+                   "chapters/01-\\x1B[2J.md:5: error: reference to undefined chunk "
+                   "'fine \303\251'\n");
+}
+END_TEST
+
 Suite *tangle_suite(void)
 {
     Suite *s = suite_create("tangle");
     TCase *rules = tcase_create("rules");
     TCase *lines = tcase_create("line directives");
     TCase *errors = tcase_create("errors");
-    TCase *all[] = {rules, lines, errors};
-    for (size_t i = 0; i < 3; i++) {
+    TCase *markers = tcase_create("markers");
+    TCase *files = tcase_create("inputs and outputs");
+    TCase *messages = tcase_create("messages");
+    TCase *all[] = {rules, lines, errors, markers, files, messages};
+    for (size_t i = 0; i < sizeof all / sizeof all[0]; i++) {
         tcase_add_checked_fixture(all[i], setup, teardown);
         tcase_set_timeout(all[i], 20);
         suite_add_tcase(s, all[i]);
@@ -1256,5 +1760,29 @@ Suite *tangle_suite(void)
     tcase_add_test(errors, test_every_error_is_reported_not_only_the_first);
     tcase_add_test(errors, test_nesting_deeper_than_1000_levels_is_an_error);
     tcase_add_test(errors, test_exponential_expansion_is_stopped);
+
+    tcase_add_test(markers, test_marker_names_chunk_and_chapter_at_expansion_indent);
+    tcase_add_test(markers, test_marker_names_chapter_by_leading_digits_or_file_name);
+    tcase_add_test(markers, test_empty_hook_gets_no_marker);
+    tcase_add_test(markers, test_later_chapters_pieces_are_marked_after_replace);
+    tcase_add_test(markers, test_markers_only_in_c_and_h_files);
+    tcase_add_test(markers, test_line_option_writes_no_markers);
+    tcase_add_test(markers, test_no_marker_inside_a_comment_or_a_spliced_line);
+    tcase_add_test(markers, test_marker_cannot_end_its_comment_early);
+    tcase_add_test(markers, test_plain_output_with_markers_compiles_with_cc);
+
+    tcase_add_test(files, test_output_through_a_symbolic_link_is_refused);
+    tcase_add_test(files, test_output_file_that_is_a_symbolic_link_is_refused);
+    tcase_add_test(files, test_outdir_itself_may_be_a_symbolic_link);
+    tcase_add_test(files, test_output_through_a_plain_file_is_refused_before_writing);
+    tcase_add_test(files, test_outputs_over_256_mib_in_all_are_refused);
+    tcase_add_test(files, test_fifo_as_chapter_is_refused_without_hanging);
+    tcase_add_test(files, test_endless_stdin_as_chapter_is_refused_without_hanging);
+    tcase_add_test(files, test_device_as_chapter_is_refused);
+    tcase_add_test(files, test_chapter_over_16_mib_is_refused);
+    tcase_add_test(files, test_chapter_of_exactly_16_mib_is_read);
+
+    tcase_add_test(messages, test_long_paths_and_names_are_not_cut_short);
+    tcase_add_test(messages, test_unprintable_bytes_in_messages_are_escaped);
     return s;
 }

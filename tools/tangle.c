@@ -22,7 +22,10 @@
  *     ```{.c chunk="shade" .replace}      replaces the whole body so far
  *   Braces hold .class, #id, key="value" (with \" and \\) and key=value.
  *   .append and .replace work for files too.  A file path must stay inside
- *   OUTDIR ("a/../b.c" means "b.c").
+ *   OUTDIR ("a/../b.c" means "b.c"), and no part of it below OUTDIR that
+ *   already exists may be a symbolic link (OUTDIR itself may be one): a
+ *   link such as scenes/meshes -> the repository's meshes/ would make the
+ *   tangler overwrite what it points at.
  *
  * REFERENCES
  *   A code line holding only <<name>> (blanks around it allowed) expands to
@@ -30,22 +33,54 @@
  *   of the reference (blank lines get no prefix).  References nest up to
  *   1000 deep.  "<<" anywhere else in a line is plain text.
  *
+ * MARKERS
+ *   Without --line, every expansion of a chunk in a .c or .h output starts
+ *   with a C comment holding "<<vector ops>> ch03": the chunk, and the
+ *   chapter of its first piece that writes lines (an empty hook defined in
+ *   ch01 and filled in ch02 says ch02).  It is indented like the lines it
+ *   names, so that a reader of the plain tangle can find them in the book.
+ *   Where a later chapter's piece of the chunk starts, a comment holding
+ *   "<<vector ops>> += ch05" marks it.  A chapter is named "ch" and the
+ *   leading digits of its file name (chapters/03-phong.md: ch03), or its
+ *   file name if that has no leading digits.  An expansion that writes no
+ *   line (an empty hook) gets no marker, and neither does one inside a
+ *   block comment or after a line ending in a backslash, where a comment
+ *   would change the code (comments, strings and // are looked at just
+ *   enough for that).  In a marker, a "/" and a "*" side by side in a chunk
+ *   name get a blank between them, and bytes that are not printable are
+ *   written as \xHH, as in messages.  Root files, other outputs (.scene,
+ *   ...) and --line output get no markers.  Markers depend only on the
+ *   chapters, so the output stays the same from run to run.
+ *
  * LINE DIRECTIVES
  *   With --line, '#line N "CHAPTER"' is written whenever the next line of a
  *   .c or .h output does not directly follow the previous one in the same
  *   chapter: before every piece of a definition and after every reference.
  *
+ * LIMITS
+ *   A chapter must be a regular file (not a directory, FIFO or device) of
+ *   at most 16 MiB.  An output may hold at most 64 MiB and all outputs
+ *   together at most 256 MiB, since all of them are held in memory until
+ *   every one is known to be good.
+ *
  * DIAGNOSTICS: "CHAPTER:LINE: error: MESSAGE" on stderr, exit status 1.
  *   Everything is checked before anything is written; after an error
- *   nothing is written.  Errors: unreadable chapter, unclosed fence, bad
- *   attributes, chunk= with file=, .append with .replace, empty name or
- *   path, path absolute or leaving OUTDIR, second definition without
+ *   nothing is written.  Errors: unreadable chapter (missing, not a
+ *   regular file, over 16 MiB), unclosed fence, bad attributes, chunk=
+ *   with file=, .append with .replace, empty name or path, path absolute
+ *   or leaving OUTDIR, path through a symbolic link or through a file that
+ *   is not a directory, path naming a directory, second definition without
  *   .append/.replace, .append/.replace of something undefined, reference
  *   to an undefined chunk, cycle of references, nesting deeper than 1000,
- *   an output over 64 MiB, unwritable output.  A chunk no root file
- *   reaches gets a warning (an error with --strict).  Bad usage exits 2.
+ *   an output over 64 MiB, outputs over 256 MiB in all, unwritable output.
+ *   A chunk no root file reaches gets a warning (an error with --strict).
+ *   Bad usage exits 2.  Messages show every byte that is not printable
+ *   (control characters, C1 controls, invalid UTF-8; valid UTF-8 is kept)
+ *   as \xHH, so that a chapter or a file name cannot send escape sequences
+ *   to the terminal; names and paths are shown whole, however long.
  */
 #include <errno.h>
+#include <fcntl.h>
 #include <stdarg.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -58,19 +93,30 @@
 enum { MAX_DEPTH = 1000 };
 /* Stops a chunk that doubles itself level after level from eating memory. */
 #define MAX_OUTPUT_BYTES ((size_t)64 << 20)
+/* All outputs wait in memory until every one is known to be good: many
+   root files of a small chapter must not add up to gigabytes. */
+#define MAX_TOTAL_OUTPUT_BYTES ((size_t)256 << 20)
+/* A chapter is text that people write and read: anything bigger is a
+   mistake (a data file or a device given by accident), not a chapter. */
+#define MAX_CHAPTER_BYTES ((size_t)16 << 20)
 
 struct span { const char *text; size_t len; };
 struct buffer { char *data; size_t len, cap; };
 
 struct source {
     const char *path;          /* exactly as given on the command line */
+    char *label;               /* what markers call it: "ch03" */
     char *text;
     struct span *lines;        /* without the "\n" or "\r\n" */
     size_t n_lines, cap_lines;
 };
 
 /* One fenced block: lines first .. first+count-1 (0-based) of src. */
-struct piece { const struct source *src; size_t first, count; };
+struct piece {
+    const struct source *src;
+    size_t first, count;
+    bool yields_lines;         /* expanding it writes at least one line */
+};
 
 struct chunk {
     char *name;                /* chunk name, or clean path of a root file */
@@ -82,6 +128,7 @@ struct chunk {
     size_t n_pieces, cap_pieces;
     size_t live_from;          /* pieces before this one were replaced */
     enum { UNVISITED, VISITING, DONE } state;
+    enum { YIELD_UNKNOWN, YIELD_NOTHING, YIELD_LINES } yield;
 };
 
 struct tangle {
@@ -125,10 +172,16 @@ static char *copy_string(const char *s, size_t len)
     return copy;
 }
 
-static void buffer_add(struct buffer *b, const char *s, size_t n)
+/* Makes room for N more bytes. */
+static void buffer_reserve(struct buffer *b, size_t n)
 {
     while (b->cap - b->len < n)
         b->data = grow(b->data, b->cap, &b->cap, 1);
+}
+
+static void buffer_add(struct buffer *b, const char *s, size_t n)
+{
+    buffer_reserve(b, n);
     if (n > 0) /* memcpy wants real pointers even for 0 bytes */
         memcpy(b->data + b->len, s, n);
     b->len += n;
@@ -146,43 +199,164 @@ static char *buffer_take_string(struct buffer *b)
     return b->data;
 }
 
-/* Prints PATH:LINE: error: ... (LINE 0: about the whole file). */
+/* Appends printf-style text, however long: paths are never cut short. */
+static void buffer_add_vformat(struct buffer *b, const char *fmt, va_list ap)
+{
+    va_list again;
+    va_copy(again, ap);
+    int n = vsnprintf(NULL, 0, fmt, ap);
+    if (n > 0) {
+        buffer_reserve(b, (size_t)n + 1); /* vsnprintf also writes a '\0' */
+        vsnprintf(b->data + b->len, (size_t)n + 1, fmt, again);
+        b->len += (size_t)n;
+    }
+    va_end(again);
+}
+
+/* Length of the valid UTF-8 sequence at P for a printable character
+   (U+00A0 and up), or 0: C1 controls and malformed bytes get escaped. */
+static size_t printable_utf8_length(const unsigned char *p, size_t n)
+{
+    static const uint32_t smallest[] = {0, 0, 0xA0, 0x800, 0x10000};
+    size_t len = p[0] >= 0xF0 ? 4 : p[0] >= 0xE0 ? 3 : p[0] >= 0xC2 ? 2 : 0;
+    if (len == 0 || len > n || p[0] > 0xF4)
+        return 0;
+    uint32_t code = p[0] & (0x7Fu >> len);
+    for (size_t i = 1; i < len; i++) {
+        if ((p[i] & 0xC0) != 0x80)
+            return 0;
+        code = code << 6 | (p[i] & 0x3Fu);
+    }
+    bool valid = code >= smallest[len] && code <= 0x10FFFF &&
+                 !(code >= 0xD800 && code <= 0xDFFF);
+    return valid ? len : 0;
+}
+
+/* Copies S with every byte that is not printable as \xHH, so that a name
+   from a chapter cannot drive the terminal; IN_COMMENT also keeps "/" and
+   "*" apart, so that the text cannot end or nest a C comment. */
+static void add_escaped(struct buffer *b, const char *s, size_t n, bool in_comment)
+{
+    const unsigned char *u = (const unsigned char *)s;
+    for (size_t i = 0; i < n;) {
+        size_t len = u[i] >= 0x20 && u[i] < 0x7F ? 1 : printable_utf8_length(u + i, n - i);
+        if (len == 0) {
+            char hex[5];
+            snprintf(hex, sizeof hex, "\\x%02X", u[i]);
+            buffer_add(b, hex, 4);
+            len = 1;
+        } else {
+            buffer_add(b, s + i, len);
+        }
+        if (in_comment && i + 1 < n && (s[i] == '/' || s[i] == '*') &&
+            (s[i + 1] == '/' || s[i + 1] == '*') && s[i] != s[i + 1])
+            buffer_add(b, " ", 1);
+        i += len;
+    }
+}
+
+/* A copy of the N bytes at S that is safe to print (NUL bytes too). */
+static char *copy_escaped(const char *s, size_t n)
+{
+    struct buffer b = {0};
+    add_escaped(&b, s, n, false);
+    return buffer_take_string(&b);
+}
+
+/* Prints PATH:LINE: error: ... (LINE 0: about the whole file), escaped. */
 static void __attribute__((format(printf, 5, 6)))
 diagnose(struct tangle *t, bool is_error, const char *path, size_t line,
          const char *fmt, ...)
 {
+    struct buffer raw = {0}, shown = {0};
     va_list ap;
-    const char *kind = is_error ? "error" : "warning";
-    if (line > 0)
-        fprintf(stderr, "%s:%zu: %s: ", path, line, kind);
-    else
-        fprintf(stderr, "%s: %s: ", path, kind);
+    buffer_add_str(&raw, path);
+    if (line > 0) {
+        char number[32];
+        snprintf(number, sizeof number, ":%zu", line);
+        buffer_add_str(&raw, number);
+    }
+    buffer_add_str(&raw, is_error ? ": error: " : ": warning: ");
     va_start(ap, fmt);
-    vfprintf(stderr, fmt, ap);
+    buffer_add_vformat(&raw, fmt, ap);
     va_end(ap);
-    fputc('\n', stderr);
+    add_escaped(&shown, raw.data, raw.len, false);
+    buffer_add(&shown, "\n", 1);
+    fwrite(shown.data, 1, shown.len, stderr);
+    free(raw.data);
+    free(shown.data);
     t->errors += is_error;
 }
 
 /* ---- reading chapters ---------------------------------------------- */
 
-/* Returns 0, or the errno saying why PATH could not be read. */
-static int read_whole_file(const char *path, char **text, size_t *len)
+/* Why a file was not read: an errno, or one of these. */
+enum { READ_NOT_REGULAR = -1, READ_TOO_LARGE = -2 };
+
+/* Reads from FD until end of file, but never more than LIMIT + 1 bytes. */
+static int read_at_most(int fd, size_t limit, struct buffer *b)
+{
+    for (;;) {
+        size_t want = limit + 1 - b->len;
+        buffer_reserve(b, want < (1 << 16) ? want : (1 << 16));
+        size_t room = b->cap - b->len < want ? b->cap - b->len : want;
+        ssize_t n = read(fd, b->data + b->len, room);
+        if (n < 0 && errno != EINTR)
+            return errno;
+        b->len += n > 0 ? (size_t)n : 0;
+        if (n == 0 || b->len > limit)
+            return b->len > limit ? READ_TOO_LARGE : 0;
+    }
+}
+
+/* Reads PATH into *TEXT ('\0' added) if it is a regular file of at most
+   LIMIT bytes.  Returns 0, an errno, READ_NOT_REGULAR (*MODE tells what it
+   is) or READ_TOO_LARGE.  A FIFO or a device would block or never end. */
+static int read_regular_file(const char *path, size_t limit, char **text,
+                             size_t *len, mode_t *mode)
 {
     struct buffer b = {0};
-    char block[1 << 14];
-    size_t n;
-    FILE *f = fopen(path, "rb");
+    struct stat st;
     *text = NULL;
-    if (!f)
+    *len = 0;
+    int fd = open(path, O_RDONLY | O_NOCTTY | O_NONBLOCK); /* a FIFO must not block */
+    if (fd < 0)
         return errno;
-    while ((n = fread(block, 1, sizeof block, f)) > 0)
-        buffer_add(&b, block, n);
-    int err = ferror(f) ? (errno ? errno : EIO) : 0;
-    fclose(f);
+    int err = fstat(fd, &st) != 0 ? errno
+            : !S_ISREG(st.st_mode) ? READ_NOT_REGULAR
+            : (uintmax_t)st.st_size > limit ? READ_TOO_LARGE : 0;
+    *mode = err == READ_NOT_REGULAR ? st.st_mode : 0;
+    if (!err) {
+        buffer_reserve(&b, (size_t)st.st_size + 1);
+        err = read_at_most(fd, limit, &b);
+    }
+    close(fd);
     *len = b.len;
     *text = buffer_take_string(&b);
     return err;
+}
+
+/* What a file that is not a regular one is, for a message. */
+static const char *file_kind(mode_t mode)
+{
+    return S_ISDIR(mode) ? "a directory" : S_ISFIFO(mode) ? "a FIFO"
+         : S_ISCHR(mode) || S_ISBLK(mode) ? "a device"
+         : S_ISSOCK(mode) ? "a socket" : "something else";
+}
+
+/* "ch03" for chapters/03-phong.md; the file name if it has no number. */
+static char *chapter_label(const char *path)
+{
+    const char *name = strrchr(path, '/');
+    name = name ? name + 1 : path;
+    size_t digits = strspn(name, "0123456789");
+    if (digits == 0)
+        return copy_string(name, strlen(name));
+    char *label = check_alloc(malloc(digits + 3));
+    memcpy(label, "ch", 2);
+    memcpy(label + 2, name, digits);
+    label[digits + 2] = '\0';
+    return label;
 }
 
 /* A line ends at "\n"; a "\r" right before it (or before the end) is dropped. */
@@ -428,7 +602,8 @@ static void define_piece(struct tangle *t, const struct source *src, size_t fenc
         if (a->replace)
             c->live_from = c->n_pieces;
         c->pieces = grow(c->pieces, c->n_pieces, &c->cap_pieces, sizeof *c->pieces);
-        c->pieces[c->n_pieces++] = (struct piece){src, fence + 1, count};
+        c->pieces[c->n_pieces++] =
+            (struct piece){.src = src, .first = fence + 1, .count = count};
     }
     free(key);
 }
@@ -497,12 +672,20 @@ static void load_sources(struct tangle *t, char **paths, size_t n)
     for (size_t i = 0; i < n; i++) {
         struct source *s = &t->sources[i];
         size_t len;
+        mode_t mode;
         s->path = paths[i];
-        int err = read_whole_file(s->path, &s->text, &len);
-        if (err) {
+        s->label = chapter_label(s->path);
+        int err = read_regular_file(s->path, MAX_CHAPTER_BYTES, &s->text, &len, &mode);
+        if (err == READ_NOT_REGULAR)
+            diagnose(t, true, s->path, 0, "cannot read: not a regular file but %s",
+                     file_kind(mode));
+        else if (err == READ_TOO_LARGE)
+            diagnose(t, true, s->path, 0, "cannot read: larger than %zu bytes, "
+                     "too large for a chapter", MAX_CHAPTER_BYTES);
+        else if (err)
             diagnose(t, true, s->path, 0, "cannot read: %s", strerror(err));
+        if (err)
             continue;
-        }
         split_lines(s, len);
         parse_source(t, s);
     }
@@ -522,16 +705,16 @@ static bool parse_reference(struct span line, struct span *indent, struct span *
     return true;
 }
 
-struct walk {
+struct reference_walk {
     struct chunk *stack[MAX_DEPTH];
     size_t depth;
     bool from_root; /* only chunks reached from a root file count as used */
 };
 
-static void check_chunk(struct tangle *t, struct chunk *c, struct walk *w);
+static void check_chunk(struct tangle *t, struct chunk *c, struct reference_walk *w);
 
 static void report_cycle(struct tangle *t, const struct source *src, size_t line,
-                         const struct chunk *target, const struct walk *w)
+                         const struct chunk *target, const struct reference_walk *w)
 {
     struct buffer msg = {0};
     size_t from = w->depth - 1;
@@ -548,11 +731,11 @@ static void report_cycle(struct tangle *t, const struct source *src, size_t line
 }
 
 static void check_reference(struct tangle *t, const struct source *src, size_t line,
-                            struct span name, struct walk *w)
+                            struct span name, struct reference_walk *w)
 {
     struct chunk *target = find_chunk(t, false, name.text, name.len);
     if (!target) {
-        char *text = copy_string(name.text, name.len);
+        char *text = copy_escaped(name.text, name.len); /* it may hold '\0' */
         diagnose(t, true, src->path, line, "reference to undefined chunk '%s'", text);
         free(text);
         return;
@@ -567,7 +750,7 @@ static void check_reference(struct tangle *t, const struct source *src, size_t l
         check_chunk(t, target, w);
 }
 
-static void check_chunk(struct tangle *t, struct chunk *c, struct walk *w)
+static void check_chunk(struct tangle *t, struct chunk *c, struct reference_walk *w)
 {
     struct span indent, name;
     c->state = VISITING;
@@ -585,7 +768,7 @@ static void check_chunk(struct tangle *t, struct chunk *c, struct walk *w)
 /* Walks from the root files first, then checks the chunks they never reach. */
 static void check_references(struct tangle *t)
 {
-    struct walk *w = check_alloc(calloc(1, sizeof *w));
+    struct reference_walk *w = check_alloc(calloc(1, sizeof *w));
     for (int pass = 0; pass < 2; pass++) {
         w->from_root = pass == 0;
         for (size_t i = 0; i < t->n_chunks; i++)
@@ -603,13 +786,69 @@ static void check_references(struct tangle *t)
 
 /* ---- expanding ----------------------------------------------------- */
 
+static bool piece_yields_lines(const struct tangle *t, const struct piece *pc);
+
+/* Whether expanding C writes any line: an empty hook gets no marker.
+   Also fills in yields_lines of each of its pieces.  No cycles remain. */
+static bool chunk_yields_lines(const struct tangle *t, struct chunk *c)
+{
+    if (c->yield == YIELD_UNKNOWN) {
+        c->yield = YIELD_NOTHING;
+        for (size_t p = c->live_from; p < c->n_pieces; p++) {
+            c->pieces[p].yields_lines = piece_yields_lines(t, &c->pieces[p]);
+            if (c->pieces[p].yields_lines)
+                c->yield = YIELD_LINES;
+        }
+    }
+    return c->yield == YIELD_LINES;
+}
+
+static bool piece_yields_lines(const struct tangle *t, const struct piece *pc)
+{
+    struct span indent, name;
+    for (size_t i = pc->first; i < pc->first + pc->count; i++)
+        if (!parse_reference(pc->src->lines[i], &indent, &name) ||
+            chunk_yields_lines(t, find_chunk(t, false, name.text, name.len)))
+            return true;
+    return false;
+}
+
 struct output {
     struct buffer text;
     struct buffer indent;     /* blanks of the references we are inside */
-    bool line_directives, too_big;
+    bool line_directives, markers, too_big;
+    size_t limit;             /* too_big once the text is longer */
     const char *sync_path;    /* where the compiler thinks the next line is */
     size_t sync_line;
+    bool in_comment;          /* the text so far ends inside a block comment */
+    bool spliced;             /* its last line ends in a backslash */
 };
+
+/* Follows C's block comments, strings and line splices, just enough to
+   know where a marker comment could not go. */
+static void follow_c_line(struct output *out, struct span line)
+{
+    char quote = '\0'; /* inside a string or character constant */
+    for (size_t i = 0; i < line.len; i++) {
+        char c = line.text[i], next = i + 1 < line.len ? line.text[i + 1] : '\0';
+        if (out->in_comment) {
+            if (c == '*' && next == '/')
+                out->in_comment = false, i++;
+        } else if (quote) {
+            if (c == '\\')
+                i++; /* skips the escaped character */
+            else if (c == quote)
+                quote = '\0';
+        } else if (c == '"' || c == '\'') {
+            quote = c;
+        } else if (c == '/' && next == '/') {
+            break;
+        } else if (c == '/' && next == '*') {
+            out->in_comment = true, i++;
+        }
+    }
+    out->spliced = line.len > 0 && line.text[line.len - 1] == '\\';
+}
 
 static void emit_line(struct output *out, const char *path, size_t number,
                       struct span line)
@@ -629,17 +868,41 @@ static void emit_line(struct output *out, const char *path, size_t number,
         buffer_add(&out->text, out->indent.data, out->indent.len);
     buffer_add(&out->text, line.text, line.len);
     buffer_add(&out->text, "\n", 1);
+    if (out->markers)
+        follow_c_line(out, line);
     out->sync_path = path;
     out->sync_line = number + 1;
-    out->too_big = out->text.len > MAX_OUTPUT_BYTES;
+    out->too_big = out->text.len > out->limit;
+}
+
+/* Writes the comment that tells a reader of the plain tangle where in the
+   book the lines below come from; not where a comment would change code. */
+static void emit_marker(struct output *out, const struct chunk *c,
+                        const struct source *src, bool appended)
+{
+    if (out->in_comment || out->spliced)
+        return;
+    struct buffer marker = {0};
+    buffer_add_str(&marker, "/* <<");
+    add_escaped(&marker, c->name, c->name_len, true);
+    buffer_add_str(&marker, appended ? ">> += " : ">> ");
+    add_escaped(&marker, src->label, strlen(src->label), true);
+    buffer_add_str(&marker, " */");
+    emit_line(out, NULL, 0, (struct span){marker.data, marker.len});
+    free(marker.data);
 }
 
 static void emit_chunk(const struct tangle *t, struct output *out,
                        const struct chunk *c)
 {
     struct span indent, name;
+    const struct source *marked = NULL; /* the chapter the last marker named */
     for (size_t p = c->live_from; p < c->n_pieces; p++) {
         const struct piece *pc = &c->pieces[p];
+        if (out->markers && !c->is_file && pc->yields_lines && pc->src != marked) {
+            emit_marker(out, c, pc->src, marked != NULL);
+            marked = pc->src;
+        }
         for (size_t i = pc->first; i < pc->first + pc->count && !out->too_big; i++) {
             if (!parse_reference(pc->src->lines[i], &indent, &name)) {
                 emit_line(out, pc->src->path, i + 1, pc->src->lines[i]);
@@ -647,7 +910,7 @@ static void emit_chunk(const struct tangle *t, struct output *out,
             }
             size_t outer = out->indent.len;
             buffer_add(&out->indent, indent.text, indent.len);
-            out->too_big = out->indent.len > MAX_OUTPUT_BYTES;
+            out->too_big = out->indent.len > out->limit;
             emit_chunk(t, out, find_chunk(t, false, name.text, name.len));
             out->indent.len = outer;
         }
@@ -660,27 +923,92 @@ static bool ends_with(const char *s, const char *suffix)
     return n >= k && strcmp(s + n - k, suffix) == 0;
 }
 
-static struct buffer generate_file(struct tangle *t, const struct chunk *root)
+/* The text of ROOT, added to *TOTAL (the bytes of all outputs so far), or
+   an error if it is over 64 MiB or takes *TOTAL over 256 MiB; then *TOTAL
+   becomes SIZE_MAX, so that no further output is built. */
+static struct buffer generate_file(struct tangle *t, const struct chunk *root,
+                                   size_t *total)
 {
     struct output out = {0};
-    out.line_directives = t->line_directives &&
-                          (ends_with(root->name, ".c") || ends_with(root->name, ".h"));
+    size_t budget = MAX_TOTAL_OUTPUT_BYTES - *total;
+    bool is_c = ends_with(root->name, ".c") || ends_with(root->name, ".h");
+    out.line_directives = t->line_directives && is_c;
+    out.markers = !t->line_directives && is_c;
+    out.limit = budget < MAX_OUTPUT_BYTES ? budget : MAX_OUTPUT_BYTES;
     emit_chunk(t, &out, root);
-    if (out.too_big)
+    free(out.indent.data);
+    if (!out.too_big) {
+        *total += out.text.len;
+        return out.text;
+    }
+    if (out.limit == MAX_OUTPUT_BYTES) {
         diagnose(t, true, root->src->path, root->line,
                  "file '%s' would be larger than %zu bytes", root->name, MAX_OUTPUT_BYTES);
-    free(out.indent.data);
-    return out.text;
+    } else {
+        diagnose(t, true, root->src->path, root->line,
+                 "file '%s' would take all outputs together over %zu bytes",
+                 root->name, MAX_TOTAL_OUTPUT_BYTES);
+        *total = SIZE_MAX;
+    }
+    free(out.text.data); /* it will not be written: its memory goes back now */
+    return (struct buffer){0};
 }
 
 /* ---- writing ------------------------------------------------------- */
 
+/* OUTDIR/RELATIVE, newly allocated. */
+static char *output_path(const struct tangle *t, const char *relative)
+{
+    struct buffer b = {0};
+    buffer_add_str(&b, t->outdir);
+    buffer_add_str(&b, ends_with(t->outdir, "/") ? "" : "/");
+    buffer_add_str(&b, relative);
+    return buffer_take_string(&b);
+}
+
+/* What is wrong with the thing at PATH as a directory (or, when LAST, as
+   the file itself) on the way to an output, or NULL. */
+static const char *path_problem(const char *path, bool last)
+{
+    struct stat st;
+    if (lstat(path, &st) != 0)
+        return NULL; /* nothing there yet (or an error writing will report) */
+    return S_ISLNK(st.st_mode) ? "passes through a symbolic link"
+         : !last && !S_ISDIR(st.st_mode) ? "passes through a file that is not a directory"
+         : last && S_ISDIR(st.st_mode) ? "names a directory" : NULL;
+}
+
+/* Every part of ROOT's path below OUTDIR that exists must be a real
+   directory, not a link: a link such as scenes/meshes would let an output
+   overwrite what it points at.  Checked before anything is written. */
+static void check_output_path(struct tangle *t, const struct chunk *root)
+{
+    char *path = output_path(t, root->name);
+    char *part = path + strlen(path) - root->name_len; /* first part below OUTDIR */
+    const char *problem = NULL;
+    for (char *slash = strchr(part, '/'); !problem; slash = strchr(slash + 1, '/')) {
+        if (slash)
+            *slash = '\0';
+        problem = path_problem(path, slash == NULL);
+        if (!slash)
+            break;
+        *slash = '/';
+    }
+    if (problem)
+        diagnose(t, true, root->src->path, root->line, "output path '%s' %s",
+                 root->name, problem);
+    free(path);
+}
+
+/* Whether PATH holds TEXT already: then it keeps its mtime, and make
+   rebuilds nothing. */
 static bool file_has_bytes(const char *path, const struct buffer *text)
 {
     char *old = NULL;
     size_t len;
-    bool same = read_whole_file(path, &old, &len) == 0 && len == text->len &&
-                (len == 0 || memcmp(old, text->data, len) == 0);
+    mode_t mode;
+    bool same = read_regular_file(path, text->len, &old, &len, &mode) == 0 &&
+                len == text->len && (len == 0 || memcmp(old, text->data, len) == 0);
     free(old);
     return same;
 }
@@ -734,11 +1062,7 @@ static int replace_file(const char *path, const struct buffer *text)
 static void write_if_changed(struct tangle *t, const char *relative,
                              const struct buffer *text)
 {
-    struct buffer b = {0};
-    buffer_add_str(&b, t->outdir);
-    buffer_add_str(&b, ends_with(t->outdir, "/") ? "" : "/");
-    buffer_add_str(&b, relative);
-    char *path = buffer_take_string(&b);
+    char *path = output_path(t, relative);
     if (!file_has_bytes(path, text)) {
         int err = make_parent_dirs(path);
         if (!err)
@@ -753,9 +1077,15 @@ static void write_if_changed(struct tangle *t, const char *relative,
 static void write_outputs(struct tangle *t)
 {
     struct buffer *texts = check_alloc(calloc(t->n_chunks + 1, sizeof *texts));
+    size_t total = 0;
     for (size_t i = 0; i < t->n_chunks; i++)
-        if (t->chunks[i]->is_file)
-            texts[i] = generate_file(t, t->chunks[i]);
+        chunk_yields_lines(t, t->chunks[i]); /* which expansions get markers */
+    for (size_t i = 0; i < t->n_chunks && total <= MAX_TOTAL_OUTPUT_BYTES; i++) {
+        if (!t->chunks[i]->is_file)
+            continue;
+        check_output_path(t, t->chunks[i]);
+        texts[i] = generate_file(t, t->chunks[i], &total);
+    }
     for (size_t i = 0; i < t->n_chunks && t->errors == 0; i++)
         if (t->chunks[i]->is_file)
             write_if_changed(t, t->chunks[i]->name, &texts[i]);
@@ -774,6 +1104,7 @@ static void free_tangle(struct tangle *t)
         free(t->chunks[i]);
     }
     for (size_t i = 0; i < t->n_sources; i++) {
+        free(t->sources[i].label);
         free(t->sources[i].text);
         free(t->sources[i].lines);
     }
@@ -782,9 +1113,9 @@ static void free_tangle(struct tangle *t)
     free(t->sources);
 }
 
-enum parsed { OPTIONS_OK, OPTIONS_HELP, OPTIONS_BAD };
+enum options_result { OPTIONS_OK, OPTIONS_HELP, OPTIONS_BAD };
 
-static enum parsed parse_options(int argc, char **argv, struct tangle *t,
+static enum options_result parse_options(int argc, char **argv, struct tangle *t,
                                  char **inputs, size_t *n_inputs)
 {
     bool only_inputs = false;
@@ -813,7 +1144,7 @@ int main(int argc, char **argv)
     struct tangle t = {0};
     size_t n_inputs = 0;
     char **inputs = check_alloc(calloc((size_t)argc, sizeof *inputs));
-    enum parsed parsed = parse_options(argc, argv, &t, inputs, &n_inputs);
+    enum options_result parsed = parse_options(argc, argv, &t, inputs, &n_inputs);
     if (parsed == OPTIONS_OK) {
         load_sources(&t, inputs, n_inputs);
         check_references(&t);
