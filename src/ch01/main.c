@@ -9,12 +9,14 @@
 
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
+    /* <<default scene>> ch01 */
     "# Chapter 01: an empty sky through a 60-degree lens.\n"
     "camera fov 60\n"
     "image 320 240\n"
     "background gradient 1 1 1  0.3 0.5 1\n"
     ;
 
+/* <<command-line options>> ch01 */
 typedef struct {
     const char *scene_path; /* NULL: the built-in scene */
     const char *output;
@@ -45,6 +47,7 @@ static bool option_error(const char *program, const char *message,
     return false;
 }
 
+/* <<parse a size>> ch01 */
 static bool parse_size(const char *text, int *width, int *height)
 {
     char *x, *end;
@@ -60,6 +63,7 @@ static bool parse_size(const char *text, int *width, int *height)
     return true;
 }
 
+/* <<parse the arguments>> ch01 */
 static bool parse_options(int argc, char **argv, options *opt)
 {
     *opt = (options){.output = "out.png"};
@@ -93,6 +97,7 @@ static bool parse_options(int argc, char **argv, options *opt)
     return true;
 }
 
+/* <<loading the scene>> ch01 */
 static void print_scene_error(const scene_error *err)
 {
     if (err->line > 0)
@@ -123,6 +128,7 @@ static bool load_scene(const options *opt, scene *s)
     return true;
 }
 
+/* <<timing>> ch01 */
 static double seconds_now(void)
 {
     struct timespec t;
@@ -139,6 +145,7 @@ static void print_stats(const render_stats *st, double load_s, double render_s,
             1e3 * load_s, 1e3 * render_s, 1e3 * write_s);
 }
 
+/* <<rendering in bands>> ch01 */
 enum { BAND_ROWS = 8 }; /* small enough for smooth progress, large enough to
                            cost nothing */
 
@@ -163,6 +170,7 @@ static void render_in_bands(const scene *s, image *img, render_stats *stats)
     }
 }
 
+/* <<main>> ch01 */
 int main(int argc, char **argv)
 {
     options opt;

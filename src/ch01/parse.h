@@ -28,6 +28,7 @@ typedef struct {
     parse_error *err;
 } parser;
 
+/* <<parser declarations>> ch01 */
 /* Fills p->err at the column of at, formatted like printf; returns false. */
 bool parse_fail_at(parser *p, const char *at, const char *format, ...);
 

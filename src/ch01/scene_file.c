@@ -7,6 +7,7 @@
 #include "image.h"
 
 
+/* <<statements>> ch01 */
 static bool parse_camera(parser *p, scene *s)
 {
     if (!parse_next_token(p))
@@ -28,6 +29,7 @@ static bool parse_camera(parser *p, scene *s)
     return true;
 }
 
+/* <<image statement>> ch01 */
 static bool read_side(parser *p, const char *what, int *out)
 {
     long n = 0;
@@ -55,6 +57,7 @@ static bool parse_image(parser *p, scene *s)
     return true;
 }
 
+/* <<background statement>> ch01 */
 static bool parse_background(parser *p, scene *s)
 {
     const char *rest = p->next;
@@ -68,6 +71,7 @@ static bool parse_background(parser *p, scene *s)
     return parse_color(p, "a colour component", &s->bg.bottom);
 }
 
+/* <<the statement loop>> ch01 */
 typedef bool (*statement_parser)(parser *p, scene *s);
 
 static const struct {

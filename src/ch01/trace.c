@@ -13,6 +13,7 @@ vec3 background_color(const background *bg, vec3 dir)
 
 vec3 trace(const scene *s, ray r, int depth, render_stats *stats)
 {
+    /* <<trace a ray>> ch01 */
     (void)depth, (void)stats; /* no bounces and nothing to count yet */
     return background_color(&s->bg, r.dir);
 }

@@ -34,6 +34,7 @@ static inline void image_set(image *img, int i, int j, vec3 c)
     img->pixels[(size_t)j * img->width + i] = c;
 }
 
+/* <<colour encoding declarations>> ch01 */
 /* The sRGB transfer function: linear light in [0, 1] to encoded [0, 1].
  * Values below 0 (and NaN) give 0, values above 1 give 1. */
 double srgb_encode(double linear);

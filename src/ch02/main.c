@@ -9,6 +9,7 @@
 
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
+    /* <<default scene>> ch02 */
     "# Chapter 02: spheres, shaded by how squarely they face the eye.\n"
     "camera fov 60\n"
     "image 320 240\n"
@@ -20,6 +21,7 @@ static const char DEFAULT_SCENE[] =
     "sphere center 0.6 -0.35 3.8 radius 0.15 color 0.3 0.8 0.4\n"
     ;
 
+/* <<command-line options>> ch01 */
 typedef struct {
     const char *scene_path; /* NULL: the built-in scene */
     const char *output;
@@ -50,6 +52,7 @@ static bool option_error(const char *program, const char *message,
     return false;
 }
 
+/* <<parse a size>> ch01 */
 static bool parse_size(const char *text, int *width, int *height)
 {
     char *x, *end;
@@ -65,6 +68,7 @@ static bool parse_size(const char *text, int *width, int *height)
     return true;
 }
 
+/* <<parse the arguments>> ch01 */
 static bool parse_options(int argc, char **argv, options *opt)
 {
     *opt = (options){.output = "out.png"};
@@ -98,6 +102,7 @@ static bool parse_options(int argc, char **argv, options *opt)
     return true;
 }
 
+/* <<loading the scene>> ch01 */
 static void print_scene_error(const scene_error *err)
 {
     if (err->line > 0)
@@ -128,6 +133,7 @@ static bool load_scene(const options *opt, scene *s)
     return true;
 }
 
+/* <<timing>> ch01 */
 static double seconds_now(void)
 {
     struct timespec t;
@@ -139,12 +145,14 @@ static void print_stats(const render_stats *st, double load_s, double render_s,
                         double write_s)
 {
     fprintf(stderr, "primary rays       %lld\n", st->primary_rays);
+    /* <<print statistics>> ch02 */
     fprintf(stderr, "sphere tests       %lld\n", st->sphere_tests);
     fprintf(stderr,
             "time               scene %.1f ms, render %.1f ms, write %.1f ms\n",
             1e3 * load_s, 1e3 * render_s, 1e3 * write_s);
 }
 
+/* <<rendering in bands>> ch01 */
 enum { BAND_ROWS = 8 }; /* small enough for smooth progress, large enough to
                            cost nothing */
 
@@ -169,6 +177,7 @@ static void render_in_bands(const scene *s, image *img, render_stats *stats)
     }
 }
 
+/* <<main>> ch01 */
 int main(int argc, char **argv)
 {
     options opt;

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* <<scene helpers>> ch02 */
 #include "array.h"
 
 void scene_init(scene *s)
@@ -20,10 +21,12 @@ void scene_init(scene *s)
 
 void scene_free(scene *s)
 {
+    /* <<free scene members>> ch02 */
     free(s->objects);
     memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
 }
 
+/* <<scene contents>> ch02 */
 bool scene_add_object(scene *s, object o)
 {
     object *grown = array_grow(s->objects, s->object_count,
@@ -36,6 +39,7 @@ bool scene_add_object(scene *s, object o)
     return true;
 }
 
+/* <<the search for the nearest hit>> ch02 */
 /* What the search keeps of the nearest hit so far. */
 typedef struct {
     const object *object; /* NULL: nothing hit yet */

@@ -10,6 +10,7 @@
 #include <stddef.h>
 #include "camera.h"
 #include "stats.h"
+/* <<scene includes>> ch02 */
 #include "sphere.h"
 
 typedef enum { BACKGROUND_SOLID, BACKGROUND_GRADIENT } background_kind;
@@ -19,6 +20,7 @@ typedef struct {
     vec3 bottom, top; /* a solid background uses bottom only */
 } background;
 
+/* <<scene types>> ch02 */
 typedef enum {
     SHAPE_SPHERE,
 } shape_kind;
@@ -36,6 +38,7 @@ typedef struct {
 typedef struct {
     camera cam;
     background bg;
+    /* <<scene members>> ch02 */
     object *objects;
     int object_count, object_capacity;
 } scene;
@@ -43,6 +46,7 @@ typedef struct {
 void scene_init(scene *s);
 void scene_free(scene *s);
 
+/* <<scene functions>> ch02 */
 /* A million: far beyond what a renderer without a tree can draw. */
 #define SCENE_MAX_OBJECTS (1 << 20)
 

@@ -7,6 +7,7 @@
 
 typedef struct {
     long long primary_rays;
+    /* <<statistics counters>> ch02 */
     long long sphere_tests;
 } render_stats;
 

@@ -13,10 +13,12 @@ vec3 background_color(const background *bg, vec3 dir)
 
 vec3 trace(const scene *s, ray r, int depth, render_stats *stats)
 {
+    /* <<trace a ray>> ch02 */
     (void)depth; /* one bounce only, until chapter 06 */
     hit h;
     if (!scene_intersect(s, r, 0.0, INFINITY, &h, stats))
         return background_color(&s->bg, r.dir);
+    /* <<shade the hit>> ch02 */
     /* No lights yet: brightness is how squarely the surface faces the eye. */
     return vec3_scale(h.color, fabs(vec3_dot(h.normal, r.dir)));
 }

@@ -12,6 +12,7 @@ typedef struct {
     double x, y, z;
 } vec3;
 
+/* <<vector operations>> ch01 */
 static inline vec3 vec3_add(vec3 a, vec3 b)
 {
     return (vec3){a.x + b.x, a.y + b.y, a.z + b.z};
@@ -51,10 +52,12 @@ static inline vec3 vec3_lerp(vec3 a, vec3 b, double t)
     return vec3_add(vec3_scale(a, 1.0 - t), vec3_scale(b, t));
 }
 
+/* <<math constants>> ch01 */
 #ifndef M_PI
 #define M_PI 3.14159265358979323846 /* POSIX has it; strict C11 does not */
 #endif
 
+/* <<ray type>> ch01 */
 /* The half-line origin + t dir, t >= 0. Rays made by the renderer have
  * |dir| = 1, so that t is a distance. */
 typedef struct {

@@ -9,6 +9,7 @@
 
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
+    /* <<default scene>> ch03 */
     "# Chapter 03: spheres lit by a directional, a point and a spot light.\n"
         "camera fov 55\n"
         "image 320 240\n"
@@ -34,6 +35,7 @@ static const char DEFAULT_SCENE[] =
         "intensity 0.9 0.9 0.8\n"
     ;
 
+/* <<command-line options>> ch01 */
 typedef struct {
     const char *scene_path; /* NULL: the built-in scene */
     const char *output;
@@ -64,6 +66,7 @@ static bool option_error(const char *program, const char *message,
     return false;
 }
 
+/* <<parse a size>> ch01 */
 static bool parse_size(const char *text, int *width, int *height)
 {
     char *x, *end;
@@ -79,6 +82,7 @@ static bool parse_size(const char *text, int *width, int *height)
     return true;
 }
 
+/* <<parse the arguments>> ch01 */
 static bool parse_options(int argc, char **argv, options *opt)
 {
     *opt = (options){.output = "out.png"};
@@ -112,6 +116,7 @@ static bool parse_options(int argc, char **argv, options *opt)
     return true;
 }
 
+/* <<loading the scene>> ch01 */
 static void print_scene_error(const scene_error *err)
 {
     if (err->line > 0)
@@ -142,6 +147,7 @@ static bool load_scene(const options *opt, scene *s)
     return true;
 }
 
+/* <<timing>> ch01 */
 static double seconds_now(void)
 {
     struct timespec t;
@@ -153,12 +159,14 @@ static void print_stats(const render_stats *st, double load_s, double render_s,
                         double write_s)
 {
     fprintf(stderr, "primary rays       %lld\n", st->primary_rays);
+    /* <<print statistics>> ch02 */
     fprintf(stderr, "sphere tests       %lld\n", st->sphere_tests);
     fprintf(stderr,
             "time               scene %.1f ms, render %.1f ms, write %.1f ms\n",
             1e3 * load_s, 1e3 * render_s, 1e3 * write_s);
 }
 
+/* <<rendering in bands>> ch01 */
 enum { BAND_ROWS = 8 }; /* small enough for smooth progress, large enough to
                            cost nothing */
 
@@ -183,6 +191,7 @@ static void render_in_bands(const scene *s, image *img, render_stats *stats)
     }
 }
 
+/* <<main>> ch01 */
 int main(int argc, char **argv)
 {
     options opt;

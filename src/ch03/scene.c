@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* <<scene helpers>> ch02 */
 #include "array.h"
 
 void scene_init(scene *s)
@@ -16,6 +17,7 @@ void scene_init(scene *s)
     s->bg.kind = BACKGROUND_GRADIENT;
     s->bg.bottom = (vec3){1.0, 1.0, 1.0};
     s->bg.top = (vec3){0.3, 0.5, 1.0};
+    /* <<scene member defaults>> ch03 */
     s->ambient = (vec3){1, 1, 1};
     s->tone.alpha = s->tone.beta = 1;
     s->default_material = material_default();
@@ -26,12 +28,15 @@ void scene_init(scene *s)
 
 void scene_free(scene *s)
 {
+    /* <<free scene members>> ch02 */
     free(s->objects);
+    /* <<free scene members>> += ch03 */
     free(s->materials);
     free(s->lights);
     memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
 }
 
+/* <<scene contents>> ch02 */
 bool scene_add_object(scene *s, object o)
 {
     object *grown = array_grow(s->objects, s->object_count,
@@ -44,6 +49,7 @@ bool scene_add_object(scene *s, object o)
     return true;
 }
 
+/* <<the search for the nearest hit>> ch02 */
 /* What the search keeps of the nearest hit so far. */
 typedef struct {
     const object *object; /* NULL: nothing hit yet */
@@ -100,6 +106,7 @@ static void object_fill_hit(const scene *s, const nearest_hit *best, ray r,
     ray local = r; /* the ray in o's own space: the same until chapter 05 */
     shape_fill_hit(s, best, local, h);
     h->color = o->color;
+    /* <<fill the object's part of the hit>> ch03 */
     h->material = o->material;
 }
 
@@ -121,6 +128,7 @@ bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
     object_fill_hit(s, &q.best, r, h);
     return true;
 }
+/* <<scene contents>> += ch03 */
 
 const material *scene_material(const scene *s, int index)
 {

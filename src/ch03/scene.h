@@ -10,7 +10,9 @@
 #include <stddef.h>
 #include "camera.h"
 #include "stats.h"
+/* <<scene includes>> ch02 */
 #include "sphere.h"
+/* <<scene includes>> += ch03 */
 #include "light.h"
 #include "material.h"
 
@@ -21,6 +23,7 @@ typedef struct {
     vec3 bottom, top; /* a solid background uses bottom only */
 } background;
 
+/* <<scene types>> ch02 */
 typedef enum {
     SHAPE_SPHERE,
 } shape_kind;
@@ -33,14 +36,17 @@ typedef struct {
         sphere sphere; /* SHAPE_SPHERE */
     };
     vec3 color;
+    /* <<object members>> ch03 */
     int material; /* 0: the scene's default material; k: the scene's k-th */
 } object;
 
 typedef struct {
     camera cam;
     background bg;
+    /* <<scene members>> ch02 */
     object *objects;
     int object_count, object_capacity;
+    /* <<scene members>> += ch03 */
     vec3 ambient; /* I_a */
     struct {
         double alpha, beta;
@@ -56,6 +62,7 @@ typedef struct {
 void scene_init(scene *s);
 void scene_free(scene *s);
 
+/* <<scene functions>> ch02 */
 /* A million: far beyond what a renderer without a tree can draw. */
 #define SCENE_MAX_OBJECTS (1 << 20)
 
@@ -65,6 +72,7 @@ bool scene_add_object(scene *s, object o);
 /* The nearest hit along r with t in (t_min, t_max), filled into h. */
 bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
                      hit *h, render_stats *stats);
+/* <<scene functions>> += ch03 */
 
 #define SCENE_MAX_MATERIALS 4096
 #define SCENE_MAX_LIGHTS 4096 /* every light costs every shaded point */

@@ -6,6 +6,7 @@
 #include <string.h>
 #include "image.h"
 
+/* <<statement helpers>> ch03 */
 
 /* The index of the material named by the token just read: 0 for "default",
  * k for the scene's k-th material, -1 if there is none of that name. */
@@ -27,6 +28,7 @@ static bool read_material_name(parser *p, const scene *s, int *material)
     return true;
 }
 
+/* <<statements>> ch01 */
 static bool parse_camera(parser *p, scene *s)
 {
     if (!parse_next_token(p))
@@ -48,6 +50,7 @@ static bool parse_camera(parser *p, scene *s)
     return true;
 }
 
+/* <<image statement>> ch01 */
 static bool read_side(parser *p, const char *what, int *out)
 {
     long n = 0;
@@ -75,6 +78,7 @@ static bool parse_image(parser *p, scene *s)
     return true;
 }
 
+/* <<background statement>> ch01 */
 static bool parse_background(parser *p, scene *s)
 {
     const char *rest = p->next;
@@ -87,10 +91,12 @@ static bool parse_background(parser *p, scene *s)
     s->bg.kind = BACKGROUND_SOLID;
     return parse_color(p, "a colour component", &s->bg.bottom);
 }
+/* <<statements>> += ch02 */
 
 /* The settings every object statement accepts, for error messages. */
 static const char object_setting_names[] =
     "color"
+    /* <<names of object settings>> ch03 */
     ", material"
     ;
 
@@ -102,6 +108,7 @@ static bool parse_object_setting(parser *p, scene *s, object *o, bool *known)
     *known = true;
     if (parse_token_is(p, "color"))
         return parse_color(p, "a colour component", &o->color);
+    /* <<object settings>> ch03 */
     if (parse_token_is(p, "material"))
         return read_material_name(p, s, &o->material);
     *known = false;
@@ -141,6 +148,7 @@ static bool parse_sphere(parser *p, scene *s)
                              SCENE_MAX_OBJECTS);
     return true;
 }
+/* <<statements>> += ch03 */
 
 static const char material_setting_names[] =
     "emission, ambient, diffuse, specular, shininess, highlight"
@@ -180,6 +188,7 @@ static bool read_material_setting(parser *p, material *m)
                           material_setting_names);
 }
 
+/* <<the material statement>> ch03 */
 static bool parse_material(parser *p, scene *s)
 {
     material m = material_default();
@@ -207,6 +216,8 @@ static bool parse_material(parser *p, scene *s)
     return true;
 }
 
+/* <<the light statement>> ch03 */
+/* <<reading attenuation>> ch03 */
 static bool read_attenuation(parser *p, double a[3])
 {
     const char *where[3];
@@ -311,6 +322,7 @@ static bool parse_ambient(parser *p, scene *s)
     return parse_color(p, "an ambient intensity", &s->ambient);
 }
 
+/* <<the tonemap statement>> ch03 */
 static bool parse_tonemap(parser *p, scene *s)
 {
     if (!parse_next_token(p))
@@ -329,6 +341,7 @@ static bool parse_tonemap(parser *p, scene *s)
     return true;
 }
 
+/* <<the statement loop>> ch01 */
 typedef bool (*statement_parser)(parser *p, scene *s);
 
 static const struct {
@@ -338,7 +351,9 @@ static const struct {
     {"camera", parse_camera},
     {"image", parse_image},
     {"background", parse_background},
+    /* <<scene keywords>> ch02 */
     {"sphere", parse_sphere},
+    /* <<scene keywords>> += ch03 */
     {"ambient", parse_ambient},
     {"tonemap", parse_tonemap},
     {"material", parse_material},

@@ -1,6 +1,7 @@
 /* shade.c: the Phong model, lights and tone mapping (chapter 03). */
 #include "shade.h"
 
+/* <<highlights>> ch03 */
 double phong_cosine(vec3 n, vec3 l, vec3 v)
 {
     /* l mirrored about n */
@@ -29,6 +30,7 @@ double specular_blinn(vec3 n, vec3 l, vec3 v, double k)
     return pow(blinn_cosine(n, l, v), 4.0 * k);
 }
 
+/* <<lights>> ch03 */
 double light_attenuation(const light *L, double r)
 {
     const double *a = L->attenuation;
@@ -59,6 +61,7 @@ light_sample light_toward(const light *L, vec3 point)
     return (light_sample){l, r, vec3_scale(L->intensity, factor)};
 }
 
+/* <<tone mapping>> ch03 */
 double tone_map(double I, double alpha, double beta)
 {
     if (!(I > 0))
@@ -67,6 +70,8 @@ double tone_map(double I, double alpha, double beta)
     return mapped < 1 ? mapped : 1;
 }
 
+/* <<shading a hit>> ch03 */
+/* <<light visibility>> ch03 */
 /* Can the light of ls reach the hit point h->point? */
 static bool light_reaches(const scene *s, const hit *h,
                           const light_sample *ls, render_stats *stats)

@@ -1,6 +1,7 @@
 /* trace.c: what a ray sees (chapter 01). See trace.h. */
 #include "trace.h"
 
+/* <<trace includes>> ch03 */
 #include "shade.h"
 
 
@@ -14,10 +15,12 @@ vec3 background_color(const background *bg, vec3 dir)
 
 vec3 trace(const scene *s, ray r, int depth, render_stats *stats)
 {
+    /* <<trace a ray>> ch02 */
     (void)depth; /* one bounce only, until chapter 06 */
     hit h;
     if (!scene_intersect(s, r, 0.0, INFINITY, &h, stats))
         return background_color(&s->bg, r.dir);
+    /* <<shade the hit>> ch03 */
     vec3 color = shade(s, &h, vec3_scale(r.dir, -1), stats);
     return color;
 }

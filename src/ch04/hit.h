@@ -16,6 +16,7 @@ typedef struct {
     vec3 geometric_normal; /* the surface's own normal: unit, outward */
     bool inside;           /* the ray arrived from inside: <d, n_g> > 0 */
     vec3 color;
+    /* <<hit members>> ch03 */
     int material;
 } hit;
 

@@ -9,6 +9,7 @@
 
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
+    /* <<default scene>> ch04 */
     "# Chapter 04: an octahedron of eight triangle statements.\n"
         "camera fov 50\n"
         "image 320 240\n"
@@ -38,6 +39,7 @@ static const char DEFAULT_SCENE[] =
         "light point position -3 3 2 intensity 0.9 0.85 0.8\n"
     ;
 
+/* <<command-line options>> ch01 */
 typedef struct {
     const char *scene_path; /* NULL: the built-in scene */
     const char *output;
@@ -68,6 +70,7 @@ static bool option_error(const char *program, const char *message,
     return false;
 }
 
+/* <<parse a size>> ch01 */
 static bool parse_size(const char *text, int *width, int *height)
 {
     char *x, *end;
@@ -83,6 +86,7 @@ static bool parse_size(const char *text, int *width, int *height)
     return true;
 }
 
+/* <<parse the arguments>> ch01 */
 static bool parse_options(int argc, char **argv, options *opt)
 {
     *opt = (options){.output = "out.png"};
@@ -116,6 +120,7 @@ static bool parse_options(int argc, char **argv, options *opt)
     return true;
 }
 
+/* <<loading the scene>> ch01 */
 static void print_scene_error(const scene_error *err)
 {
     if (err->line > 0)
@@ -146,6 +151,7 @@ static bool load_scene(const options *opt, scene *s)
     return true;
 }
 
+/* <<timing>> ch01 */
 static double seconds_now(void)
 {
     struct timespec t;
@@ -157,7 +163,9 @@ static void print_stats(const render_stats *st, double load_s, double render_s,
                         double write_s)
 {
     fprintf(stderr, "primary rays       %lld\n", st->primary_rays);
+    /* <<print statistics>> ch02 */
     fprintf(stderr, "sphere tests       %lld\n", st->sphere_tests);
+    /* <<print statistics>> += ch04 */
     fprintf(stderr, "triangle tests     %lld\n", st->triangle_tests);
     fprintf(stderr, "box tests          %lld\n", st->box_tests);
     fprintf(stderr,
@@ -165,6 +173,7 @@ static void print_stats(const render_stats *st, double load_s, double render_s,
             1e3 * load_s, 1e3 * render_s, 1e3 * write_s);
 }
 
+/* <<rendering in bands>> ch01 */
 enum { BAND_ROWS = 8 }; /* small enough for smooth progress, large enough to
                            cost nothing */
 
@@ -189,6 +198,7 @@ static void render_in_bands(const scene *s, image *img, render_stats *stats)
     }
 }
 
+/* <<main>> ch01 */
 int main(int argc, char **argv)
 {
     options opt;

@@ -34,6 +34,7 @@ void mesh_compute_bounds(mesh *m);
  * makes every triangle use them; false when out of memory. */
 bool mesh_smooth_normals(mesh *m);
 
+/* <<mesh intersection declarations>> ch04 */
 /* The hit record of a hit at th on the triangle (a, b, c): flat shaded. */
 void triangle_fill_hit(vec3 a, vec3 b, vec3 c, ray r, double t, hit *h);
 

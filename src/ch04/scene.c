@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+/* <<scene helpers>> ch02 */
 #include "array.h"
 
 void scene_init(scene *s)
@@ -16,6 +17,7 @@ void scene_init(scene *s)
     s->bg.kind = BACKGROUND_GRADIENT;
     s->bg.bottom = (vec3){1.0, 1.0, 1.0};
     s->bg.top = (vec3){0.3, 0.5, 1.0};
+    /* <<scene member defaults>> ch03 */
     s->ambient = (vec3){1, 1, 1};
     s->tone.alpha = s->tone.beta = 1;
     s->default_material = material_default();
@@ -26,15 +28,19 @@ void scene_init(scene *s)
 
 void scene_free(scene *s)
 {
+    /* <<free scene members>> ch02 */
     free(s->objects);
+    /* <<free scene members>> += ch03 */
     free(s->materials);
     free(s->lights);
+    /* <<free scene members>> += ch04 */
     for (int k = 0; k < s->mesh_count; k++)
         mesh_free(&s->meshes[k]);
     free(s->meshes);
     memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
 }
 
+/* <<scene contents>> ch02 */
 bool scene_add_object(scene *s, object o)
 {
     object *grown = array_grow(s->objects, s->object_count,
@@ -47,6 +53,7 @@ bool scene_add_object(scene *s, object o)
     return true;
 }
 
+/* <<the search for the nearest hit>> ch02 */
 /* What the search keeps of the nearest hit so far. */
 typedef struct {
     const object *object; /* NULL: nothing hit yet */
@@ -60,10 +67,12 @@ typedef struct {
     double t_min;
     nearest_hit best;
     render_stats *stats;
+    /* <<search members>> ch04 */
     mesh_ray prepared; /* valid once is_prepared is set */
     bool is_prepared;
 } scene_search;
 
+/* <<search helpers>> ch04 */
 /* The search's ray with its per-ray constants, made on first use. */
 static const mesh_ray *prepared_ray(scene_search *q)
 {
@@ -84,6 +93,7 @@ static void shape_intersect(const scene *s, const object *o, scene_search *q)
         if (sphere_hit_t(&o->sphere, q->r, q->t_min, q->best.t, &t))
             q->best = (nearest_hit){.object = o, .t = t};
         break;
+    /* <<intersect the other shapes>> ch04 */
     case SHAPE_TRIANGLE: {
         triangle_hit th;
         q->stats->triangle_tests++;
@@ -119,6 +129,7 @@ static void shape_fill_hit(const scene *s, const nearest_hit *best, ray r,
     case SHAPE_SPHERE:
         sphere_fill_hit(&o->sphere, r, best->t, h);
         break;
+    /* <<fill the hits of the other shapes>> ch04 */
     case SHAPE_TRIANGLE: {
         const vec3 *c = o->corners;
         triangle_fill_hit(c[0], c[1], c[2], r, best->t, h);
@@ -139,6 +150,7 @@ static void object_fill_hit(const scene *s, const nearest_hit *best, ray r,
     ray local = r; /* the ray in o's own space: the same until chapter 05 */
     shape_fill_hit(s, best, local, h);
     h->color = o->color;
+    /* <<fill the object's part of the hit>> ch03 */
     h->material = o->material;
 }
 
@@ -160,6 +172,7 @@ bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
     object_fill_hit(s, &q.best, r, h);
     return true;
 }
+/* <<scene contents>> += ch03 */
 
 const material *scene_material(const scene *s, int index)
 {
@@ -188,6 +201,7 @@ bool scene_add_light(scene *s, light L)
     s->lights[s->light_count++] = L;
     return true;
 }
+/* <<scene contents>> += ch04 */
 
 int scene_add_mesh(scene *s, mesh m)
 {

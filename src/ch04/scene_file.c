@@ -6,6 +6,7 @@
 #include <string.h>
 #include "image.h"
 
+/* <<statement helpers>> ch03 */
 
 /* The index of the material named by the token just read: 0 for "default",
  * k for the scene's k-th material, -1 if there is none of that name. */
@@ -26,8 +27,10 @@ static bool read_material_name(parser *p, const scene *s, int *material)
                                  "above");
     return true;
 }
+/* <<statement helpers>> += ch04 */
 #include "obj.h"
 
+/* <<statements>> ch01 */
 static bool parse_camera(parser *p, scene *s)
 {
     if (!parse_next_token(p))
@@ -49,6 +52,7 @@ static bool parse_camera(parser *p, scene *s)
     return true;
 }
 
+/* <<image statement>> ch01 */
 static bool read_side(parser *p, const char *what, int *out)
 {
     long n = 0;
@@ -76,6 +80,7 @@ static bool parse_image(parser *p, scene *s)
     return true;
 }
 
+/* <<background statement>> ch01 */
 static bool parse_background(parser *p, scene *s)
 {
     const char *rest = p->next;
@@ -88,10 +93,12 @@ static bool parse_background(parser *p, scene *s)
     s->bg.kind = BACKGROUND_SOLID;
     return parse_color(p, "a colour component", &s->bg.bottom);
 }
+/* <<statements>> += ch02 */
 
 /* The settings every object statement accepts, for error messages. */
 static const char object_setting_names[] =
     "color"
+    /* <<names of object settings>> ch03 */
     ", material"
     ;
 
@@ -103,6 +110,7 @@ static bool parse_object_setting(parser *p, scene *s, object *o, bool *known)
     *known = true;
     if (parse_token_is(p, "color"))
         return parse_color(p, "a colour component", &o->color);
+    /* <<object settings>> ch03 */
     if (parse_token_is(p, "material"))
         return read_material_name(p, s, &o->material);
     *known = false;
@@ -142,6 +150,7 @@ static bool parse_sphere(parser *p, scene *s)
                              SCENE_MAX_OBJECTS);
     return true;
 }
+/* <<statements>> += ch03 */
 
 static const char material_setting_names[] =
     "emission, ambient, diffuse, specular, shininess, highlight"
@@ -181,6 +190,7 @@ static bool read_material_setting(parser *p, material *m)
                           material_setting_names);
 }
 
+/* <<the material statement>> ch03 */
 static bool parse_material(parser *p, scene *s)
 {
     material m = material_default();
@@ -208,6 +218,8 @@ static bool parse_material(parser *p, scene *s)
     return true;
 }
 
+/* <<the light statement>> ch03 */
+/* <<reading attenuation>> ch03 */
 static bool read_attenuation(parser *p, double a[3])
 {
     const char *where[3];
@@ -312,6 +324,7 @@ static bool parse_ambient(parser *p, scene *s)
     return parse_color(p, "an ambient intensity", &s->ambient);
 }
 
+/* <<the tonemap statement>> ch03 */
 static bool parse_tonemap(parser *p, scene *s)
 {
     if (!parse_next_token(p))
@@ -329,7 +342,9 @@ static bool parse_tonemap(parser *p, scene *s)
     } while (parse_next_token(p));
     return true;
 }
+/* <<statements>> += ch04 */
 
+/* <<the triangle statement>> ch04 */
 static bool parse_triangle(parser *p, scene *s)
 {
     object o = {.kind = SHAPE_TRIANGLE, .color = {0.8, 0.8, 0.8},
@@ -356,6 +371,7 @@ static bool parse_triangle(parser *p, scene *s)
     return true;
 }
 
+/* <<the mesh statement>> ch04 */
 /* PATH of the token, relative to the folder of the file being parsed. */
 static bool resolve_path(const parser *p, const char *token, int length,
                          char *out, size_t size)
@@ -383,6 +399,7 @@ static bool load_mesh_file(parser *p, const char *file, int length, mesh *m)
     return false; /* the OBJ file's own line and column */
 }
 
+/* <<placing a mesh>> ch04 */
 static bool read_scale(parser *p, double *scale)
 {
     if (!parse_number(p, "a scale", scale))
@@ -474,6 +491,7 @@ static bool parse_mesh(parser *p, scene *s)
     return true;
 }
 
+/* <<the statement loop>> ch01 */
 typedef bool (*statement_parser)(parser *p, scene *s);
 
 static const struct {
@@ -483,11 +501,14 @@ static const struct {
     {"camera", parse_camera},
     {"image", parse_image},
     {"background", parse_background},
+    /* <<scene keywords>> ch02 */
     {"sphere", parse_sphere},
+    /* <<scene keywords>> += ch03 */
     {"ambient", parse_ambient},
     {"tonemap", parse_tonemap},
     {"material", parse_material},
     {"light", parse_light},
+    /* <<scene keywords>> += ch04 */
     {"triangle", parse_triangle},
     {"mesh", parse_mesh},
 };

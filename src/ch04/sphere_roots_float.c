@@ -5,6 +5,8 @@ typedef float real;
 /* sphere_roots_NAME_float: the float versions, for tests and benchmarks. */
 #define SPHERE_FORM(name) sphere_roots_##name##_float
 
+/* <<ray-sphere forms in any precision>> ch02 */
+/* <<vectors in the working precision>> ch02 */
 typedef struct {
     real x, y, z;
 } rvec;
@@ -27,6 +29,7 @@ static inline real rvec_dot(rvec a, rvec b)
 }
 /* sqrt in double then rounded: correctly rounded in float as well. */
 static inline real real_sqrt(real x) { return (real)sqrt((double)x); }
+/* <<vectors in the working precision>> += ch04 */
 static inline rvec rvec_add(rvec a, rvec b)
 {
     return (rvec){a.x + b.x, a.y + b.y, a.z + b.z};
@@ -44,6 +47,7 @@ static inline bool is_degenerate(rvec a, rvec b, rvec c)
     return n.x == 0 && n.y == 0 && n.z == 0;
 }
 
+/* <<geometric form>> ch02 */
 /* Sheet 1.4 for any origin: a = <c - o, d>, D^2 = |c - o|^2 - a^2,
  * t = a -+ sqrt(r^2 - D^2). Needs |d| = 1. */
 int SPHERE_FORM(geometric)(vec3 center, double radius, ray r, double t[2])
@@ -61,6 +65,7 @@ int SPHERE_FORM(geometric)(vec3 center, double radius, ray r, double t[2])
     return 2;
 }
 
+/* <<textbook quadratic form>> ch02 */
 /* a t^2 + b t + c = 0: a = <d,d>, b = 2<f,d>, c = <f,f> - r^2, f = o - c */
 int SPHERE_FORM(quadratic)(vec3 center, double radius, ray r, double t[2])
 {
@@ -78,6 +83,7 @@ int SPHERE_FORM(quadratic)(vec3 center, double radius, ray r, double t[2])
     return 2;
 }
 
+/* <<robust form>> ch02 */
 /* Haines, Guenther, Akenine-Moeller (Ray Tracing Gems, ch. 7): the
  * discriminant from the centre-to-line vector, the roots without cancelling. */
 int SPHERE_FORM(robust)(vec3 center, double radius, ray r, double t[2])

@@ -7,7 +7,9 @@
 
 typedef struct {
     long long primary_rays;
+    /* <<statistics counters>> ch02 */
     long long sphere_tests;
+    /* <<statistics counters>> += ch04 */
     long long triangle_tests;
     long long box_tests;
 } render_stats;

@@ -47,6 +47,7 @@ typedef struct {
 #define TRIANGLE_METHOD_COUNT 6
 extern const triangle_method_entry TRIANGLE_METHODS[TRIANGLE_METHOD_COUNT];
 
+/* <<the watertight test for one ray and many triangles>> ch04 */
 /* The watertight test's per-ray constants: which axis the ray runs along
  * (kz) and the shear that makes it the z axis. */
 typedef struct {

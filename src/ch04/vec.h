@@ -12,6 +12,7 @@ typedef struct {
     double x, y, z;
 } vec3;
 
+/* <<vector operations>> ch01 */
 static inline vec3 vec3_add(vec3 a, vec3 b)
 {
     return (vec3){a.x + b.x, a.y + b.y, a.z + b.z};
@@ -51,9 +52,11 @@ static inline vec3 vec3_lerp(vec3 a, vec3 b, double t)
     return vec3_add(vec3_scale(a, 1.0 - t), vec3_scale(b, t));
 }
 
+/* <<math constants>> ch01 */
 #ifndef M_PI
 #define M_PI 3.14159265358979323846 /* POSIX has it; strict C11 does not */
 #endif
+/* <<vector operations>> += ch04 */
 
 static inline vec3 vec3_cross(vec3 a, vec3 b)
 {
@@ -61,6 +64,7 @@ static inline vec3 vec3_cross(vec3 a, vec3 b)
                   a.x * b.y - a.y * b.x};
 }
 
+/* <<ray type>> ch01 */
 /* The half-line origin + t dir, t >= 0. Rays made by the renderer have
  * |dir| = 1, so that t is a distance. */
 typedef struct {
