@@ -269,7 +269,8 @@ valgrind: all $(B)/test/tangle $(foreach n,$(NUMS),$(B)/test/ch$(n))
 CHARTS := $(wildcard figures/ch[0-9][0-9]-*.svg)
 
 book: build/book.html
-build/book.html: book.md $(CHAPTERS) tools/weave.lua tools/weave.sh tools/book.css $(ALL_FIGS) $(CHARTS) | deps
+build/book.html: book.md $(CHAPTERS) tools/weave.lua tools/weave_names.lua tools/weave.sh \
+                 tools/book.css $(ALL_FIGS) $(CHARTS) | deps
 	@mkdir -p $(@D)
 	sh tools/weave.sh book.md $@ $(CHAPTERS)
 
