@@ -4,7 +4,8 @@
 #                     bin/chNN, render the figures, build build/book.html
 #   make test         every test: the tangler suite, each chapter's suites
 #                     against every later chapter, src/ and figures up to date,
-#                     the book's links, images and math
+#                     the book's links, images and math and, last, that no
+#                     code line is wider than 80 columns
 #   make chNN         build bin/chNN           make test-chNN  its suites
 #   make run-chNN     render its own scene     make diff-chNN  what it adds
 #   make src          rewrite the committed plain tangle src/chNN
@@ -58,7 +59,8 @@ suites_upto = $(foreach n,$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS)),$(wildcard
 previous = $(lastword $(filter-out $(1),$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS))))
 
 .PHONY: all test deps src figures charts book clean check-src check-figures \
-        check-book check-lines check-quotes test-tangle tools benches
+        check-book check-lines check-quotes test-tangle tools benches \
+        check-code-width
 
 all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures benches book
 
@@ -277,6 +279,10 @@ build/book.html: book.md $(CHAPTERS) tools/weave.lua tools/weave_names.lua tools
 check-book: build/book.html $(B)/tools/check_book
 	$(B)/tools/check_book build/book.html
 
+# Every line of every code box fits 80 columns (names the chunk if not).
+check-code-width: build/book.html $(B)/tools/check_book
+	$(B)/tools/check_book --code-width 80 build/book.html
+
 # ---------------------------------------------------------------- tests
 $(B)/test/tangle: tests/runner.c tests/tangle_test.c | deps
 	@mkdir -p $(@D)
@@ -296,6 +302,7 @@ check-quotes:
 
 test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures check-book \
       check-lines check-quotes
+	@$(MAKE) --no-print-directory check-code-width
 	@echo "make test: all passed"
 
 clean:
