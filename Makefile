@@ -4,9 +4,9 @@
 #                     bin/chNN, render the figures, build build/book.html
 #   make test         every test: the tangler suite, each chapter's suites
 #                     against every later chapter, src/ and figures up to date,
-#                     the book's links, images and math, its layout in
-#                     Chromium (if installed) and, last, that no code line
-#                     is wider than 80 columns
+#                     the book's links, images and math, the commands it
+#                     quotes, its layout in Chromium (if installed) and, last,
+#                     that no code line is wider than 80 columns
 #   make chNN         build bin/chNN           make test-chNN  its suites
 #   make run-chNN     render its own scene     make diff-chNN  what it adds
 #   make src          rewrite the committed plain tangle src/chNN
@@ -64,7 +64,7 @@ previous = $(lastword $(filter-out $(1),$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUM
 
 .PHONY: all test deps src figures charts book clean check-src check-figures \
         check-book check-lines check-quotes test-tangle tools benches \
-        check-code-width book-check check-book-browser
+        book-check check-book-browser check-code-width check-commands
 
 all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures benches book
 
@@ -295,6 +295,12 @@ book-check: build/book.html
 check-book-browser: build/book.html
 	@sh tools/book_check.sh --no-install build/book.html build/book-screenshot.png
 
+# Every bin/chNN command the book and README quote runs (the self-test
+# first: the check must be able to fail).
+check-commands: $(foreach n,$(NUMS),$(BIN)/ch$(n))
+	@sh tools/check_commands.sh --self-test
+	@sh tools/check_commands.sh --bin $(BIN) chapters/*.md book.md README.md
+
 # ---------------------------------------------------------------- tests
 $(B)/test/tangle: tests/runner.c tests/tangle_test.c | deps
 	@mkdir -p $(@D)
@@ -313,7 +319,7 @@ check-quotes:
 	@sh tools/check_quotes.sh bench/quotes.txt
 
 test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures check-book \
-      check-lines check-quotes check-book-browser
+      check-lines check-quotes check-commands check-book-browser
 	@$(MAKE) --no-print-directory check-code-width
 	@echo "make test: all passed"
 
