@@ -4,13 +4,18 @@
 #                     bin/chNN, render the figures, build build/book.html
 #   make test         every test: the tangler suite, each chapter's suites
 #                     against every later chapter, src/ and figures up to date,
-#                     the book's links, images and math
+#                     the book's links, images and math, the commands it
+#                     quotes, its layout in Chromium (if installed) and, last,
+#                     that no code line is wider than 80 columns
 #   make chNN         build bin/chNN           make test-chNN  its suites
 #   make run-chNN     render its own scene     make diff-chNN  what it adds
 #   make src          rewrite the committed plain tangle src/chNN
 #   make figures      render figures/chNN-*.png
 #   make charts       run bench/ and redraw figures/chNN-*.svg
 #   make book         build/book.html          make clean
+#   make book-check   the book in headless Chromium at 1280x900 (installs it
+#                     as root): nothing wider than the text column, and a
+#                     screenshot build/book-screenshot.png
 #   make SAN=1 test   the same with AddressSanitizer and UBSan
 #   make WERROR=1     warnings are errors (CI)
 
@@ -58,7 +63,8 @@ suites_upto = $(foreach n,$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS)),$(wildcard
 previous = $(lastword $(filter-out $(1),$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS))))
 
 .PHONY: all test deps src figures charts book clean check-src check-figures \
-        check-book check-lines check-quotes test-tangle tools benches
+        check-book check-lines check-quotes test-tangle tools benches \
+        book-check check-book-browser check-code-width check-commands
 
 all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures benches book
 
@@ -269,12 +275,31 @@ valgrind: all $(B)/test/tangle $(foreach n,$(NUMS),$(B)/test/ch$(n))
 CHARTS := $(wildcard figures/ch[0-9][0-9]-*.svg)
 
 book: build/book.html
-build/book.html: book.md $(CHAPTERS) tools/weave.lua tools/weave.sh tools/book.css $(ALL_FIGS) $(CHARTS) | deps
+build/book.html: book.md $(CHAPTERS) tools/weave.lua tools/weave_names.lua tools/weave.sh \
+                 tools/book.css $(ALL_FIGS) $(CHARTS) | deps
 	@mkdir -p $(@D)
 	sh tools/weave.sh book.md $@ $(CHAPTERS)
 
 check-book: build/book.html $(B)/tools/check_book
 	$(B)/tools/check_book build/book.html
+
+# Every line of every code box fits 80 columns (names the chunk if not).
+check-code-width: build/book.html $(B)/tools/check_book
+	$(B)/tools/check_book --code-width 80 build/book.html
+
+# The page in headless Chromium at 1280x900: make book-check installs it
+# when missing (as root); make test only runs it if it is there.
+book-check: build/book.html
+	sh tools/book_check.sh build/book.html build/book-screenshot.png
+
+check-book-browser: build/book.html
+	@sh tools/book_check.sh --no-install build/book.html build/book-screenshot.png
+
+# Every bin/chNN command the book and README quote runs (the self-test
+# first: the check must be able to fail).
+check-commands: $(foreach n,$(NUMS),$(BIN)/ch$(n))
+	@sh tools/check_commands.sh --self-test
+	@sh tools/check_commands.sh --bin $(BIN) chapters/*.md book.md README.md
 
 # ---------------------------------------------------------------- tests
 $(B)/test/tangle: tests/runner.c tests/tangle_test.c | deps
@@ -294,7 +319,8 @@ check-quotes:
 	@sh tools/check_quotes.sh bench/quotes.txt
 
 test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures check-book \
-      check-lines check-quotes
+      check-lines check-quotes check-commands check-book-browser
+	@$(MAKE) --no-print-directory check-code-width
 	@echo "make test: all passed"
 
 clean:

@@ -3,6 +3,7 @@
  *
  * Build: gcc -std=c11 -Wall -Wextra -Werror -O2 -o build/check_book tools/check_book.c
  * Run:   build/check_book build/book.html
+ *        build/check_book --code-width 80 build/book.html
  *
  * It reads the page with a small tag scanner (not a full HTML parser) and
  * prints one "FILE: error: ..." line per problem, exiting with 1, when:
@@ -13,8 +14,20 @@
  *   - the page has no <math> element (formulas must be MathML);
  *   - a <script src> or <link href> points at the network (http:, https:,
  *     or //host), so the page would not work offline.
+ * With --code-width N it checks one more thing, alone (`make check-code-width`):
+ *   - a line of program code (in a <pre class="chunk-code"> that
+ *     tools/weave.lua writes) is wider than N columns: the message names the
+ *     chunk (data-chunk, or data-file for a file) and its chapter
+ *     (data-chapter), the line's number
+ *     in the box and the line itself, e.g.
+ *       book.html: error: chunk <<vector operations>> (Chapter 1), line 3:
+ *       91 columns, more than 80: static inline vec3 vec3_add(...
+ *     Columns are characters (UTF-8 code points); a tab goes to the next
+ *     multiple of 8.  A box must fit the text column without scrolling.
  * On success it prints
  *   check_book: N internal links, M images, K math elements: ok
+ * or, with --code-width,
+ *   check_book: N lines of code in M chunks, none wider than 80 columns: ok
  * Attribute values may be double-quoted, single-quoted or unquoted.
  */
 #include <ctype.h>
@@ -46,6 +59,13 @@ typedef struct {
     ItemList images;
     size_t math_count;
     size_t error_count;
+    /* --code-width: 0 when off */
+    size_t code_width;
+    char *chunk_name;      /* data-chunk (or data-file) of the latest <div> */
+    int chunk_is_file;     /* it was data-file */
+    char *chunk_chapter;   /* its data-chapter */
+    size_t code_lines;
+    size_t code_boxes;
 } Book;
 
 /* ---------------------------------------------------------------- */
@@ -342,11 +362,118 @@ static size_t read_value(const Book *book, size_t pos, char **value)
     return pos;
 }
 
+/* ---------------------------------------------------------------- */
+/* The width of code lines (--code-width)                            */
+/* ---------------------------------------------------------------- */
+
+/* Columns of one line: UTF-8 code points, a tab to the next multiple of 8. */
+static size_t columns_of(const char *line, size_t length)
+{
+    size_t columns = 0;
+    for (size_t i = 0; i < length; i++) {
+        unsigned char c = (unsigned char)line[i];
+        if (c == '\t')
+            columns = (columns / 8 + 1) * 8;
+        else if ((c & 0xC0) != 0x80)
+            columns++;
+    }
+    return columns;
+}
+
+/* The text of html[start, end) with its tags removed and entities decoded. */
+static char *text_without_tags(const Book *book, size_t start, size_t end)
+{
+    char *kept = allocate(end - start + 1);
+    size_t used = 0;
+    int in_tag = 0;
+    for (size_t i = start; i < end; i++) {
+        char c = book->html[i];
+        if (c == '<')
+            in_tag = 1;
+        else if (c == '>' && in_tag)
+            in_tag = 0;
+        else if (!in_tag)
+            kept[used++] = c;
+    }
+    char *text = decode_attribute(kept, used);
+    free(kept);
+    return text;
+}
+
+/* Names the chunk, not the page's line: the chunk is what the author edits. */
+static void report_wide_line(Book *book, size_t number, const char *line, size_t length,
+                             size_t columns)
+{
+    fprintf(stderr, "%s: error: %s%s%s (%s), line %zu: %zu columns, more than %zu: %.*s\n",
+            book->path, book->chunk_is_file ? "file " : "chunk <<",
+            book->chunk_name ? book->chunk_name : "?", book->chunk_is_file ? "" : ">>",
+            book->chunk_chapter ? book->chunk_chapter : "?", number, columns,
+            book->code_width, (int)length, line);
+    book->error_count++;
+}
+
+/* Checks the code box whose content starts at pos; returns its end. */
+static size_t check_code_box(Book *book, size_t pos)
+{
+    const char *close = strstr(book->html + pos, "</pre>");
+    size_t end = close ? (size_t)(close - book->html) : book->length;
+    char *text = text_without_tags(book, pos, end);
+    size_t number = 0;
+    for (const char *line = text; line;) {
+        const char *newline = strchr(line, '\n');
+        size_t length = newline ? (size_t)(newline - line) : strlen(line);
+        size_t columns = columns_of(line, length);
+        number++;
+        if (columns > book->code_width)
+            report_wide_line(book, number, line, length, columns);
+        line = newline ? newline + 1 : NULL;
+    }
+    book->code_lines += number;
+    book->code_boxes++;
+    free(text);
+    return end;
+}
+
+/* Keeps the chunk's name (or file's path) and chapter from
+   <div data-chunk=... (or data-file=...) data-chapter=...>.
+   Takes ownership of value; returns 1 if it kept it. */
+static int note_chunk_attribute(Book *book, const char *tag, const char *attribute, char *value)
+{
+    char **slot = NULL;
+    if (strcmp(tag, "div") != 0)
+        return 0;
+    if (strcmp(attribute, "data-chunk") == 0 || strcmp(attribute, "data-file") == 0) {
+        slot = &book->chunk_name;
+        book->chunk_is_file = strcmp(attribute, "data-file") == 0;
+    } else if (strcmp(attribute, "data-chapter") == 0) {
+        slot = &book->chunk_chapter;
+    }
+    if (!slot)
+        return 0;
+    free(*slot);
+    *slot = value;
+    return 1;
+}
+
+/* Does this class attribute's value, a list of names, hold wanted? */
+static int has_class(const char *value, const char *wanted)
+{
+    size_t length = strlen(wanted);
+    for (const char *found = strstr(value, wanted); found; found = strstr(found + 1, wanted)) {
+        int starts = found == value || isspace((unsigned char)found[-1]);
+        int ends = found[length] == '\0' || isspace((unsigned char)found[length]);
+        if (starts && ends)
+            return 1;
+    }
+    return 0;
+}
+
 /* Scans the tag starting at "<name"; returns the position after its '>'. */
 static size_t scan_tag(Book *book, size_t pos)
 {
     char tag[64], attribute[64];
     size_t tag_offset = pos;
+    int is_code_box = 0;
     pos = read_name(book, pos + 1, tag, sizeof tag);
     if (strcmp(tag, "math") == 0)
         book->math_count++;
@@ -365,10 +492,15 @@ static size_t scan_tag(Book *book, size_t pos)
         if (pos < book->length && book->html[pos] == '=') {
             char *value;
             pos = read_value(book, skip_spaces(book, pos + 1), &value);
-            note_attribute(book, tag, attribute, value, tag_offset);
+            if (strcmp(tag, "pre") == 0 && strcmp(attribute, "class") == 0)
+                is_code_box = has_class(value, "chunk-code");
+            if (!note_chunk_attribute(book, tag, attribute, value))
+                note_attribute(book, tag, attribute, value, tag_offset);
         }
     }
     pos++;  /* past '>' */
+    if (is_code_box && book->code_width > 0)
+        pos = check_code_box(book, pos);
     if (strcmp(tag, "script") == 0 || strcmp(tag, "style") == 0)
         pos = skip_raw_text(book, pos, tag);
     return pos;
@@ -528,14 +660,52 @@ static char *directory_of(const char *path)
     return copy_string(path, (size_t)(slash - path));
 }
 
+/* Reads "[--code-width N] FILE.html" into book; returns 0 if malformed. */
+static int parse_arguments(int argc, char **argv, Book *book)
+{
+    int next = 1;
+    if (argc == 4 && strcmp(argv[1], "--code-width") == 0) {
+        char *end;
+        long width = strtol(argv[2], &end, 10);
+        if (*argv[2] == '\0' || *end != '\0' || width < 1)
+            return 0;
+        book->code_width = (size_t)width;
+        next = 3;
+    }
+    if (argc != next + 1)
+        return 0;
+    book->path = argv[next];
+    return 1;
+}
+
+/* The checks of a plain run, or only the code width with --code-width. */
+static void check_and_summarise(Book *book)
+{
+    if (book->code_width > 0) {
+        if (book->error_count == 0)
+            printf("check_book: %zu lines of code in %zu chunks, none wider than %zu columns: ok\n",
+                   book->code_lines, book->code_boxes, book->code_width);
+        else
+            fprintf(stderr, "check_book: %zu code lines are wider than %zu columns; shorten them "
+                    "in the chunks named above (chapters/NN-*.md)\n",
+                    book->error_count, book->code_width);
+        return;
+    }
+    check_links(book);
+    check_images(book);
+    check_math(book);
+    if (book->error_count == 0)
+        printf("check_book: %zu internal links, %zu images, %zu math elements: ok\n",
+               book->links.count, book->images.count, book->math_count);
+}
+
 int main(int argc, char **argv)
 {
-    if (argc != 2) {
-        fprintf(stderr, "usage: %s FILE.html\n", argv[0]);
+    Book book = {0};
+    if (!parse_arguments(argc, argv, &book)) {
+        fprintf(stderr, "usage: %s [--code-width COLUMNS] FILE.html\n", argv[0]);
         return 2;
     }
-    Book book = {0};
-    book.path = argv[1];
     size_t length = 0;
     char *html = read_file(book.path, &length);
     if (!html) {
@@ -549,17 +719,13 @@ int main(int argc, char **argv)
     book.directory = directory_of(book.path);
 
     scan_page(&book);
-    check_links(&book);
-    check_images(&book);
-    check_math(&book);
-
-    if (book.error_count == 0)
-        printf("check_book: %zu internal links, %zu images, %zu math elements: ok\n",
-               book.links.count, book.images.count, book.math_count);
+    check_and_summarise(&book);
     int status = book.error_count == 0 ? 0 : 1;
     list_free(&book.ids);
     list_free(&book.links);
     list_free(&book.images);
+    free(book.chunk_name);
+    free(book.chunk_chapter);
     free(book.directory);
     free(html);
     return status;

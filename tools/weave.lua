@@ -16,12 +16,22 @@ A fenced code block is program code when it has chunk="NAME" or file="PATH":
 A code line that holds only <<name>> refers to chunk "name".  Each piece
 becomes a <div class="chunk"> with a header (name, kind, chapter, files
 it ends up in), the escaped code with links for references, and a footer
-(who uses it, where its other pieces are).  Other code blocks are left to
-pandoc.  The filter also numbers headers so that chapter "{#ch07}" is
-chapter 7 even if earlier chapters are missing.
+(who uses it, where its other pieces are).  A piece whose body is empty, a
+hook that later chapters fill, becomes one compact line that says which
+chapters fill it.  Blank lines at the start and end of a box are not shown.
+Other code blocks are left to pandoc.
 
-Works with pandoc 2.17 and 3.x (only Pandoc:walk, attributes and
-RawBlock are used).  Problems are reported on stderr as warnings.
+The filter also numbers headers so that chapter "{#ch07}" is "Chapter 7"
+(in its heading, the table of contents and every cross-reference) even if
+earlier chapters are missing; puts previous/next links at the start and the
+end of every level-1 section; and appends an index: every chunk and file
+with links to all its pieces, and every C function, type, macro and
+enumerator the code defines (found by tools/weave_names.lua) with a link to
+the piece that defines it.
+
+Written for pandoc 2.17 and 3.x (Pandoc:walk, attributes, RawBlock and
+the Header/Para/Str constructors; tested with 2.17).  Problems are
+reported on stderr as warnings.
 ]]
 
 local KIND_MARK = { define = "=", append = "+=", replace = ":=" }
@@ -33,6 +43,10 @@ local pieces_of = {}      -- key -> list of its pieces, in order
 local users_of = {}       -- chunk name -> pieces whose code refers to it
 local taken_ids = {}      -- every id already in the document
 local section_counter = {} -- current section number at each header level
+local current_section = nil -- { number = "1.4" or nil, title, id } of the
+                            -- latest header, for the index's piece links
+local defined_names = dofile((PANDOC_SCRIPT_FILE and
+  PANDOC_SCRIPT_FILE:match("^(.*[/\\])") or "tools/") .. "weave_names.lua")
 
 ---------------------------------------------------------------------
 -- Small helpers
@@ -53,10 +67,10 @@ local function trim(text)
   return (text:match("^%s*(.-)%s*$"))
 end
 
--- "ch. 3", or the title of an unnumbered chapter such as a preface.
+-- "Chapter 3", or the title of an unnumbered chapter such as a preface.
 local function chapter_label(chapter)
   if not chapter then return "front matter" end
-  return chapter.number and ("ch. " .. chapter.number) or chapter.title
+  return chapter.number and ("Chapter " .. chapter.number) or chapter.title
 end
 
 -- "Vector ops (2)" -> "vector-ops-2": a readable, URL-safe id part.
@@ -103,7 +117,10 @@ local function number_from_id(id)
 end
 
 -- Pandoc numbers sections by counting; we set the number ourselves so a
--- chapter's number comes from its id.  Pandoc keeps a "number" it finds.
+-- chapter's number comes from its id.  Pandoc keeps a "number" it finds,
+-- and shows it in the heading and the table of contents: a chapter's is
+-- "Chapter 7", a section's "7.2".  Returns the chapter number and the
+-- section's number as digits ("7.2"), or nil for an unnumbered header.
 local function number_header(header)
   if header.classes:includes("unnumbered") then return nil end
   local level = header.level
@@ -112,15 +129,18 @@ local function number_header(header)
   for deeper = level + 1, #section_counter do section_counter[deeper] = nil end
   local parts = {}
   for i = 1, level do parts[i] = tostring(section_counter[i] or 0) end
+  local digits = table.concat(parts, ".")
   if not header.attributes.number then
-    header.attributes.number = table.concat(parts, ".")
+    header.attributes.number = level == 1 and ("Chapter " .. digits) or digits
   end
-  return section_counter[1]
+  return section_counter[1], digits
 end
 
 local function collect_header(header)
   taken_ids[header.identifier] = true
-  local number = number_header(header)
+  local number, digits = number_header(header)
+  current_section = { number = digits, id = header.identifier,
+                      title = pandoc.utils.stringify(header.content) }
   if header.level == 1 then
     chapters[#chapters + 1] = {
       number = number,
@@ -167,6 +187,7 @@ local function new_piece(block)
     kind = piece_kind(block),
     language = piece_language(block),
     chapter = chapters[#chapters],   -- nil before the first chapter
+    section = current_section,       -- nil before the first header
     lines = split_lines(block.text),
     refs = {},
   }
@@ -326,38 +347,45 @@ local function render_reference(indent, name)
     .. '">' .. label .. '</a>'
 end
 
-local function render_code(piece)
+-- The lines a box shows: without blank lines at its start and end.
+local function shown_lines(piece)
+  local first, last = 1, #piece.lines
+  while first <= last and not piece.lines[first]:match("%S") do first = first + 1 end
+  while last >= first and not piece.lines[last]:match("%S") do last = last - 1 end
+  return { table.unpack(piece.lines, first, last) }
+end
+
+local function render_code(lines, language)
   local out = {}
-  for i, line in ipairs(piece.lines) do
+  for i, line in ipairs(lines) do
     local indent, name = parse_reference(line)
     out[i] = name and render_reference(indent, name) or escape_html(line)
   end
-  local class = piece.language and (' class="language-' .. escape_html(piece.language) .. '"') or ""
+  local class = language and (' class="language-' .. escape_html(language) .. '"') or ""
   return '<pre class="chunk-code"><code' .. class .. '>' .. table.concat(out, "\n")
     .. '</code></pre>'
 end
 
+local function files_phrase(piece)
+  local names = {}
+  for i, path in ipairs(files_of(piece.key)) do
+    names[i] = '<code>' .. escape_html(path) .. '</code>'
+  end
+  if #names == 0 then return "in no file" end
+  return (#names == 1 and "file " or "files ") .. table.concat(names, ", ")
+end
+
 local function render_header(piece)
-  local where = { '<span class="chunk-chapter">in ' .. chapter_link(piece.chapter)
-    .. (piece.chapter and piece.chapter.number and (" " .. escape_html(piece.chapter.title)) or "")
-    .. '</span>' }
+  local where = { '<span class="chunk-chapter">in ' .. chapter_link(piece.chapter) .. '</span>' }
   if not piece.is_file then
-    local files = files_of(piece.key)
-    local names = {}
-    for i, path in ipairs(files) do
-      names[i] = '<code>' .. escape_html(path) .. '</code>'
-    end
-    where[#where + 1] = '<span class="chunk-files">'
-      .. (#names == 0 and "in no file" or ((#names == 1 and "file " or "files ")
-          .. table.concat(names, ", ")))
-      .. '</span>'
+    where[2] = '<span class="chunk-files">' .. files_phrase(piece) .. '</span>'
   end
   return '<div class="chunk-header">' .. link(piece.id, piece_label(piece))
     .. ' <span class="chunk-kind">' .. KIND_MARK[piece.kind] .. '</span>'
     .. ' <span class="chunk-where">' .. table.concat(where, " · ") .. '</span></div>'
 end
 
--- "⟨render⟩ (ch. 2, part 3)" linking to that piece; the part number
+-- "⟨render⟩ (Chapter 2, part 3)" linking to that piece; the part number
 -- tells apart several pieces of one chunk.
 local function piece_link(piece)
   local part = piece.index > 1 and (", part " .. piece.index) or ""
@@ -374,22 +402,33 @@ local function used_in_sentence(piece)
   return "Used in " .. table.concat(links, ", ") .. "."
 end
 
+-- "Chapter 3, Chapter 4": each chapter of the pieces once, linking to the
+-- first of its pieces.
+local function chapter_links(list)
+  local links, seen = {}, {}
+  for _, other in ipairs(list) do
+    local label = chapter_label(other.chapter)
+    if not seen[label] then
+      seen[label] = true
+      links[#links + 1] = link(other.id, escape_html(label))
+    end
+  end
+  return table.concat(links, ", ")
+end
+
 local OTHER_PIECE_VERB = { define = "Defined in", append = "Continued in",
                            replace = "Replaced in" }
 
 local function other_pieces_sentences(piece)
   local by_kind = { define = {}, append = {}, replace = {} }
   for _, other in ipairs(pieces_of[piece.key]) do
-    if other ~= piece then
-      local list = by_kind[other.kind]
-      list[#list + 1] = link(other.id, escape_html(chapter_label(other.chapter)))
-    end
+    if other ~= piece then table.insert(by_kind[other.kind], other) end
   end
   local sentences = {}
   for _, kind in ipairs({ "define", "append", "replace" }) do
     if #by_kind[kind] > 0 then
       sentences[#sentences + 1] = OTHER_PIECE_VERB[kind] .. " "
-        .. table.concat(by_kind[kind], ", ") .. "."
+        .. chapter_links(by_kind[kind]) .. "."
     end
   end
   return table.concat(sentences, " ")
@@ -401,10 +440,34 @@ local function render_footer(piece)
     .. (others ~= "" and (" " .. others) or "") .. '</div>'
 end
 
+local function chunk_div(piece, extra_class)
+  return '<div class="chunk chunk-' .. piece.kind .. extra_class .. '" id="' .. piece.id
+    .. '" data-' .. (piece.is_file and "file" or "chunk") .. '="' .. escape_html(piece.name)
+    .. '" data-chapter="'
+    .. escape_html(chapter_label(piece.chapter)) .. '">\n'
+end
+
+-- "(empty here; filled in Chapter 6, Chapter 7)": a hook's later pieces.
+local function empty_note(piece)
+  local later = { table.unpack(pieces_of[piece.key], piece.index + 1) }
+  if #later == 0 then return "(empty; no chapter fills it yet)" end
+  return "(empty here; filled in " .. chapter_links(later) .. ")"
+end
+
+local function render_empty_piece(piece)
+  return chunk_div(piece, " chunk-empty")
+    .. link(piece.id, piece_label(piece))
+    .. ' <span class="chunk-kind">' .. KIND_MARK[piece.kind] .. '</span> '
+    .. '<span class="chunk-empty-note">' .. empty_note(piece) .. '</span> '
+    .. '· <span class="chunk-where">' .. used_in_sentence(piece) .. '</span>\n</div>'
+end
+
 local function render_piece(piece)
-  return '<div class="chunk chunk-' .. piece.kind .. '" id="' .. piece.id .. '">\n'
+  local lines = shown_lines(piece)
+  if #lines == 0 then return render_empty_piece(piece) end
+  return chunk_div(piece, "")
     .. render_header(piece) .. "\n"
-    .. render_code(piece) .. "\n"
+    .. render_code(lines, piece.language) .. "\n"
     .. render_footer(piece) .. "\n</div>"
 end
 
@@ -412,6 +475,186 @@ local function render_code_block(block)
   local number = tonumber(block.attributes["weave-piece"] or "")
   if not number then return nil end
   return pandoc.RawBlock("html", render_piece(pieces[number]))
+end
+
+---------------------------------------------------------------------
+-- The index: chunks and files, then the C names the code defines
+---------------------------------------------------------------------
+
+-- A free id for an index header: "index", or "index_2" if a chapter took it.
+local function free_id(wanted)
+  local id, attempt = wanted, 1
+  while taken_ids[id] do
+    attempt = attempt + 1
+    id = wanted .. "_" .. attempt
+  end
+  taken_ids[id] = true
+  return id
+end
+
+-- Where a piece is, shortest: "1.4", or its section's title when unnumbered.
+local function section_label(piece)
+  local section = piece.section
+  if not section then return chapter_label(piece.chapter) end
+  return section.number or section.title
+end
+
+local function sort_name(text)
+  return text:lower():gsub("^[^%w]+", "")
+end
+
+local function sorted_by_name(list, name_of)
+  table.sort(list, function(a, b)
+    local ka, kb = sort_name(name_of(a)), sort_name(name_of(b))
+    if ka ~= kb then return ka < kb end
+    return name_of(a) < name_of(b)
+  end)
+  return list
+end
+
+-- "= 1.4, += 2.3, 3.5": every piece of a chunk, grouped by kind in order.
+local function piece_links(key_pieces)
+  local parts, last_kind = {}, nil
+  for _, piece in ipairs(key_pieces) do
+    local mark = piece.kind ~= last_kind and (KIND_MARK[piece.kind] .. " ") or ""
+    last_kind = piece.kind
+    parts[#parts + 1] = mark .. link(piece.id, escape_html(section_label(piece)),
+      chapter_label(piece.chapter))
+  end
+  return table.concat(parts, ", ")
+end
+
+local function chunk_index_html()
+  local keys = sorted_by_name(sorted_keys(pieces_of),
+    function(key) return pieces_of[key][1].name end)
+  local items = {}
+  for i, key in ipairs(keys) do
+    local key_pieces = pieces_of[key]
+    items[i] = '<li>' .. piece_label(key_pieces[1]) .. ' <span class="index-refs">'
+      .. piece_links(key_pieces) .. '</span></li>'
+  end
+  return '<ul class="book-index">\n' .. table.concat(items, "\n") .. '\n</ul>'
+end
+
+-- Prototypes of functions that are defined in the book say nothing new.
+local function without_known_prototypes(list, by_name)
+  local kept = {}
+  for _, entry in ipairs(list) do
+    if entry.kind ~= "declared" or not by_name[entry.name .. "\0function"] then
+      kept[#kept + 1] = entry
+    end
+  end
+  return kept
+end
+
+-- { name, kind, places = { piece, ... } } for every name the C pieces define.
+local function collect_names()
+  local by_name, list = {}, {}
+  for _, piece in ipairs(pieces) do
+    if piece.language == "c" then
+      for _, found in ipairs(defined_names(piece.lines)) do
+        local key = found.name .. "\0" .. found.kind
+        if not by_name[key] then
+          by_name[key] = { name = found.name, kind = found.kind, places = {} }
+          list[#list + 1] = by_name[key]
+        end
+        table.insert(by_name[key].places, piece)
+      end
+    end
+  end
+  return sorted_by_name(without_known_prototypes(list, by_name),
+    function(entry) return entry.name end)
+end
+
+local function name_item(entry)
+  local places = {}
+  for i, piece in ipairs(entry.places) do
+    places[i] = link(piece.id, piece_label(piece) .. " " .. escape_html(section_label(piece)),
+      chapter_label(piece.chapter))
+  end
+  local kind = entry.kind == "declared" and "function, declared" or entry.kind
+  return '<li><code>' .. escape_html(entry.name) .. '</code> <span class="index-kind">'
+    .. kind .. '</span> <span class="index-refs">' .. table.concat(places, ", ")
+    .. '</span></li>'
+end
+
+-- Letters as small headings within the list, so that a long list is scanned.
+local function names_index_html()
+  local items, letter = {}, nil
+  for _, entry in ipairs(collect_names()) do
+    local first = sort_name(entry.name):sub(1, 1):upper()
+    if first ~= letter then
+      letter = first
+      items[#items + 1] = '<li class="index-letter">' .. escape_html(first) .. '</li>'
+    end
+    items[#items + 1] = name_item(entry)
+  end
+  return '<ul class="book-index">\n' .. table.concat(items, "\n") .. '\n</ul>'
+end
+
+local function index_blocks()
+  local intro = "Every chunk and file of the program, with links to its pieces "
+    .. "(by section; = defines, += continues, := replaces), and every C function, "
+    .. "type, macro and enumeration constant the code defines."
+  return {
+    pandoc.Header(1, { pandoc.Str("Index") },
+      pandoc.Attr(free_id("index"), { "unnumbered" })),
+    pandoc.Para({ pandoc.Str(intro) }),
+    pandoc.Header(2, { pandoc.Str("Chunks and files") },
+      pandoc.Attr(free_id("index-chunks"), { "unnumbered" })),
+    pandoc.RawBlock("html", chunk_index_html()),
+    pandoc.Header(2, { pandoc.Str("Functions, types, macros and constants") },
+      pandoc.Attr(free_id("index-names"), { "unnumbered" })),
+    pandoc.RawBlock("html", names_index_html()),
+  }
+end
+
+---------------------------------------------------------------------
+-- Previous/next links at the start and end of every level-1 section
+---------------------------------------------------------------------
+
+-- "Chapter 2: Spheres", or "Preface" for an unnumbered one.
+local function nav_label(header)
+  local title = pandoc.utils.stringify(header.content)
+  local number = header.attributes.number
+  return number and (number .. ": " .. title) or title
+end
+
+-- where: "start" or "end" of the section, a class for the style sheet.
+local function nav_html(where, previous, next_one)
+  local parts = {}
+  if previous then
+    parts[#parts + 1] = '<a class="nav-previous" rel="prev" href="#' .. escape_html(previous.identifier)
+      .. '">← ' .. escape_html(nav_label(previous)) .. '</a>'
+  end
+  if next_one then
+    parts[#parts + 1] = '<a class="nav-next" rel="next" href="#' .. escape_html(next_one.identifier)
+      .. '">' .. escape_html(nav_label(next_one)) .. ' →</a>'
+  end
+  return pandoc.RawBlock("html", '<nav class="chapter-nav chapter-nav-' .. where .. '">'
+    .. table.concat(parts, " ") .. '</nav>')
+end
+
+-- Copies blocks, adding a nav after each level-1 header and before the
+-- next one (and at the end of the last section).
+local function with_chapter_navs(blocks)
+  local headers = {}
+  for i, block in ipairs(blocks) do
+    if block.t == "Header" and block.level == 1 then headers[#headers + 1] = i end
+  end
+  local out, k = {}, 0
+  for i, block in ipairs(blocks) do
+    if block.t == "Header" and block.level == 1 then
+      if k > 0 then out[#out + 1] = nav_html("end", blocks[headers[k - 1]], block) end
+      k = k + 1
+      out[#out + 1] = block
+      out[#out + 1] = nav_html("start", k > 1 and blocks[headers[k - 1]], blocks[headers[k + 1]])
+    else
+      out[#out + 1] = block
+    end
+  end
+  if k > 0 then out[#out + 1] = nav_html("end", blocks[headers[k - 1]], nil) end
+  return out
 end
 
 ---------------------------------------------------------------------
@@ -429,6 +672,8 @@ function Pandoc(doc)
   warn_about_references()
   if FORMAT:match("html") then
     doc = doc:walk({ CodeBlock = render_code_block })
+    for _, block in ipairs(index_blocks()) do doc.blocks:insert(block) end
+    doc.blocks = pandoc.List(with_chapter_navs(doc.blocks))
   end
   return doc
 end
