@@ -32,6 +32,7 @@
  */
 #include <ctype.h>
 #include <stdarg.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -40,10 +41,10 @@
 typedef struct {
     char *text;
     size_t offset;
-} Item;
+} book_item;
 
 typedef struct {
-    Item *items;
+    book_item *items;
     size_t count;
     size_t capacity;
 } ItemList;
@@ -66,7 +67,7 @@ typedef struct {
     char *chunk_chapter;   /* its data-chapter */
     size_t code_lines;
     size_t code_boxes;
-} Book;
+} book_page;
 
 /* ---------------------------------------------------------------- */
 /* Memory and strings                                                */
@@ -94,7 +95,7 @@ static void list_add(ItemList *list, char *text, size_t offset)
 {
     if (list->count == list->capacity) {
         size_t capacity = list->capacity ? 2 * list->capacity : 64;
-        Item *items = realloc(list->items, capacity * sizeof *items);
+        book_item *items = realloc(list->items, capacity * sizeof *items);
         if (!items) {
             fputs("check_book: out of memory\n", stderr);
             exit(2);
@@ -226,7 +227,7 @@ static void percent_decode(char *text)
 /* Reporting                                                         */
 /* ---------------------------------------------------------------- */
 
-static long line_of(const Book *book, size_t offset)
+static long line_of(const book_page *book, size_t offset)
 {
     long line = 1;
     for (size_t i = 0; i < offset && i < book->length; i++)
@@ -236,7 +237,7 @@ static long line_of(const Book *book, size_t offset)
 }
 
 /* One "FILE: error: line N: ..." line; format and arguments as printf. */
-static void report(Book *book, size_t offset, const char *format, ...)
+static void report(book_page *book, size_t offset, const char *format, ...)
 {
     va_list arguments;
     va_start(arguments, format);
@@ -273,7 +274,7 @@ static int is_link_attribute(const char *attribute)
 }
 
 /* Takes ownership of value. */
-static void note_attribute(Book *book, const char *tag, const char *attribute, char *value, size_t offset)
+static void note_attribute(book_page *book, const char *tag, const char *attribute, char *value, size_t offset)
 {
     /* <a name="x"> is the old way to make a link target. */
     if (strcmp(attribute, "id") == 0 || (strcmp(tag, "a") == 0 && strcmp(attribute, "name") == 0)) {
@@ -306,7 +307,7 @@ static int is_name_char(int c)
     return c != '\0' && !isspace(c) && c != '=' && c != '>' && c != '/' && c != '"' && c != '\'';
 }
 
-static size_t skip_spaces(const Book *book, size_t pos)
+static size_t skip_spaces(const book_page *book, size_t pos)
 {
     while (pos < book->length && isspace((unsigned char)book->html[pos]))
         pos++;
@@ -314,14 +315,14 @@ static size_t skip_spaces(const Book *book, size_t pos)
 }
 
 /* Position just after the next occurrence of marker, or the end. */
-static size_t skip_past(const Book *book, size_t pos, const char *marker)
+static size_t skip_past(const book_page *book, size_t pos, const char *marker)
 {
     const char *found = strstr(book->html + pos, marker);
     return found ? (size_t)(found - book->html) + strlen(marker) : book->length;
 }
 
 /* Contents of <script> and <style> are text, not tags: jump to the end tag. */
-static size_t skip_raw_text(const Book *book, size_t pos, const char *tag)
+static size_t skip_raw_text(const book_page *book, size_t pos, const char *tag)
 {
     for (; pos < book->length; pos++)
         if (book->html[pos] == '<' && book->html[pos + 1] == '/'
@@ -331,7 +332,7 @@ static size_t skip_raw_text(const Book *book, size_t pos, const char *tag)
 }
 
 /* Reads name into buffer (lower case, cut to size); returns the new position. */
-static size_t read_name(const Book *book, size_t pos, char *name, size_t size)
+static size_t read_name(const book_page *book, size_t pos, char *name, size_t size)
 {
     size_t used = 0;
     for (; pos < book->length && is_name_char((unsigned char)book->html[pos]); pos++)
@@ -342,7 +343,7 @@ static size_t read_name(const Book *book, size_t pos, char *name, size_t size)
 }
 
 /* Reads a quoted or unquoted value; returns it decoded via *value. */
-static size_t read_value(const Book *book, size_t pos, char **value)
+static size_t read_value(const book_page *book, size_t pos, char **value)
 {
     const char *html = book->html;
     size_t start, end;
@@ -381,7 +382,7 @@ static size_t columns_of(const char *line, size_t length)
 }
 
 /* The text of html[start, end) with its tags removed and entities decoded. */
-static char *text_without_tags(const Book *book, size_t start, size_t end)
+static char *text_without_tags(const book_page *book, size_t start, size_t end)
 {
     char *kept = allocate(end - start + 1);
     size_t used = 0;
@@ -401,7 +402,7 @@ static char *text_without_tags(const Book *book, size_t start, size_t end)
 }
 
 /* Names the chunk, not the page's line: the chunk is what the author edits. */
-static void report_wide_line(Book *book, size_t number, const char *line, size_t length,
+static void report_wide_line(book_page *book, size_t number, const char *line, size_t length,
                              size_t columns)
 {
     fprintf(stderr, "%s: error: %s%s%s (%s), line %zu: %zu columns, more than %zu: %.*s\n",
@@ -413,7 +414,7 @@ static void report_wide_line(Book *book, size_t number, const char *line, size_t
 }
 
 /* Checks the code box whose content starts at pos; returns its end. */
-static size_t check_code_box(Book *book, size_t pos)
+static size_t check_code_box(book_page *book, size_t pos)
 {
     const char *close = strstr(book->html + pos, "</pre>");
     size_t end = close ? (size_t)(close - book->html) : book->length;
@@ -437,7 +438,7 @@ static size_t check_code_box(Book *book, size_t pos)
 /* Keeps the chunk's name (or file's path) and chapter from
    <div data-chunk=... (or data-file=...) data-chapter=...>.
    Takes ownership of value; returns 1 if it kept it. */
-static int note_chunk_attribute(Book *book, const char *tag, const char *attribute, char *value)
+static int note_chunk_attribute(book_page *book, const char *tag, const char *attribute, char *value)
 {
     char **slot = NULL;
     if (strcmp(tag, "div") != 0)
@@ -469,7 +470,7 @@ static int has_class(const char *value, const char *wanted)
 }
 
 /* Scans the tag starting at "<name"; returns the position after its '>'. */
-static size_t scan_tag(Book *book, size_t pos)
+static size_t scan_tag(book_page *book, size_t pos)
 {
     char tag[64], attribute[64];
     size_t tag_offset = pos;
@@ -499,14 +500,17 @@ static size_t scan_tag(Book *book, size_t pos)
         }
     }
     pos++;  /* past '>' */
-    if (is_code_box && book->code_width > 0)
+    /* Scene files are data, a statement a line: the rule is for C code. */
+    static const char scene_code[] = "<code class=\"language-scene\"";
+    bool is_scene = strncmp(book->html + pos, scene_code, sizeof scene_code - 1) == 0;
+    if (is_code_box && book->code_width > 0 && !is_scene)
         pos = check_code_box(book, pos);
     if (strcmp(tag, "script") == 0 || strcmp(tag, "style") == 0)
         pos = skip_raw_text(book, pos, tag);
     return pos;
 }
 
-static void scan_page(Book *book)
+static void scan_page(book_page *book)
 {
     const char *html = book->html;
     size_t pos = 0;
@@ -534,23 +538,23 @@ static void scan_page(Book *book)
 
 static int compare_items(const void *a, const void *b)
 {
-    return strcmp(((const Item *)a)->text, ((const Item *)b)->text);
+    return strcmp(((const book_item *)a)->text, ((const book_item *)b)->text);
 }
 
-static int has_id(const Book *book, const char *id)
+static int has_id(const book_page *book, const char *id)
 {
-    Item key = {(char *)id, 0};
+    book_item key = {(char *)id, 0};
     if (book->ids.count == 0)
         return 0;  /* bsearch must not get a null array */
     return bsearch(&key, book->ids.items, book->ids.count, sizeof key, compare_items) != NULL;
 }
 
-static void check_links(Book *book)
+static void check_links(book_page *book)
 {
     if (book->ids.count > 0)
-        qsort(book->ids.items, book->ids.count, sizeof(Item), compare_items);
+        qsort(book->ids.items, book->ids.count, sizeof(book_item), compare_items);
     for (size_t i = 0; i < book->links.count; i++) {
-        const Item *link = &book->links.items[i];
+        const book_item *link = &book->links.items[i];
         if (has_id(book, link->text))
             continue;
         char *decoded = copy_string(link->text, strlen(link->text));
@@ -572,7 +576,7 @@ static int file_exists(const char *path)
 
 /* The file an image URL names: query and fragment dropped, %xx decoded,
    relative to the page's directory. */
-static char *image_file_path(const Book *book, const char *url)
+static char *image_file_path(const book_page *book, const char *url)
 {
     if (starts_with_ignoring_case(url, "file://"))
         url += strlen("file://");
@@ -588,10 +592,10 @@ static char *image_file_path(const Book *book, const char *url)
     return full;
 }
 
-static void check_images(Book *book)
+static void check_images(book_page *book)
 {
     for (size_t i = 0; i < book->images.count; i++) {
-        const Item *image = &book->images.items[i];
+        const book_item *image = &book->images.items[i];
         if (starts_with_ignoring_case(image->text, "data:"))
             continue;
         if (is_network_url(image->text)) {
@@ -605,7 +609,7 @@ static void check_images(Book *book)
     }
 }
 
-static void check_math(Book *book)
+static void check_math(book_page *book)
 {
     if (book->math_count == 0) {
         fprintf(stderr, "%s: error: no <math> element: formulas must be MathML (pandoc --mathml)\n", book->path);
@@ -661,7 +665,7 @@ static char *directory_of(const char *path)
 }
 
 /* Reads "[--code-width N] FILE.html" into book; returns 0 if malformed. */
-static int parse_arguments(int argc, char **argv, Book *book)
+static int parse_arguments(int argc, char **argv, book_page *book)
 {
     int next = 1;
     if (argc == 4 && strcmp(argv[1], "--code-width") == 0) {
@@ -679,7 +683,7 @@ static int parse_arguments(int argc, char **argv, Book *book)
 }
 
 /* The checks of a plain run, or only the code width with --code-width. */
-static void check_and_summarise(Book *book)
+static void check_and_summarise(book_page *book)
 {
     if (book->code_width > 0) {
         if (book->error_count == 0)
@@ -701,7 +705,7 @@ static void check_and_summarise(Book *book)
 
 int main(int argc, char **argv)
 {
-    Book book = {0};
+    book_page book = {0};
     if (!parse_arguments(argc, argv, &book)) {
         fprintf(stderr, "usage: %s [--code-width COLUMNS] FILE.html\n", argv[0]);
         return 2;

@@ -1,4 +1,4 @@
-/* parse.c: lines, tokens, numbers and located errors (chapter 01). */
+/* parse.c: lines, tokens, numbers and located errors (chapter 1). */
 #include "parse.h"
 
 #include <errno.h>

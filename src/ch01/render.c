@@ -1,4 +1,4 @@
-/* render.c: rendering a scene into an image (chapter 01). */
+/* render.c: rendering a scene into an image (chapter 1). */
 #include "render.h"
 
 

@@ -1,5 +1,5 @@
 /* scene.c: the scene's defaults, its contents, and the queries over them
- * (chapter 01). */
+ * (chapter 1). */
 #include "scene.h"
 
 #include <stdlib.h>

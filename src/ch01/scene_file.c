@@ -1,4 +1,4 @@
-/* scene_file.c: the statements of a scene file (chapter 01). */
+/* scene_file.c: the statements of a scene file (chapter 1). */
 #include "scene_file.h"
 
 #include <stdio.h>

@@ -1,4 +1,4 @@
-/* trace.c: what a ray sees (chapter 01). See trace.h. */
+/* trace.c: what a ray sees (chapter 1). See trace.h. */
 #include "trace.h"
 
 

@@ -1,4 +1,4 @@
-/* image.h: a linear RGB image and its PNG output (chapter 01).
+/* image.h: a linear RGB image and its PNG output (chapter 1).
  *
  * Pixels hold linear light (not yet gamma encoded), row by row from the top.
  * image_write_png encodes them as 8-bit sRGB. */

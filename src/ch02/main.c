@@ -1,4 +1,4 @@
-/* main.c: the command line of the renderer (chapter 01). */
+/* main.c: the command line of the renderer (chapter 1). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,7 +10,7 @@
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
     /* <<default scene>> ch02 */
-    "# Chapter 02: spheres, shaded by how squarely they face the eye.\n"
+    "# Chapter 2: spheres, shaded by how squarely they face the eye.\n"
     "camera fov 60\n"
     "image 320 240\n"
     "background gradient 1 1 1  0.3 0.5 1\n"

@@ -1,5 +1,5 @@
 /* scene.c: the scene's defaults, its contents, and the queries over them
- * (chapter 01). */
+ * (chapter 1). */
 #include "scene.h"
 
 #include <stdlib.h>
@@ -60,7 +60,7 @@ typedef struct {
  * nearer than q->best.t. */
 static void shape_intersect(const scene *s, const object *o, scene_search *q)
 {
-    (void)s; /* chapter 04's meshes live in the scene */
+    (void)s; /* chapter 4's meshes live in the scene */
     double t;
     switch (o->kind) {
     case SHAPE_SPHERE:
@@ -93,7 +93,7 @@ static void object_fill_hit(const scene *s, const nearest_hit *best, ray r,
                             hit *h)
 {
     const object *o = best->object;
-    ray local = r; /* the ray in o's own space: the same until chapter 05 */
+    ray local = r; /* the ray in o's own space: the same until chapter 5 */
     shape_fill_hit(s, best, local, h);
     h->color = o->color;
 }

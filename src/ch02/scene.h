@@ -1,4 +1,4 @@
-/* scene.h: what to render (chapter 01).
+/* scene.h: what to render (chapter 1).
  *
  * scene_init fills in the defaults, scene_free releases what the scene
  * owns. Later chapters add objects, materials, lights, and the queries that

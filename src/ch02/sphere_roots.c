@@ -1,4 +1,4 @@
-/* sphere_roots.c: the three ray-sphere forms in double (chapter 02). */
+/* sphere_roots.c: the three ray-sphere forms in double (chapter 2). */
 #include "sphere.h"
 
 typedef double real;

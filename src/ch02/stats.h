@@ -1,4 +1,4 @@
-/* stats.h: counts of the work a render does, for --stats (chapter 01).
+/* stats.h: counts of the work a render does, for --stats (chapter 1).
  *
  * Each chapter adds the counters of its work to the hook. All members are
  * counts, so that two render_stats add member by member. */

@@ -1,4 +1,4 @@
-/* light.h: point, directional and spot lights (chapter 03). */
+/* light.h: point, directional and spot lights (chapter 3). */
 #ifndef LIGHT_H
 #define LIGHT_H
 

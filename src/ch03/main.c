@@ -1,4 +1,4 @@
-/* main.c: the command line of the renderer (chapter 01). */
+/* main.c: the command line of the renderer (chapter 1). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,7 +10,7 @@
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
     /* <<default scene>> ch03 */
-    "# Chapter 03: spheres lit by a directional, a point and a spot light.\n"
+    "# Chapter 3: spheres lit by a directional, a point and a spot light.\n"
         "camera fov 55\n"
         "image 320 240\n"
         "background gradient 0.85 0.85 0.9  0.3 0.45 0.8\n"

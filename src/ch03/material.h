@@ -1,4 +1,4 @@
-/* material.h: the finish of a surface (chapter 03). */
+/* material.h: the finish of a surface (chapter 3). */
 #ifndef MATERIAL_H
 #define MATERIAL_H
 

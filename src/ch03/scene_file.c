@@ -1,4 +1,4 @@
-/* scene_file.c: the statements of a scene file (chapter 01). */
+/* scene_file.c: the statements of a scene file (chapter 1). */
 #include "scene_file.h"
 
 #include <stdio.h>
@@ -104,7 +104,7 @@ static const char object_setting_names[] =
  * *known says whether it was one; false on bad input. */
 static bool parse_object_setting(parser *p, scene *s, object *o, bool *known)
 {
-    (void)s; /* chapter 03 looks materials up in the scene */
+    (void)s; /* chapter 3 looks materials up in the scene */
     *known = true;
     if (parse_token_is(p, "color"))
         return parse_color(p, "a colour component", &o->color);

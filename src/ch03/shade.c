@@ -1,4 +1,4 @@
-/* shade.c: the Phong model, lights and tone mapping (chapter 03). */
+/* shade.c: the Phong model, lights and tone mapping (chapter 3). */
 #include "shade.h"
 
 /* <<highlights>> ch03 */
@@ -76,7 +76,7 @@ double tone_map(double I, double alpha, double beta)
 static bool light_reaches(const scene *s, const hit *h,
                           const light_sample *ls, render_stats *stats)
 {
-    (void)s, (void)h, (void)ls, (void)stats; /* used from chapter 06 on */
+    (void)s, (void)h, (void)ls, (void)stats; /* used from chapter 6 on */
     return true;
 }
 

@@ -1,4 +1,4 @@
-/* shade.h: the Phong model, lights and tone mapping (chapter 03).
+/* shade.h: the Phong model, lights and tone mapping (chapter 3).
  *
  * Vectors: n is the unit surface normal, l the unit vector towards a light,
  * v the unit vector towards the viewer. The highlight functions assume

@@ -1,4 +1,4 @@
-/* trace.c: what a ray sees (chapter 01). See trace.h. */
+/* trace.c: what a ray sees (chapter 1). See trace.h. */
 #include "trace.h"
 
 /* <<trace includes>> ch03 */
@@ -16,7 +16,7 @@ vec3 background_color(const background *bg, vec3 dir)
 vec3 trace(const scene *s, ray r, int depth, render_stats *stats)
 {
     /* <<trace a ray>> ch02 */
-    (void)depth; /* one bounce only, until chapter 06 */
+    (void)depth; /* one bounce only, until chapter 6 */
     hit h;
     if (!scene_intersect(s, r, 0.0, INFINITY, &h, stats))
         return background_color(&s->bg, r.dir);

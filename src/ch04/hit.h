@@ -1,4 +1,4 @@
-/* hit.h: what a ray hit (chapter 02).
+/* hit.h: what a ray hit (chapter 2).
  *
  * Every shape fills the same record. Normals are unit vectors pointing out
  * of the surface (for a closed shape, away from its inside), whichever way

@@ -1,4 +1,4 @@
-/* image.c: image buffer, sRGB encoding and PNG output (chapter 01). */
+/* image.c: image buffer, sRGB encoding and PNG output (chapter 1). */
 #include "image.h"
 
 #include <errno.h>

@@ -1,4 +1,4 @@
-/* main.c: the command line of the renderer (chapter 01). */
+/* main.c: the command line of the renderer (chapter 1). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,7 +10,7 @@
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
     /* <<default scene>> ch04 */
-    "# Chapter 04: an octahedron of eight triangle statements.\n"
+    "# Chapter 4: an octahedron of eight triangle statements.\n"
         "camera fov 50\n"
         "image 320 240\n"
         "background gradient 0.85 0.85 0.9  0.3 0.45 0.8\n"

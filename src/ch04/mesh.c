@@ -1,4 +1,4 @@
-/* mesh.c: meshes, their normals, and ray-mesh intersection (chapter 04). */
+/* mesh.c: meshes, their normals, and ray-mesh intersection (chapter 4). */
 #include "mesh.h"
 
 #include <stdlib.h>

@@ -1,4 +1,4 @@
-/* mesh.h: indexed triangle meshes and their intersection (chapter 04).
+/* mesh.h: indexed triangle meshes and their intersection (chapter 4).
  *
  * A mesh owns its arrays; mesh_free releases them. Triangles index into
  * vertices; triangle_normals, when not NULL, gives for each triangle the

@@ -1,4 +1,4 @@
-/* obj.c: the OBJ reader (chapter 04). See obj.h. */
+/* obj.c: the OBJ reader (chapter 4). See obj.h. */
 #include "obj.h"
 
 #include <stdlib.h>

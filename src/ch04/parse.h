@@ -1,5 +1,5 @@
 /* parse.h: reading text files line by line, with located errors
- * (chapter 01).
+ * (chapter 1).
  *
  * A parser walks a text one line at a time, cutting each line into tokens
  * separated by blanks; '#' outside a token ends the line. Every function

@@ -1,4 +1,4 @@
-/* sphere_roots_float.c: the same three forms in float (chapter 02). */
+/* sphere_roots_float.c: the same three forms in float (chapter 2). */
 #include "sphere.h"
 
 typedef float real;

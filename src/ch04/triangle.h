@@ -1,4 +1,4 @@
-/* triangle.h: ray-triangle intersection (chapter 04).
+/* triangle.h: ray-triangle intersection (chapter 4).
  *
  * Each triangle_hit_* function tests the ray r against the triangle
  * (a, b, c). On a hit with t_min < t < t_max it returns true and fills

@@ -1,4 +1,4 @@
-/* triangle_methods.c: the three ray-triangle methods in double (chapter 04). */
+/* triangle_methods.c: the three ray-triangle methods in double (chapter 4). */
 #include "triangle.h"
 
 typedef double real;

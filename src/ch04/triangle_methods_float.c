@@ -1,4 +1,4 @@
-/* triangle_methods_float.c: the same three methods in float (chapter 04). */
+/* triangle_methods_float.c: the same three methods in float (chapter 4). */
 #include "triangle.h"
 
 typedef float real;

@@ -1,4 +1,4 @@
-/* vec.h: 3-vectors and rays (chapter 01).
+/* vec.h: 3-vectors and rays (chapter 1).
  *
  * A vec3 is a point, a direction or a linear RGB colour; the function's name
  * says which it expects. All functions take and return values, never
