@@ -241,8 +241,17 @@ START_TEST(test_smooth_normals_are_unit_and_blend_the_vertices)
     /* Shared vertex 0: the faces' normals (-2,0,-2) and (2,0,-2) average to -z. */
     vec3 n0 = vec3_normalize(m.normals[0]);
     ck_assert(fabs(n0.x) < 1e-15 && n0.z < 0);
+    /* Stored as area-weighted sums, not normalised: |n0| = 4, |n2| = 2 sqrt 2. */
+    ck_assert(m.normals[0].x == 0 && m.normals[0].z == -4);
+    ck_assert(m.normals[2].x == -2 && m.normals[2].z == -2);
     hit h;
     long long tests = 0;
+    /* x = 0.5 on the first triangle is b2 = 0.5: the sums blend to (-1, 0, -3);
+     * blending unit normals would give (-1, 0, -1 - sqrt 2), 4.1 degrees away. */
+    ck_assert(mesh_intersect(&m, (ray){{0.5, 0.5, -5}, {0, 0, 1}}, 0, INFINITY, &h, &tests));
+    vec3 expected = {-1 / sqrt(10), 0, -3 / sqrt(10)};
+    ck_assert_msg(vec3_dot(h.normal, expected) > cos(1e-6), "normal (%g, %g, %g)", h.normal.x,
+                  h.normal.y, h.normal.z);
     for (double x = 0.05; x < 0.7; x += 0.1) { /* inside: x <= 1 - y/2 at y = 0.5 */
         ray r = {{x, 0.5, -5}, {0, 0, 1}};
         ck_assert(mesh_intersect(&m, r, 0, INFINITY, &h, &tests));
