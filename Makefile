@@ -10,6 +10,7 @@
 #   make src          rewrite the committed plain tangle src/chNN
 #   make figures      render figures/chNN-*.png
 #   make charts       run bench/ and redraw figures/chNN-*.svg
+#   make diagrams     redraw the explanatory figures/chNN-diagram-*.svg
 #   make book         build/book.html          make clean
 #   make SAN=1 test   the same with AddressSanitizer and UBSan
 #   make WERROR=1     warnings are errors (CI)
@@ -185,6 +186,16 @@ figures: $(ALL_FIGS)
 benches: $(BENCHES)
 check-src: $(foreach n,$(NUMS),check-src-ch$(n))
 check-figures: $(foreach n,$(NUMS),check-figures-ch$(n))
+
+# The explanatory diagrams: tools/diagrams/diagrams.c computes every one's
+# geometry and writes figures/chNN-diagram-NAME.svg (committed, like the charts).
+.PHONY: diagrams
+$(B)/tools/diagrams/diagrams: tools/diagrams/diagrams.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(LDFLAGS) -lm
+
+diagrams: $(B)/tools/diagrams/diagrams
+	$< figures
 
 # ---------------------------------------------------------------- charts
 # bench/chNN_x.c writes figures/chNN-x.csv; bench/chNN_x.gp draws figures/chNN-x*.svg
