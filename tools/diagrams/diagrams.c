@@ -325,6 +325,11 @@ static void put_math(const char *s, const char *end, int level, double size)
         } else {
             int italic = is_math_letter(s);
             s += put_char(buf, s);
+            /* a combining mark (U+0300..U+036F, as the tilde of p̃) stays
+             * with its letter */
+            while (s < end && (((unsigned char)s[0] == 0xcc && (unsigned char)s[1] >= 0x80) ||
+                               ((unsigned char)s[0] == 0xcd && (unsigned char)s[1] < 0xb0)))
+                s += put_char(buf + strlen(buf), s);
             run_add(buf, italic, level, size);
         }
     }
@@ -472,7 +477,7 @@ static void ch01_fov(const char *dir)
     for (int i = 0; i < w; i++) {
         v2 c = V(-half + (i + 0.5) * s, 1);
         point(c, C_RAY);
-        char idx[8];
+        char idx[16];
         snprintf(idx, sizeof idx, "%d", i);
         math_small(c, 0, -19, "middle", INK, idx);
     }
@@ -519,12 +524,12 @@ static void ch01_grid(const char *dir)
     for (int j = 0; j <= h; j++)
         line(V(L, T - j), V(R, T - j), INK, j == 0 || j == h ? LW_GEOM + 0.5 : LW_GUIDE, NULL);
     for (int i = 0; i < w; i++) {
-        char idx[8];
+        char idx[16];
         snprintf(idx, sizeof idx, "%d", i);
         math_small(V(L + i + 0.5, T), 0, -14, "middle", INK, idx);
     }
     for (int j = 0; j < h; j++) {
-        char idx[8];
+        char idx[16];
         snprintf(idx, sizeof idx, "%d", j);
         math_small(V(L, T - j - 0.5), -14, 0, "middle", INK, idx);
     }
@@ -823,10 +828,11 @@ static void fit(const v2 *pts, int n, double x0, double y0, double x1, double y1
 }
 
 /* The watertight test's change of space: before, a ray o + t d and a
- * triangle ABC in the world; after translating by -o, permuting the axes so
- * that d's largest component is z, and shearing, the ray is the z axis and
- * the test is whether (0, 0) is inside the projected triangle, decided by
- * the signs of the edge functions U, V, W. */
+ * triangle a b c in the world; after translating by -o, permuting the axes
+ * so that d's largest component is z, and shearing, the ray is the z axis
+ * and the test is whether (0, 0) is inside the sheared triangle A B C seen
+ * along z, which the signs of the edge functions U, V, W decide (the names
+ * are the chapter's code's). */
 static void ch04_shear(const char *dir)
 {
     v3 o = V3(1.5, 0.4, 0.0), d = unit3(V3(0.32, 0.22, 1));
@@ -934,6 +940,424 @@ static void ch04_shear(const char *dir)
     finish();
 }
 
+/* ================================================================ chapter 05 */
+/* A closed curve as a path of many computed points, in world coordinates. */
+static void ellipse(v2 c, double rx, double ry, const char *fill, const char *colour)
+{
+    fprintf(svg, "<path d=\"");
+    for (int i = 0; i < 96; i++) {
+        double a = 2 * M_PI * i / 96;
+        v2 p = scr(add(c, V(rx * cos(a), ry * sin(a))));
+        fprintf(svg, "%s%.1f %.1f", i ? " L" : "M", p.x, p.y);
+    }
+    fprintf(svg, "Z\" fill=\"%s\"", fill);
+    stroke_attrs(colour, LW_GEOM, NULL);
+    fprintf(svg, "/>\n");
+}
+
+/* Transforming a normal: on the unit circle at p, the tangent t and the
+ * normal n; after the non-uniform scale M = diag(sx, sy) the circle is an
+ * ellipse, M t is still tangent to it, M n is no longer perpendicular to
+ * M t, and (M^-1)^T n = diag(1/sx, 1/sy) n is. */
+static void ch05_normal(const char *dir)
+{
+    const double mx = 1.8, my = 0.6, theta = 55 * DEG, show = 0.85;
+    v2 p = polar(theta), t = V(-sin(theta), cos(theta)), n = p;
+    v2 Mp = V(mx * p.x, my * p.y), Mt = V(mx * t.x, my * t.y), Mn = V(mx * n.x, my * n.y);
+    v2 good = V(n.x / mx, n.y / my); /* (M^-1)^T n: M is diagonal, so is its inverse */
+    /* M t is tangent: it is the derivative of M (cos a, sin a) at a = theta */
+    v2 tangent = V(-mx * sin(theta), my * cos(theta));
+    require(fabs(cross(Mt, tangent)) < 1e-12, "M t is tangent to the ellipse");
+    require(fabs(dot(good, Mt)) < 1e-12, "(M^-1)^T n is perpendicular to M t");
+    double wrong = acos(dot(unit(Mn), unit(Mt))) / DEG;
+    require(fabs(wrong - 90) > 20, "M n is visibly not perpendicular");
+
+    begin(dir, "ch05-diagram-normal", 600, 300, "Transforming a normal");
+    /* ---- before */
+    set_view(112, 170, 70);
+    text_s(V(112, 22), "middle", INK, FS_NOTE, 0, "before");
+    circle(V(0, 0), 1, F_GREY, INK, LW_GEOM, NULL);
+    right_angle(p, t, n, 10, INK);
+    arrow(p, add(p, mul(unit(t), show)), C_T, LW_VEC);
+    arrow(p, add(p, mul(unit(n), show)), C_N, LW_VEC);
+    math(add(p, mul(unit(t), show)), -8, -8, "end", C_T, "t");
+    math(add(p, mul(unit(n), show)), 8, -6, "start", C_N, "n");
+    point(p, INK);
+    math(p, -8, 12, "end", INK, "p");
+
+    /* ---- the transform */
+    arrow_s(V(212, 170), V(270, 170), INK, LW_GEOM, 10, 4, NULL);
+    text_s(V(241, 152), "middle", INK, FS_MATH, 1, "M");
+    text_s(V(241, 190), "middle", INK, FS_SMALL, 1, "\\diag(1.8, 0.6)");
+
+    /* ---- after */
+    set_view(420, 185, 70);
+    text_s(V(420, 22), "middle", INK, FS_NOTE, 0, "after");
+    ellipse(V(0, 0), mx, my, F_GREY, INK);
+    right_angle(Mp, Mt, good, 10, C_N);
+    arrow(Mp, add(Mp, mul(unit(Mt), show)), C_T, LW_VEC);
+    arrow_s(scr(Mp), scr(add(Mp, mul(unit(Mn), show))), C_R, LW_VEC, 12, 4.5, DASH);
+    arrow(Mp, add(Mp, mul(unit(good), show)), C_N, LW_VEC);
+    math(add(Mp, mul(unit(Mt), show)), -6, -12, "end", C_T, "M t");
+    math(add(Mp, mul(unit(Mn), show)), -4, 17, "start", C_R, "M n");
+    math(add(Mp, mul(unit(good), show)), 0, -14, "middle", C_N, "(M^{−1})^T n");
+    char note_text[64];
+    snprintf(note_text, sizeof note_text, "\\angle(M n, M t) = %.0f°", wrong);
+    text_s(V(420, 278), "middle", C_R, FS_SMALL + 1, 1, note_text);
+    point(Mp, INK);
+    math(Mp, -4, 16, "end", INK, "M p");
+    finish();
+}
+
+/* ================================================================ chapter 06 */
+/* The shadow ray's offset: the exact hit p lies on the surface, the
+ * computed one is somewhere in an error box around p~; moving p~ along the
+ * geometric normal by delta = |n_x| e_x + |n_y| e_y puts the whole box
+ * behind the start of the shadow ray. Started at p~ itself, the ray can
+ * hit the very surface it leaves. */
+static void ch06_offset(const char *dir)
+{
+    v2 u = polar(10 * DEG), n = perp(u); /* the surface's direction and normal */
+    v2 p = V(0, 0);                      /* the exact hit */
+    v2 e = V(0.26, 0.22);                /* the error bound, per axis */
+    v2 pc = add(p, V(0.2, -0.16));       /* the computed hit, below the surface */
+    require(fabs(pc.x - p.x) <= e.x && fabs(pc.y - p.y) <= e.y, "p lies in the error box");
+    double delta = fabs(n.x) * e.x + fabs(n.y) * e.y;
+    v2 start = add(pc, mul(n, delta)); /* where the shadow ray starts */
+    for (int i = 0; i < 4; i++) {      /* every corner of the box is behind it */
+        v2 corner = add(pc, V(i & 1 ? e.x : -e.x, i & 2 ? e.y : -e.y));
+        require(dot(sub(corner, pc), n) <= delta + 1e-12, "the box is behind the offset plane");
+    }
+    v2 l = unit(V(0.75, 1)); /* towards the light */
+    double t_self = -dot(sub(pc, p), n) / dot(l, n); /* where the ray from p~ meets the surface */
+    require(t_self > 0, "the ray from p~ crosses the surface");
+    v2 self = add(pc, mul(l, t_self));
+
+    begin(dir, "ch06-diagram-offset", 600, 350, "Offsetting the shadow ray's origin");
+    set_view(250, 205, 250);
+    /* the solid below the surface */
+    v2 a = add(p, mul(u, -1.0)), b = add(p, mul(u, 1.4));
+    v2 solid[4] = {a, b, add(b, mul(n, -0.5)), add(a, mul(n, -0.5))};
+    polygon(solid, 4, F_GREY, NULL, 0);
+    line(a, b, INK, LW_GEOM + 0.5, NULL);
+    arrow(add(p, mul(u, -0.75)), add(add(p, mul(u, -0.75)), mul(n, 0.4)), C_N, LW_VEC);
+    math(add(add(p, mul(u, -0.75)), mul(n, 0.4)), 10, -4, "start", C_N, "n_g");
+    /* the error box, and the plane through the offset point that clears it */
+    rect(sub(pc, e), add(pc, e), "none", C_R, LW_GUIDE + 0.3);
+    line(add(start, mul(u, -0.55)), add(start, mul(u, 0.65)), GUIDE, LW_GUIDE, DASH);
+    dimension(add(pc, V(-e.x, -e.y)), add(pc, V(e.x, -e.y)), -10, "2 e_x", -14, "middle");
+    dimension(add(pc, V(e.x, -e.y)), add(pc, V(e.x, e.y)), -10, "2 e_y", -12, "start");
+    /* the ray from p~ meets its own surface */
+    line(pc, self, C_R, LW_GEOM, DASH);
+    v2 ss = scr(self);
+    line_s(add(ss, V(-5, -5)), add(ss, V(5, 5)), C_R, LW_GEOM + 0.5, NULL);
+    line_s(add(ss, V(-5, 5)), add(ss, V(5, -5)), C_R, LW_GEOM + 0.5, NULL);
+    v2 tag = V(pc.x + e.x + 0.2, self.y + 0.2);
+    line(self, tag, C_R, LW_GUIDE, NULL);
+    note(tag, 4, -2, "start", C_R, "self-intersection");
+    /* the offset and the shadow ray */
+    arrow(pc, start, C_N, LW_VEC);
+    arrow(start, add(start, mul(l, 0.62)), C_L, LW_VEC);
+    note(add(start, mul(l, 0.62)), 8, 4, "start", C_L, "shadow ray, to the light");
+    point(p, INK);
+    math(p, -8, 14, "end", INK, "p");
+    point(pc, C_R);
+    math(pc, 10, 12, "start", C_R, "p̃");
+    point(start, C_N);
+    math(start, -10, -8, "end", C_N, "p̃ + δ n_g");
+    text_s(V(20, 30), "start", INK, FS_MATH, 1, "δ = |n_x| e_x + |n_y| e_y");
+    finish();
+}
+
+/* The mirror direction for an incoming direction i (towards the surface):
+ * r = i - 2 n <n, i>, drawn as i followed by -2 <n, i> n. */
+static void ch06_reflect(const char *dir)
+{
+    v2 n = V(0, 1), i = polar(-50 * DEG);
+    double ni = dot(n, i);
+    v2 r = sub(i, mul(n, 2 * ni));
+    require(fabs(len(r) - 1) < 1e-12 && fabs(dot(r, n) + ni) < 1e-12, "r mirrors i about n");
+    v2 p = V(0, 0);
+
+    begin(dir, "ch06-diagram-reflect", 600, 310, "The reflection vector");
+    set_view(300, 165, 125);
+    line(V(-1.8, 0), V(1.8, 0), INK, LW_GEOM, NULL);
+    hatch(V(-1.8, 0), V(1.8, 0), 14, 9);
+    /* i arriving at p, r leaving it */
+    arrow(sub(p, i), p, C_RAY, LW_VEC);
+    math(lerp(sub(p, i), p, 0.4), -10, -8, "end", C_RAY, "i");
+    arrow(p, r, C_R, LW_VEC);
+    math(r, 10, -4, "start", C_R, "r");
+    arrow(p, mul(n, 0.7), C_N, LW_VEC);
+    math(mul(n, 0.7), 0, -14, "middle", C_N, "n");
+    /* the construction: i again from p, then -2 <n, i> n back up to r */
+    arrow_s(scr(p), scr(i), C_RAY, LW_GUIDE + 0.3, 10, 4, DASH);
+    math(lerp(p, i, 0.55), -10, 6, "end", C_RAY, "i");
+    arrow(i, r, C_N, LW_GUIDE + 0.6);
+    math(lerp(i, r, 0.22), 10, 0, "start", C_N, "−2 ⟨n, i⟩ n");
+    line(V(0, ni), i, GUIDE, LW_GUIDE, DASH);
+    point(V(0, ni), GUIDE);
+    math(V(0, ni), -8, 0, "end", GUIDE, "⟨n, i⟩ n");
+    line(V(0, ni), V(0, 0), GUIDE, LW_GUIDE, DASH);
+    angle(p, mul(i, -1), n, 46, INK, "θ", 62);
+    angle(p, n, r, 46, INK, "θ", 62);
+    point(p, INK);
+    math(p, -6, 16, "end", INK, "p");
+    text_s(V(20, 30), "start", INK, FS_MATH, 1, "r = i − 2 n ⟨n, i⟩");
+    finish();
+}
+
+/* ================================================================ chapter 07 */
+/* Refraction at an interface between media of indices n1 (above) and n2
+ * (below): the incident direction i, the normal n, the mirror direction r
+ * and the transmitted direction t = eta i + (eta c1 - c2) n, eta = n1/n2,
+ * c1 = -<n, i>, c2 = sqrt(1 - eta^2 (1 - c1^2)), which obeys Snell's law
+ * n1 sin theta1 = n2 sin theta2. */
+static void ch07_refraction(const char *dir)
+{
+    const double n1 = 1.0, n2 = 1.5, theta1 = 50 * DEG;
+    v2 n = V(0, 1), i = V(sin(theta1), -cos(theta1));
+    double eta = n1 / n2, c1 = -dot(n, i), c2 = sqrt(1 - eta * eta * (1 - c1 * c1));
+    v2 t = add(mul(i, eta), mul(n, eta * c1 - c2));
+    v2 r = add(i, mul(n, 2 * c1));
+    double theta2 = acos(dot(t, mul(n, -1)));
+    require(fabs(n1 * sin(theta1) - n2 * sin(theta2)) < 1e-12, "Snell's law");
+    require(fabs(len(t) - 1) < 1e-12, "t is a unit vector");
+    v2 p = V(0, 0);
+
+    begin(dir, "ch07-diagram-refraction", 600, 335, "Refraction");
+    set_view(300, 170, 140);
+    rect(V(-2.1, 0), V(2.1, -1.15), F_BLUE, NULL, 0);
+    line(V(-2.1, 0), V(2.1, 0), INK, LW_GEOM, NULL);
+    line(V(0, 1.1), V(0, -1.1), GUIDE, LW_GUIDE, DASH);
+    arrow(sub(p, i), p, C_RAY, LW_VEC);
+    math(lerp(sub(p, i), p, 0.3), -11, 13, "middle", C_RAY, "i");
+    arrow(p, r, C_R, LW_VEC);
+    math(r, 10, -2, "start", C_R, "r");
+    arrow(p, t, C_T, LW_VEC);
+    math(t, 10, 4, "start", C_T, "t");
+    arrow(p, mul(n, 0.75), C_N, LW_VEC);
+    math(mul(n, 0.75), 10, -8, "start", C_N, "n");
+    angle(p, mul(i, -1), n, 62, C_RAY, "θ_1", 80);
+    angle(p, n, r, 62, C_R, "θ_1", 80);
+    angle(p, mul(n, -1), t, 62, C_T, "θ_2", 80);
+    point(p, INK);
+    math(V(-2.1, 0.0), 10, -16, "start", INK, "n_1 = 1.0");
+    math(V(-2.1, 0.0), 10, 18, "start", INK, "n_2 = 1.5");
+    text_s(V(20, 30), "start", INK, FS_MATH, 1, "n_1 \\sin θ_1 = n_2 \\sin θ_2");
+    finish();
+}
+
+/* ================================================================ chapter 08 */
+/* A kd-tree over a 2D scene: every node splits its box in the middle of its
+ * longer side, down to two triangles or depth five; a ray visits the leaves
+ * front to back and stops in the first leaf that holds a hit nearer than the
+ * leaf's far side. */
+enum { KD_TRIS = 18, KD_NODES = 64 };
+static v2 kd_tri[KD_TRIS][3];
+static struct {
+    v2 lo, hi;          /* the node's box */
+    int axis;           /* -1 for a leaf */
+    double split;       /* where its box is cut */
+    int child[2];       /* below and above the split */
+    int tris[KD_TRIS];  /* a leaf's triangles */
+    int count, depth;
+    int visit;          /* the order in which the ray visits the leaf, 0 if never */
+    double t0, t1;      /* the part of the ray inside a visited leaf */
+} kd[KD_NODES];
+static int kd_nodes, kd_visits;
+
+/* A fixed linear congruential sequence in [0, 1), so that the drawing
+ * never changes. */
+static unsigned long long kd_state;
+static double kd_random(void)
+{
+    kd_state = kd_state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(kd_state >> 11) / 9007199254740992.0;
+}
+
+static double kd_coord(v2 p, int axis) { return axis ? p.y : p.x; }
+
+static int kd_build(v2 lo, v2 hi, const int *tris, int count, int depth)
+{
+    require(kd_nodes < KD_NODES, "a small tree");
+    int k = kd_nodes++;
+    kd[k].lo = lo, kd[k].hi = hi, kd[k].depth = depth, kd[k].axis = -1, kd[k].count = count;
+    memcpy(kd[k].tris, tris, sizeof(int) * (size_t)count);
+    if (count <= 2 || depth == 5)
+        return k;
+    int axis = hi.x - lo.x >= hi.y - lo.y ? 0 : 1;
+    double split = 0.5 * (kd_coord(lo, axis) + kd_coord(hi, axis));
+    int below[KD_TRIS], above[KD_TRIS], nb = 0, na = 0;
+    for (int i = 0; i < count; i++) { /* a triangle goes to every side it reaches */
+        v2 *t = kd_tri[tris[i]];
+        double mn = fmin(fmin(kd_coord(t[0], axis), kd_coord(t[1], axis)), kd_coord(t[2], axis));
+        double mx = fmax(fmax(kd_coord(t[0], axis), kd_coord(t[1], axis)), kd_coord(t[2], axis));
+        if (mn < split)
+            below[nb++] = tris[i];
+        if (mx >= split)
+            above[na++] = tris[i];
+    }
+    kd[k].axis = axis, kd[k].split = split;
+    v2 hi0 = axis ? V(hi.x, split) : V(split, hi.y), lo1 = axis ? V(lo.x, split) : V(split, lo.y);
+    kd[k].child[0] = kd_build(lo, hi0, below, nb, depth + 1);
+    kd[k].child[1] = kd_build(lo1, hi, above, na, depth + 1);
+    return k;
+}
+
+/* The nearest t > 0 where the ray o + t d crosses the triangle's edges. */
+static double kd_hit_triangle(v2 o, v2 d, const v2 *t)
+{
+    double best = INFINITY;
+    for (int e = 0; e < 3; e++) {
+        v2 a = t[e], ab = sub(t[(e + 1) % 3], a);
+        double den = cross(d, ab);
+        if (den == 0)
+            continue;
+        double s = cross(sub(a, o), d) / den, u = cross(sub(a, o), ab) / den;
+        if (s >= 0 && s <= 1 && u > 0 && u < best)
+            best = u;
+    }
+    return best;
+}
+
+/* Front-to-back traversal of the node k for t in [t0, t1]; returns the hit
+ * t (INFINITY for none) and numbers the leaves in the order visited. */
+static double kd_traverse(int k, v2 o, v2 d, double t0, double t1, int *hit_tri)
+{
+    if (kd[k].axis < 0) {
+        kd[k].visit = ++kd_visits, kd[k].t0 = t0, kd[k].t1 = t1;
+        double best = INFINITY;
+        for (int i = 0; i < kd[k].count; i++) {
+            double t = kd_hit_triangle(o, d, kd_tri[kd[k].tris[i]]);
+            if (t < best && t <= t1) /* a hit beyond this leaf belongs to a later one */
+                best = t, *hit_tri = kd[k].tris[i];
+        }
+        return best;
+    }
+    int axis = kd[k].axis;
+    double oc = kd_coord(o, axis), dc = kd_coord(d, axis);
+    int near = oc < kd[k].split || (oc == kd[k].split && dc <= 0) ? 0 : 1;
+    double ts = dc != 0 ? (kd[k].split - oc) / dc : INFINITY;
+    if (ts > t1 || ts <= 0)
+        return kd_traverse(kd[k].child[near], o, d, t0, t1, hit_tri);
+    if (ts < t0)
+        return kd_traverse(kd[k].child[1 - near], o, d, t0, t1, hit_tri);
+    double t = kd_traverse(kd[k].child[near], o, d, t0, ts, hit_tri);
+    if (t <= ts)
+        return t;
+    return kd_traverse(kd[k].child[1 - near], o, d, ts, t1, hit_tri);
+}
+
+static void kd_draw_splits(int k)
+{
+    if (kd[k].axis < 0)
+        return;
+    double w = kd[k].depth == 0 ? LW_GEOM + 1.0 : kd[k].depth == 1 ? LW_GEOM + 0.3 : LW_GUIDE;
+    if (kd[k].axis == 0)
+        line(V(kd[k].split, kd[k].lo.y), V(kd[k].split, kd[k].hi.y), INK, w, NULL);
+    else
+        line(V(kd[k].lo.x, kd[k].split), V(kd[k].hi.x, kd[k].split), INK, w, NULL);
+    kd_draw_splits(kd[k].child[0]);
+    kd_draw_splits(kd[k].child[1]);
+}
+
+static void ch08_kdtree(const char *dir)
+{
+    /* the scene: small triangles in two clusters and a scatter, from a
+     * fixed linear congruential sequence so that the drawing never changes */
+    kd_state = 20240531ULL;
+    const v2 centre[3] = {V(2.2, 4.4), V(7.9, 1.5), V(5.0, 3.0)};
+    const double spread[3] = {3.2, 3.2, 9.0};
+    int all[KD_TRIS];
+    v2 placed[KD_TRIS];
+    for (int i = 0; i < KD_TRIS; i++) {
+        int cl = i % 3;
+        v2 c;
+        for (int tries = 0;; tries++) { /* keep the triangles apart */
+            double rx = kd_random() - 0.5, ry = kd_random() - 0.5; /* in this order */
+            c = add(centre[cl], V(spread[cl] * rx, spread[cl] * ry * 0.6));
+            c = V(fmin(fmax(c.x, 0.5), 9.5), fmin(fmax(c.y, 0.5), 5.5));
+            int apart = 1;
+            for (int j = 0; j < i; j++)
+                apart &= len(sub(c, placed[j])) > 0.9;
+            require(tries < 1000, "room for the triangles");
+            if (apart)
+                break;
+        }
+        placed[i] = c;
+        double a = 2 * M_PI * kd_random(), size = 0.3 + 0.15 * kd_random();
+        for (int j = 0; j < 3; j++) {
+            double jitter = 0.3 * kd_random();
+            kd_tri[i][j] = add(c, mul(polar(a + j * 2.2 + jitter), size));
+        }
+        all[i] = i;
+    }
+    kd_nodes = kd_visits = 0;
+    kd_build(V(0, 0), V(10, 6), all, KD_TRIS, 0);
+    v2 o = V(0.0, 4.2), d = unit(V(1, -0.5));
+    double t_exit = fmin((10 - o.x) / d.x, d.y > 0 ? (6 - o.y) / d.y : -o.y / d.y);
+    int hit_tri = -1;
+    double t_hit = kd_traverse(0, o, d, 0, t_exit, &hit_tri);
+    require(hit_tri >= 0 && kd_visits >= 3, "the ray visits a few leaves before its hit");
+
+    begin(dir, "ch08-diagram-kdtree", 600, 410, "A kd-tree and a ray's traversal");
+    set_view(20, 360, 56);
+    /* the visited leaves, shaded, in order */
+    for (int k = 0; k < kd_nodes; k++)
+        if (kd[k].axis < 0 && kd[k].visit)
+            rect(kd[k].lo, kd[k].hi, kd[k].visit == kd_visits ? F_ORANGE : F_BLUE, NULL, 0);
+    for (int i = 0; i < KD_TRIS; i++) {
+        int tested = 0;
+        for (int k = 0; k < kd_nodes; k++)
+            for (int j = 0; kd[k].axis < 0 && kd[k].visit && j < kd[k].count; j++)
+                tested |= kd[k].tris[j] == i;
+        polygon(kd_tri[i], 3, i == hit_tri ? C_L : tested ? "#b9b9b9" : "#ffffff", INK,
+                LW_GUIDE);
+    }
+    rect(V(0, 0), V(10, 6), "none", INK, LW_GEOM + 1.0);
+    kd_draw_splits(0);
+    /* each visited leaf's number, beside the ray's part inside it */
+    for (int k = 0; k < kd_nodes; k++)
+        if (kd[k].axis < 0 && kd[k].visit) {
+            char num[16];
+            snprintf(num, sizeof num, "%d", kd[k].visit);
+            double t1 = fmin(kd[k].t1, t_hit);
+            v2 mid = add(o, mul(d, 0.5 * (kd[k].t0 + t1)));
+            /* below the ray on the page, or above it if that is outside the leaf */
+            v2 at = add(scr(mid), mul(V(d.y, d.x), 17));
+            v2 world = V((at.x - view_x) / view_s, (view_y - at.y) / view_s);
+            if (world.x < kd[k].lo.x || world.x > kd[k].hi.x || world.y < kd[k].lo.y ||
+                world.y > kd[k].hi.y)
+                at = add(scr(mid), mul(V(-d.y, -d.x), 17));
+            fprintf(svg, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"9\" fill=\"#ffffff\"", at.x, at.y);
+            stroke_attrs(C_RAY, LW_GUIDE, NULL);
+            fprintf(svg, "/>\n");
+            text_s(at, "middle", C_RAY, FS_SMALL, 0, num);
+        }
+    v2 hit = add(o, mul(d, t_hit));
+    arrow(o, hit, C_RAY, LW_VEC);
+    line(hit, add(o, mul(d, t_exit)), C_RAY, LW_GUIDE, DASH);
+    point(hit, C_RAY);
+    point(o, C_RAY);
+    math(o, 8, 12, "start", C_RAY, "o");
+    /* the legend */
+    const char *fills[4] = {F_BLUE, F_ORANGE, "#b9b9b9", "#ffffff"};
+    const char *what[4] = {"leaf visited, in order", "leaf of the hit", "triangle tested",
+                           "never tested"};
+    const double lx[4] = {16, 186, 316, 452};
+    for (int i = 0; i < 4; i++) {
+        v2 sw[4] = {V(lx[i], 384), V(lx[i] + 16, 384), V(lx[i] + 16, 398), V(lx[i], 398)};
+        v2 tri[3] = {V(lx[i], 398), V(lx[i] + 16, 398), V(lx[i] + 8, 384)};
+        if (i < 2)
+            polygon_s(sw, 4, fills[i], NULL, 0, NULL);
+        else
+            polygon_s(tri, 3, fills[i], INK, LW_GUIDE, NULL);
+        text_s(V(lx[i] + 22, 391), "start", INK, FS_NOTE, 0, what[i]);
+    }
+    finish();
+}
+
 /* ---------------------------------------------------------------- main */
 typedef struct {
     const char *name;
@@ -948,6 +1372,11 @@ static const diagram diagrams[] = {
     {"ch03-diagram-spot", ch03_spot},
     {"ch04-diagram-barycentric", ch04_barycentric},
     {"ch04-diagram-shear", ch04_shear},
+    {"ch05-diagram-normal", ch05_normal},
+    {"ch06-diagram-offset", ch06_offset},
+    {"ch06-diagram-reflect", ch06_reflect},
+    {"ch07-diagram-refraction", ch07_refraction},
+    {"ch08-diagram-kdtree", ch08_kdtree},
 };
 
 int main(int argc, char **argv)
