@@ -12,6 +12,7 @@
 #   make src          rewrite the committed plain tangle src/chNN
 #   make figures      render figures/chNN-*.png
 #   make charts       run bench/ and redraw figures/chNN-*.svg
+#   make diagrams     redraw the explanatory figures/chNN-diagram-*.svg
 #   make book         build/book.html          make clean
 #   make book-check   the book in headless Chromium at 1280x900 (installs it
 #                     as root): nothing wider than the text column, and a
@@ -191,6 +192,16 @@ figures: $(ALL_FIGS)
 benches: $(BENCHES)
 check-src: $(foreach n,$(NUMS),check-src-ch$(n))
 check-figures: $(foreach n,$(NUMS),check-figures-ch$(n))
+
+# The explanatory diagrams: tools/diagrams/diagrams.c computes every one's
+# geometry and writes figures/chNN-diagram-NAME.svg (committed, like the charts).
+.PHONY: diagrams
+$(B)/tools/diagrams/diagrams: tools/diagrams/diagrams.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(LDFLAGS) -lm
+
+diagrams: $(B)/tools/diagrams/diagrams
+	$< figures
 
 # ---------------------------------------------------------------- charts
 # bench/chNN_x.c writes figures/chNN-x.csv; bench/chNN_x.gp draws figures/chNN-x*.svg
