@@ -195,13 +195,23 @@ check-figures: $(foreach n,$(NUMS),check-figures-ch$(n))
 
 # The explanatory diagrams: tools/diagrams/diagrams.c computes every one's
 # geometry and writes figures/chNN-diagram-NAME.svg (committed, like the charts).
-.PHONY: diagrams
+.PHONY: diagrams check-diagrams
 $(B)/tools/diagrams/diagrams: tools/diagrams/diagrams.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(LDFLAGS) -lm
 
 diagrams: $(B)/tools/diagrams/diagrams
 	$< figures
+
+# The committed diagrams must be what the program draws now.
+check-diagrams: $(B)/tools/diagrams/diagrams
+	@rm -rf build/diagramcheck && mkdir -p build/diagramcheck
+	@$< build/diagramcheck >/dev/null
+	@for f in build/diagramcheck/*.svg; do \
+	  cmp -s $$f figures/$$(basename $$f) || \
+	    { echo "figures/$$(basename $$f) is not what tools/diagrams draws: run 'make diagrams'"; exit 1; }; \
+	done
+	@echo "check-diagrams: $$(ls build/diagramcheck | wc -l) diagrams up to date"
 
 # ---------------------------------------------------------------- charts
 # bench/chNN_x.c writes figures/chNN-x.csv; bench/chNN_x.gp draws figures/chNN-x*.svg
@@ -329,7 +339,7 @@ check-lines: $(TANGLE) | deps
 check-quotes:
 	@sh tools/check_quotes.sh bench/quotes.txt
 
-test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures check-book \
+test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures check-diagrams check-book \
       check-lines check-quotes check-commands check-book-browser
 	@$(MAKE) --no-print-directory check-code-width
 	@echo "make test: all passed"
