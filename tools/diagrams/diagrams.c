@@ -1108,11 +1108,12 @@ static void ch06_reflect(const char *dir)
 }
 
 /* ================================================================ chapter 07 */
-/* Refraction at an interface between media of indices n1 (above) and n2
- * (below): the incident direction i, the normal n, the mirror direction r
- * and the transmitted direction t = eta i + (eta c1 - c2) n, eta = n1/n2,
- * c1 = -<n, i>, c2 = sqrt(1 - eta^2 (1 - c1^2)), which obeys Snell's law
- * n1 sin theta1 = n2 sin theta2. */
+/* Refraction at an interface between media of indices eta1 (above) and
+ * eta2 (below): the incident direction i, the normal n, the mirror
+ * direction r and the transmitted direction t = eta i + (eta c1 - c2) n,
+ * eta = eta1/eta2, c1 = -<n, i>, c2 = sqrt(1 - eta^2 (1 - c1^2)), which
+ * obeys Snell's law eta1 sin theta1 = eta2 sin theta2. (The chapter writes
+ * eta for the indices, since n is the normal.) */
 static void ch07_refraction(const char *dir)
 {
     const double n1 = 1.0, n2 = 1.5, theta1 = 50 * DEG;
@@ -1142,9 +1143,59 @@ static void ch07_refraction(const char *dir)
     angle(p, n, r, 62, C_R, "θ_1", 80);
     angle(p, mul(n, -1), t, 62, C_T, "θ_2", 80);
     point(p, INK);
-    math(V(-2.1, 0.0), 10, -16, "start", INK, "n_1 = 1.0");
-    math(V(-2.1, 0.0), 10, 18, "start", INK, "n_2 = 1.5");
-    text_s(V(20, 30), "start", INK, FS_MATH, 1, "n_1 \\sin θ_1 = n_2 \\sin θ_2");
+    math(V(-2.1, 0.0), 10, -16, "start", INK, "η_1 = 1.0");
+    math(V(-2.1, 0.0), 10, 18, "start", INK, "η_2 = 1.5");
+    text_s(V(20, 30), "start", INK, FS_MATH, 1, "η_1 \\sin θ_1 = η_2 \\sin θ_2");
+    finish();
+}
+
+/* The sheet's construction of the refracted direction: the incident
+ * direction i is the sum of a = n<n, i>, along the normal, and b = i - a,
+ * along the surface; the refracted direction is t = alpha a + beta b with
+ * beta = eta1/eta2 and alpha = cos theta2 / cos theta1. Each sum is drawn
+ * head to tail: i's above the surface (a, then b), t's below (beta b, then
+ * alpha a). */
+static void ch07_construction(const char *dir)
+{
+    const double eta = 1.0 / 1.5, theta1 = 50 * DEG;
+    v2 n = V(0, 1), i = V(sin(theta1), -cos(theta1));
+    v2 a = mul(n, dot(n, i)), b = sub(i, a);
+    double beta = eta, radicand = 1 + (1 - beta * beta) * dot(b, b) / dot(a, a);
+    double alpha = sqrt(radicand);
+    v2 t = add(mul(a, alpha), mul(b, beta));
+    double c1 = -dot(n, i), c2 = sqrt(1 - eta * eta * (1 - c1 * c1));
+    v2 t_std = add(mul(i, eta), mul(n, eta * c1 - c2));
+    require(fabs(len(t) - 1) < 1e-12, "t is a unit vector");
+    require(len(sub(t, t_std)) < 1e-12, "the sheet's t is the standard one");
+    require(fabs(alpha - c2 / c1) < 1e-12, "alpha = cos theta2 / cos theta1");
+    v2 p = V(0, 0), s = sub(p, i); /* the incident ray runs from s to p */
+
+    begin(dir, "ch07-diagram-construction", 600, 360, "The sheet's refraction");
+    set_view(330, 175, 170);
+    rect(V(-1.85, 0), V(1.6, -1.1), F_BLUE, NULL, 0);
+    line(V(-1.85, 0), V(1.6, 0), INK, LW_GEOM, NULL);
+    line(V(0, 0.95), V(0, -1.05), GUIDE, LW_GUIDE, DASH);
+    /* i = a + b, head to tail above the surface */
+    arrow(s, p, C_RAY, LW_VEC);
+    math(lerp(s, p, 0.55), 8, -10, "start", C_RAY, "i");
+    arrow(s, add(s, a), C_N, LW_VEC - 0.4);
+    math(lerp(s, add(s, a), 0.5), -8, 0, "end", C_N, "a = n ⟨n, i⟩");
+    arrow(add(s, a), p, C_R, LW_VEC - 0.4);
+    math(lerp(add(s, a), p, 0.45), 0, 16, "middle", C_R, "b = i − a");
+    /* t = beta b + alpha a, head to tail below it */
+    arrow(p, add(p, mul(b, beta)), C_R, LW_VEC - 0.4);
+    math(lerp(p, add(p, mul(b, beta)), 0.5), 0, -14, "middle", C_R, "β b");
+    arrow(add(p, mul(b, beta)), add(p, t), C_N, LW_VEC - 0.4);
+    math(lerp(add(p, mul(b, beta)), add(p, t), 0.5), 8, 0, "start", C_N, "α a");
+    arrow(p, add(p, t), C_T, LW_VEC);
+    math(lerp(p, add(p, t), 0.62), -10, 6, "end", C_T, "t");
+    arrow(p, mul(n, 0.6), C_N, LW_VEC);
+    math(mul(n, 0.6), 10, -6, "start", C_N, "n");
+    point(p, INK);
+    math(V(1.6, 0.0), -10, -16, "end", INK, "η_1 = 1.0");
+    math(V(1.6, 0.0), -10, 18, "end", INK, "η_2 = 1.5");
+    text_s(V(20, 30), "start", INK, FS_MATH, 1, "t = α a + β b");
+    text_s(V(20, 56), "start", INK, FS_MATH, 1, "β = η_1 / η_2,  α = \\cos θ_2 / \\cos θ_1");
     finish();
 }
 
@@ -1376,6 +1427,7 @@ static const diagram diagrams[] = {
     {"ch06-diagram-offset", ch06_offset},
     {"ch06-diagram-reflect", ch06_reflect},
     {"ch07-diagram-refraction", ch07_refraction},
+    {"ch07-diagram-construction", ch07_construction},
     {"ch08-diagram-kdtree", ch08_kdtree},
 };
 
