@@ -13,6 +13,7 @@
 #include "scene.h"
 #include "test_util.h"
 #include "sphere.h"
+#include "../bench/rng.h"
 
 typedef int (*roots_fn)(vec3, double, ray, double[2]);
 
@@ -32,13 +33,9 @@ static const struct {
 static const vec3 ORIGIN = {0, 0, 0};
 static const vec3 PLUS_Z = {0, 0, 1};
 
-static uint64_t rng = 12345; /* fixed seed: the same rays every run */
+static bench_rng rng = {12345}; /* fixed seed: the same rays every run */
 
-static double uniform(double lo, double hi)
-{
-    rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
-    return lo + (hi - lo) * (double)(rng >> 11) / 9007199254740992.0;
-}
+static double uniform(double lo, double hi) { return bench_rng_uniform(&rng, lo, hi); }
 
 static vec3 random_unit(void)
 {
@@ -190,7 +187,7 @@ static form_score score_form(roots_fn roots, double D, int n_rays)
     vec3 e1 = vec3_normalize((vec3){1.0, 0.0, -0.3});
     vec3 e2 = {axis.y * e1.z - axis.z * e1.y, axis.z * e1.x - axis.x * e1.z,
                axis.x * e1.y - axis.y * e1.x};
-    rng = 777;
+    rng.state = 777;
     for (int k = 0; k < n_rays; k++) {
         double u = uniform(-1.2, 1.2), v = uniform(-1.2, 1.2);
         ray r = {ORIGIN, vec3_normalize(vec3_add(c, vec3_add(vec3_scale(e1, u), vec3_scale(e2, v))))};
