@@ -163,7 +163,8 @@ static void measure_distance(int step, double D)
 
 static double distance_of(int step) { return pow(10.0, (step + 1) / 4.0); }
 
-/* Rows grouped by form, then kind, so that each chart line is contiguous. */
+/* Rows grouped by form (its fails_at first), then kind, so that each chart
+ * line is contiguous. */
 static void print_results(const bench_timing timing[N_FORMS])
 {
     bench_print_machine();
@@ -171,17 +172,17 @@ static void print_results(const bench_timing timing[N_FORMS])
     for (int f = 0; f < N_FORMS; f++) {
         char method[32], param[32];
         snprintf(method, sizeof method, "%s-%s", forms[f].name, forms[f].precision);
+        double fails_at = INFINITY;
+        for (int step = N_DISTANCES - 1; step >= 0; step--)
+            if (results[f][step][MISCLASSIFIED] > 0.001)
+                fails_at = distance_of(step);
+        bench_row(method, "all", &timing[f], "%g", fails_at, "fails_at");
         for (int kind = 0; kind < N_KINDS; kind++)
             for (int step = 0; step < N_DISTANCES; step++) {
                 snprintf(param, sizeof param, "%g", distance_of(step));
                 bench_row(method, param, &timing[f], "%.4e", results[f][step][kind],
                           kind_names[kind]);
             }
-        double fails_at = INFINITY;
-        for (int step = N_DISTANCES - 1; step >= 0; step--)
-            if (results[f][step][MISCLASSIFIED] > 0.001)
-                fails_at = distance_of(step);
-        bench_row(method, "all", &timing[f], "%g", fails_at, "fails_at");
     }
 }
 

@@ -18,7 +18,7 @@ is(m, kind) = strcol(1) eq m && strcol(5) eq kind
 set terminal svg size 760,520 font "Helvetica,13" background "white"
 set output stem.'-speed-accuracy.svg'
 set bmargin 5
-set title "Chapter 02: ray-sphere forms at 10^{4} radii, speed against accuracy"
+set title "Chapter 02: ray-sphere forms, unit sphere at distance 10^{4}: speed against accuracy"
 set logscale y
 set format y "10^{%L}"
 set xrange [0:*]
@@ -28,11 +28,13 @@ set xlabel "time per intersection (ns; bars: interquartile range)"
 set ylabel "median relative error of t"
 set key bottom left box opaque font ",11"
 eval machine_label
-plot for [k=1:6] csv using (is(word(names,k),"t_rel_median") && $2 == 10000 ? $3 : NaN):(positive($4)):6:7 \
-     with xerrorbars pt (word(points,k)+0) ps 1.6 lc rgb word(colors,k) title word(labels,k)
+plot for [k=1:6] csv using (is(word(names,k),"t_rel_median") && $2 == 10000 ? $3 : NaN):(positive($4)) \
+       with points pt (word(points,k)+0) ps 1.6 lc rgb word(colors,k) title word(labels,k), \
+     csv using (strcol(5) eq "t_rel_median" && $2 == 10000 ? $6 : NaN):(positive($4)):($7 - $6):(0) @quartile_bars
 
 set output stem.'-distance.svg'
 set terminal svg size 760,800 font "Helvetica,13" background "white"
+unset label 100 # the machine line goes under the bottom panel only
 set multiplot layout 2,1 title "Chapter 02: where each ray-sphere form fails"
 unset title
 set bmargin
@@ -46,7 +48,6 @@ set yrange [1e-22:1e-2]
 set key bottom right box opaque font ",10"
 plot for [k=1:6] csv using (is(word(names,k),"t_rel_median") ? $2 : NaN):(positive($4)) \
      with linespoints pt (word(points,k)+0) ps 0.8 lc rgb word(colors,k) title word(labels,k)
-unset label 100
 set bmargin 5
 eval machine_label
 set ylabel "misclassified rays (%, log scale)"

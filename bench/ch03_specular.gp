@@ -25,10 +25,11 @@ set offsets graph 0, graph 0.1, 0, 0
 set xlabel "time per evaluation (ns; bars: interquartile range)"
 set ylabel "rms error over the hemisphere"
 set key bottom left box opaque font ",10" title "filled: k = 10, open: k = 100"
-plot for [m=1:5] csv using (is(word(names,m),"10","rms") ? $3 : NaN):(positive($4)):6:7 \
-       with xerrorbars pt (word(points,m)+0) ps 1.6 lc rgb word(colors,m) title word(labels,m), \
-     for [m=1:5] csv using (is(word(names,m),"100","rms") ? $3 : NaN):(positive($4)):6:7 \
-       with xerrorbars pt (word(points,m)-1) ps 1.6 lc rgb word(colors,m) notitle
+plot for [m=1:5] csv using (is(word(names,m),"10","rms") ? $3 : NaN):(positive($4)) \
+       with points pt (word(points,m)+0) ps 1.6 lc rgb word(colors,m) title word(labels,m), \
+     for [m=1:5] csv using (is(word(names,m),"100","rms") ? $3 : NaN):(positive($4)) \
+       with points pt (word(points,m)-1) ps 1.6 lc rgb word(colors,m) notitle, \
+     csv using (strcol(5) eq "rms" ? $6 : NaN):(positive($4)):($7 - $6):(0) @quartile_bars
 
 set offsets 0, 0, 0, 0
 set bmargin 5

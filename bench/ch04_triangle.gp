@@ -26,12 +26,11 @@ set xlabel "time per ray-triangle test (ns; bars: interquartile range)"
 set ylabel "rays through edges and vertices that leak (%)"
 set key at graph 0.98, graph 0.52 right top box opaque font ",10" title "filled: mesh at the origin, open: moved by 10^4"
 eval machine_label
-# ok: the row is the one wanted; its quartiles too must be NaN otherwise, or
-# the brute-force rows' would stretch the time axis.
-plot for [k=1:6] csv using (ok = is(word(names,k),"origin"), ok ? $3 : NaN):(pct($4)):(ok ? $6 : NaN):(ok ? $7 : NaN) \
-       with xerrorbars pt (word(points,k)+0) ps 1.8 lc rgb word(colors,k) title word(labels,k), \
-     for [k=1:6] csv using (ok = is(word(names,k),"1e4"), ok ? $3 : NaN):(pct($4)):(ok ? $6 : NaN):(ok ? $7 : NaN) \
-       with xerrorbars pt (word(points,k)-1) ps 2.2 lc rgb word(colors,k) notitle
+plot for [k=1:6] csv using (is(word(names,k),"origin") ? $3 : NaN):(pct($4)) \
+       with points pt (word(points,k)+0) ps 1.8 lc rgb word(colors,k) title word(labels,k), \
+     for [k=1:6] csv using (is(word(names,k),"1e4") ? $3 : NaN):(pct($4)) \
+       with points pt (word(points,k)-1) ps 2.2 lc rgb word(colors,k) notitle, \
+     csv using (strcol(5) eq "leak_rate" ? $6 : NaN):(pct($4)):($7 - $6):(0) @quartile_bars
 
 set output stem.'-brute-force.svg'
 set title "Chapter 04: brute force, the Stanford bunny's first N triangles"
@@ -47,4 +46,5 @@ set xlabel "triangles in the mesh (log scale)"
 set ylabel "time per ray (ns, log scale; bars: interquartile range)"
 set key default
 set key inside top left box opaque font ",11"
-plot csv using (ok = strcol(1) eq "brute-force", ok ? $2 : NaN):(ok ? $3 : NaN):(ok ? $6 : NaN):(ok ? $7 : NaN) with yerrorlines pt 7 ps 1.2 lc rgb "#d95f02" title "every triangle tested (bounding box hit)"
+plot csv using (strcol(1) eq "brute-force" ? $2 : NaN):3 with linespoints pt 7 ps 1.2 lc rgb "#d95f02" title "every triangle tested (bounding box hit)", \
+     csv using (strcol(1) eq "brute-force" ? $2 : NaN):6:(0):($7 - $6) @quartile_bars

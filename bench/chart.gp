@@ -11,10 +11,13 @@
 #                  date), printed at the bottom left of the canvas by
 #   eval machine_label      (and removed again by: unset label 100)
 #
-#   Times. Every time is the median over interleaved rounds; draw it with
-#   its interquartile range as error bars, columns 6 and 7 of the CSV:
-#     using ($3):(y):($6):($7) with xerrorbars      time along x
-#     using (x):($3):($6):($7) with yerrorlines     time along y
+#   Times. Every time is the median over interleaved rounds; draw its
+#   interquartile range (columns 6 and 7 of the CSV) as a bar in dark grey
+#   ON TOP of the method's mark, so that a spread narrower than the mark
+#   still shows as the bar's end ticks:
+#     plot ... with points ..., \
+#          csv using ($6):(y):($7 - $6):(0) @quartile_bars     time along x
+#          csv using (x):($6):(0):($7 - $6) @quartile_bars     time along y
 #
 #   Log axes on which an error can be exactly zero. A log axis has no 0, so
 #   zero is drawn on a row of its own one decade below the axis, labelled
@@ -32,6 +35,8 @@ set grid
 
 machine = system("sed -n 's/^# machine: //p' '".csv."' | head -n 1")
 machine_label = "set label 100 'machine: '.machine at screen 0.01, screen 0.02 left noenhanced font ',9' textcolor rgb '#555555' front"
+
+quartile_bars = 'with vectors heads size screen 0.006,90 fixed lw 1.5 lc rgb "#222222" notitle'
 
 lo = -4
 hi = 2

@@ -28,11 +28,13 @@ echo
 printf '%-20s %-10s %s\n' "chart" "largest" "run-to-run ratio of a method's median time (method,param: run 1, run 2 ns)"
 for bench in "$@"; do
   name=$(basename "$bench" | tr _ -)
+  # A method's timing is repeated on every row of its error kinds: the first
+  # row of each method and time stands for the rest.
   awk -F, -v name="$name" '
-    /^#/ || $3 == "" || $3 == "ns_per_op" { next }
-    FNR == NR { if (!(($1 "," $2) in a)) a[$1 "," $2] = $3; next }
-    ($1 "," $2) in a && !(($1 "," $2) in seen) {
-      seen[$1 "," $2] = 1
+    /^#/ || $3 == "" || $3 == "ns_per_op" || (FILENAME SUBSEP $1 SUBSEP $3 SUBSEP $6) in timed { next }
+    { timed[FILENAME, $1, $3, $6] = 1 }
+    FNR == NR { a[$1 "," $2] = $3; next }
+    ($1 "," $2) in a {
       r = a[$1 "," $2] / $3; if (r < 1) r = 1 / r
       if (r > worst) { worst = r; which = $1 "," $2 ": " a[$1 "," $2] ", " $3 }
     }

@@ -92,6 +92,7 @@ check_ratio() {
   [ -n "$a" ] || { fail "$1: error: no timed row $4 in $3"; return; }
   [ -n "$b" ] || { fail "$1: error: no timed row $5 in $3"; return; }
   verdict=$(echo "$a $b" | awk -v band="$6" '{
+    if ($4 <= 0 || $5 <= 0) { print "0 0 0 badrow"; exit }
     r = $1 / $4; lo = $2 / $6; hi = $3 / $5
     printf "%.3f %.3f %.3f ", r, lo, hi
     if (band == "same") { print (lo <= 1 && 1 <= hi) ? "ok" : "ordered"; exit }
@@ -100,7 +101,7 @@ check_ratio() {
       print "badband"; exit }
     has1 = b[1] <= 1 && 1 <= b[2]
     if (within != has1) { print within ? "withoutside1" : "bandhas1"; exit }
-    if (!within && lo <= 1 && 1 <= hi) { print "same"; exit }
+    if (!within && lo <= 1 && 1 <= hi) { print "includes1"; exit }
     print (b[1] <= lo && hi <= b[2]) ? "ok" : "outside" }')
   set -- "$@" $verdict # $8 median, $9 lo, $10 hi, $11 verdict
   ratios=$((ratios + 1))
@@ -108,10 +109,11 @@ check_ratio() {
   what="'$7': $4 / $5 = $8 ($9..${10})"
   case "${11}" in
     ok) ;;
-    badband) fail "$1: error: band '$6' is neither LO..HI nor same" ;;
+    badband) fail "$1: error: band '$6' is not LO..HI, within LO..HI or same" ;;
     bandhas1) fail "$1: error: band $6 contains 1: it orders nothing; write 'within $6' or 'same'" ;;
     withoutside1) fail "$1: error: band '$6' does not contain 1: an ordered claim is just LO..HI" ;;
-    same) fail "$2: error: $what includes 1: state it as indistinguishable (band 'same')" ;;
+    badrow) fail "$1: error: $4 or $5 has no positive time in $3" ;;
+    includes1) fail "$2: error: $what includes 1: state it as indistinguishable (band 'same')" ;;
     ordered) fail "$2: error: $what says one is faster: not indistinguishable" ;;
     outside) fail "$2: error: $what is not within the band $6" ;;
   esac
@@ -125,7 +127,7 @@ check_time() {
   verdict=$(echo "$t" | awk -v band="$5" '{
     per = 1
     if (band ~ / per /) { per = band; sub(/.* per /, "", per); sub(/ per .*/, "", band) }
-    if (split(band, b, /\.\./) != 2) { print "? ? ? badband"; exit }
+    if (split(band, b, /\.\./) != 2) { print "- - - badband"; exit }
     lo = $2 / per; hi = $3 / per
     printf "%.4g %.4g %.4g %s\n", $1 / per, lo, hi, (b[1] <= lo && hi <= b[2]) ? "ok" : "outside" }')
   set -- "$@" $verdict # $7 median, $8 q1, $9 q3, $10 verdict
