@@ -105,7 +105,7 @@ check_ratio() {
     print (b[1] <= lo && hi <= b[2]) ? "ok" : "outside" }')
   set -- "$@" $verdict # $8 median, $9 lo, $10 hi, $11 verdict
   ratios=$((ratios + 1))
-  [ -n "$report" ] && echo "ratio $1 $4/$5 $8 $9 ${10} $(echo "$6" | tr ' ' _) ${11}"
+  [ -n "$report" ] && echo "ratio $1 $(echo "$4/$5" | tr ' ' _) $8 $9 ${10} $(echo "$6" | tr ' ' _) ${11}"
   what="'$7': $4 / $5 = $8 ($9..${10})"
   case "${11}" in
     ok) ;;
