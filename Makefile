@@ -172,7 +172,7 @@ $$(O$(1))/bench/%.o: bench/%.c $$(T$(1))/.stamp | deps
 	@mkdir -p $$(@D)
 	$$(CC) $$(ALL_CFLAGS) $$(PNG_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
 
-$(B)/bench/ch$(1)_%: $$(O$(1))/bench/ch$(1)_%.o $$(LIB$(1))
+$(B)/bench/ch$(1)_%: $$(O$(1))/bench/ch$(1)_%.o $$(O$(1))/bench/timing.o $$(LIB$(1))
 	@mkdir -p $$(@D)
 	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
 
@@ -215,9 +215,15 @@ check-diagrams: $(B)/tools/diagrams/diagrams
 
 # ---------------------------------------------------------------- charts
 # bench/chNN_x.c writes figures/chNN-x.csv; bench/chNN_x.gp draws figures/chNN-x*.svg
-# from it (gnuplot gets csv= the CSV and stem= figures/chNN-x).
+# from it (gnuplot gets csv= the CSV and stem= figures/chNN-x). Every bench
+# links bench/timing.c, the harness that times (bench/timing.h).
 # One chart: make chart-ch02_sphere. All of them, one after another so that
 # no two benchmarks share the machine: make charts.
+# The harness prints the flags the benchmarks were compiled with on the
+# machine line of every CSV.
+$(foreach n,$(NUMS),$(B)/obj/ch$(n)/bench/timing.o): \
+  ALL_CFLAGS += '-DBENCH_FLAGS="$(strip $(OPT) $(CFLAGS))"'
+
 chart-%: $(B)/bench/% | deps
 	$< > figures/$(subst _,-,$*).csv.tmp
 	mv figures/$(subst _,-,$*).csv.tmp figures/$(subst _,-,$*).csv
@@ -226,6 +232,14 @@ chart-%: $(B)/bench/% | deps
 
 charts: deps $(BENCHES)
 	@for b in $(notdir $(BENCHES)); do $(MAKE) --no-print-directory chart-$$b || exit 1; done
+
+# Can the speed axes be trusted? Every bench run twice: the largest ratio
+# between two runs of a method, and whether an ordering a quoted ratio
+# relies on flipped (tools/charts_check.sh). Writes only build/charts-check.
+charts-check: deps $(BENCHES)
+	@sh tools/charts_check.sh $(BENCHES)
+
+.PHONY: charts-check
 
 # ---------------------------------------------------------------- fuzzing
 # make fuzz FUZZ_SECONDS=60: each libFuzzer target for that long, built with
