@@ -127,6 +127,11 @@ START_TEST(test_negative_d_squared_from_rounding_is_a_hit)
     double D2 = c.x * c.x + c.y * c.y + c.z * c.z - along * along;
     ck_assert_msg(D2 < 0, "precondition: D^2 = %g should round below 0", D2);
     ck_assert(isnan(sqrt(D2))); /* the sheet's D: every comparison with it is false */
+    double sheet_D = sqrt(D2);
+    ck_assert(!(sheet_D <= 1)); /* so the sheet's "D <= r: a hit" misses this head-on ray */
+    double t_hit;
+    sphere sp = {c, 1};
+    ck_assert(sphere_hit_t(&sp, (ray){ORIGIN, d}, 0, INFINITY, &t_hit)); /* the program hits */
     for (int f = 0; f < 3; f++) { /* the double forms */
         double t[2];
         ck_assert_int_eq(forms[f].roots(c, 1, (ray){ORIGIN, d}, t), 2);
