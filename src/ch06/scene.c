@@ -22,7 +22,7 @@ void scene_init(scene *s)
     s->default_light = (light){.kind = LIGHT_DIRECTIONAL,
                                .direction = vec3_normalize((vec3){1, -1, 1}),
                                .intensity = {1, 1, 1}};
-    s->max_depth = 10; /* see chapter 06's recursion chart */
+    s->max_depth = 64; /* a guarantee; the cutoff usually ends first */
     s->cutoff = 0.01;
 }
 
