@@ -11,6 +11,8 @@
  *     depth limit D from 0 to 64, no cutoff;
  *   cutoff,W,ns_per_pixel,rms,rms_error,rays_per_pixel
  *     cutoff W from 0.5 down to 1e-4, depth limit 100.
+ *   depth-rays,D,... and cutoff-rays,W,...: the same rays per pixel in the
+ *     error column, so that the chapter's quotes can be checked.
  * rms is over every pixel and channel of the linear image; rays per pixel
  * counts primary, shadow and reflection rays. Columns:
  * method,param,ns_per_op,error,error_kind, and rays_per_pixel. */
@@ -93,6 +95,7 @@ static void row(scene *s, image *img, const image *ref, const char *name, double
     double ns = time_render(s, img, depth, cutoff);
     double rays = render_with(s, img, depth, cutoff);
     printf("%s,%g,%.1f,%.6f,rms_error,%.3f\n", name, param, ns, rms(img, ref), rays);
+    printf("%s-rays,%g,%.1f,%.3f,rays_per_pixel,%.3f\n", name, param, ns, rays, rays);
     fflush(stdout);
 }
 
