@@ -59,7 +59,7 @@ chapters_upto = $(wordlist 1,$(patsubst 0%,%,$(1)),$(CHAPTERS))
 # c_files NN: the .c files that chapters 01..NN declare with file="..."
 c_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\([^"]*\.c\)".*/\1/p' $(call chapters_upto,$(1))))
 # scene_files NN: scenes declared by chapter NN itself, one figure each
-scene_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\(scenes\/ch$(1)-[^"]*\.scene\)".*/\1/p' $(word $(patsubst 0%,%,$(1)),$(CHAPTERS))))
+scene_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\(scenes\/ch$(1)-[^"]*\.scene\)".*/\1/p' $(filter chapters/$(1)-%,$(CHAPTERS))))
 # suites_upto NN: the Check suites of chapters 01..NN
 suites_upto = $(foreach n,$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS)),$(wildcard tests/ch$(n)_*.c))
 # previous NN: the chapter before NN, empty for the first
@@ -398,3 +398,11 @@ test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-
 
 clean:
 	rm -rf build bin
+
+# ---------------------------------------------------------------- chapter 06's diagrams
+# figures/ch06-diagram-NAME.svg is drawn by tools/diagrams/ch06.awk (which=NAME).
+CH06_DIAGRAMS := figures/ch06-diagram-shadow-ray.svg figures/ch06-diagram-reflection.svg
+figures/ch06-diagram-%.svg: tools/diagrams/ch06.awk
+	awk -v which=$* -f $< > $@.tmp
+	mv $@.tmp $@
+build/book.html: $(CH06_DIAGRAMS)
