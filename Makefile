@@ -10,7 +10,9 @@
 #   make chNN         build bin/chNN           make test-chNN  its suites
 #   make run-chNN     render its own scene     make diff-chNN  what it adds
 #   make src          rewrite the committed plain tangle src/chNN
-#   make figures      render figures/chNN-*.png
+#   make figures      render figures/chNN-*.png, the failure figures too
+#   make failures     render figures/chNN-failure-*.png: what a naive method
+#                     draws (left) next to what the program draws (right)
 #   make charts       run bench/ and redraw figures/chNN-*.svg
 #   make diagrams     redraw the explanatory figures/chNN-diagram-*.svg
 #   make book         build/book.html          make clean
@@ -57,7 +59,7 @@ chapters_upto = $(wordlist 1,$(patsubst 0%,%,$(1)),$(CHAPTERS))
 # c_files NN: the .c files that chapters 01..NN declare with file="..."
 c_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\([^"]*\.c\)".*/\1/p' $(call chapters_upto,$(1))))
 # scene_files NN: scenes declared by chapter NN itself, one figure each
-scene_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\(scenes\/ch$(1)-[^"]*\.scene\)".*/\1/p' $(word $(patsubst 0%,%,$(1)),$(CHAPTERS))))
+scene_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\(scenes\/ch$(1)-[^"]*\.scene\)".*/\1/p' $(filter chapters/$(1)-%,$(CHAPTERS))))
 # suites_upto NN: the Check suites of chapters 01..NN
 suites_upto = $(foreach n,$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS)),$(wildcard tests/ch$(n)_*.c))
 # previous NN: the chapter before NN, empty for the first
@@ -172,11 +174,21 @@ $$(O$(1))/bench/%.o: bench/%.c $$(T$(1))/.stamp | deps
 	@mkdir -p $$(@D)
 	$$(CC) $$(ALL_CFLAGS) $$(PNG_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
 
-$(B)/bench/ch$(1)_%: $$(O$(1))/bench/ch$(1)_%.o $$(LIB$(1))
+$(B)/bench/ch$(1)_%: $$(O$(1))/bench/ch$(1)_%.o $$(O$(1))/bench/timing.o $$(LIB$(1))
 	@mkdir -p $$(@D)
 	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
 
--include $$(wildcard $$(O$(1))/*.d $$(O$(1))/tests/*.d $$(O$(1))/bench/*.d)
+# Failure figures (failures/chNN_*.c) link it the same way.
+$$(O$(1))/failures/%.o: failures/%.c $$(T$(1))/.stamp | deps
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) $$(PNG_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
+
+$(B)/failures/ch$(1)_%: $$(O$(1))/failures/ch$(1)_%.o $$(LIB$(1))
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
+
+-include $$(wildcard $$(O$(1))/*.d $$(O$(1))/tests/*.d $$(O$(1))/bench/*.d \
+                     $$(O$(1))/failures/*.d)
 endef
 
 $(foreach n,$(NUMS),$(eval $(call chapter_rules,$(n))))
@@ -187,8 +199,33 @@ $(foreach n,$(NUMS),$(eval $(call chapter_rules,$(n))))
 ALL_FIGS := $(foreach n,$(NUMS),$(FIGS$(n)))
 BENCHES  := $(patsubst bench/%.c,$(B)/bench/%,$(wildcard bench/ch[0-9][0-9]_*.c))
 
+# ---------------------------------------------------------------- failures
+# failures/chNN_NAME.c renders what a naive method draws next to what the
+# program draws, into figures/chNN-failure-NAME.png (NAME with - for _), and
+# exits non-zero when the naive half no longer shows the failure.
+FAILURES := $(wildcard failures/ch[0-9][0-9]_*.c)
+failure_name = $(basename $(notdir $(1)))
+failure_chapter = $(firstword $(subst _, ,$(call failure_name,$(1))))
+failure_png = figures/$(call failure_chapter,$(1))-failure-$(subst _,-,$(patsubst \
+                $(call failure_chapter,$(1))_%,%,$(call failure_name,$(1)))).png
+FAILURE_BINS := $(foreach f,$(FAILURES),$(B)/failures/$(call failure_name,$(f)))
+FAILURE_FIGS := $(foreach f,$(FAILURES),$(call failure_png,$(f)))
+
+define failure_rule
+$(call failure_png,$(1)): $(B)/failures/$(call failure_name,$(1))
+	$$< $$@
+endef
+$(foreach f,$(FAILURES),$(eval $(call failure_rule,$(f))))
+
+.PHONY: failures check-failures
+failures: deps $(FAILURE_FIGS)
+
+# The committed failure figures must be what the programs draw now.
+check-failures: $(FAILURE_BINS) $(B)/tools/pngdiff
+	@sh tools/check_failures.sh $(B)/tools/pngdiff $(B)/failures $(FAILURE_FIGS)
+
 src: $(foreach n,$(NUMS),src-ch$(n))
-figures: $(ALL_FIGS)
+figures: $(ALL_FIGS) $(FAILURE_FIGS)
 benches: $(BENCHES)
 check-src: $(foreach n,$(NUMS),check-src-ch$(n))
 check-figures: $(foreach n,$(NUMS),check-figures-ch$(n))
@@ -215,9 +252,15 @@ check-diagrams: $(B)/tools/diagrams/diagrams
 
 # ---------------------------------------------------------------- charts
 # bench/chNN_x.c writes figures/chNN-x.csv; bench/chNN_x.gp draws figures/chNN-x*.svg
-# from it (gnuplot gets csv= the CSV and stem= figures/chNN-x).
+# from it (gnuplot gets csv= the CSV and stem= figures/chNN-x). Every bench
+# links bench/timing.c, the harness that times (bench/timing.h).
 # One chart: make chart-ch02_sphere. All of them, one after another so that
 # no two benchmarks share the machine: make charts.
+# The harness prints the flags the benchmarks were compiled with on the
+# machine line of every CSV.
+$(foreach n,$(NUMS),$(B)/obj/ch$(n)/bench/timing.o): \
+  ALL_CFLAGS += '-DBENCH_FLAGS="$(strip $(OPT) $(CFLAGS))"'
+
 chart-%: $(B)/bench/% | deps
 	$< > figures/$(subst _,-,$*).csv.tmp
 	mv figures/$(subst _,-,$*).csv.tmp figures/$(subst _,-,$*).csv
@@ -226,6 +269,14 @@ chart-%: $(B)/bench/% | deps
 
 charts: deps $(BENCHES)
 	@for b in $(notdir $(BENCHES)); do $(MAKE) --no-print-directory chart-$$b || exit 1; done
+
+# Can the speed axes be trusted? Every bench run twice: the largest ratio
+# between two runs of a method, and whether an ordering a quoted ratio
+# relies on flipped (tools/charts_check.sh). Writes only build/charts-check.
+charts-check: deps $(BENCHES)
+	@sh tools/charts_check.sh $(BENCHES)
+
+.PHONY: charts-check
 
 # ---------------------------------------------------------------- fuzzing
 # make fuzz FUZZ_SECONDS=60: each libFuzzer target for that long, built with
@@ -297,7 +348,7 @@ CHARTS := $(wildcard figures/ch[0-9][0-9]-*.svg)
 
 book: build/book.html
 build/book.html: book.md $(CHAPTERS) tools/weave.lua tools/weave_names.lua tools/weave.sh \
-                 tools/book.css $(ALL_FIGS) $(CHARTS) | deps
+                 tools/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) | deps
 	@mkdir -p $(@D)
 	sh tools/weave.sh book.md $@ $(CHAPTERS)
 
@@ -339,10 +390,19 @@ check-lines: $(TANGLE) | deps
 check-quotes:
 	@sh tools/check_quotes.sh bench/quotes.txt
 
-test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures check-diagrams check-book \
+test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures \
+      check-failures check-diagrams check-book \
       check-lines check-quotes check-commands check-book-browser
 	@$(MAKE) --no-print-directory check-code-width
 	@echo "make test: all passed"
 
 clean:
 	rm -rf build bin
+
+# ---------------------------------------------------------------- chapter 06's diagrams
+# figures/ch06-diagram-NAME.svg is drawn by tools/diagrams/ch06.awk (which=NAME).
+CH06_DIAGRAMS := figures/ch06-diagram-shadow-ray.svg figures/ch06-diagram-reflection.svg
+figures/ch06-diagram-%.svg: tools/diagrams/ch06.awk
+	awk -v which=$* -f $< > $@.tmp
+	mv $@.tmp $@
+build/book.html: $(CH06_DIAGRAMS)

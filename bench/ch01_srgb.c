@@ -3,22 +3,24 @@
  *   build/rel/bench/ch01_srgb > figures/ch01-srgb.csv     (make charts)
  *
  * Every method turns a linear value in [0, 1] into an 8-bit code. Speed: the
- * median over batches of the time per value over a fixed pseudo-random array.
+ * time per value over a fixed pseudo-random array of 2^20 values, every
+ * method timed in the same interleaved rounds (bench/timing.h).
  * Accuracy: the code each method gives against the correctly rounded code of
  * the exact sRGB curve evaluated in long double: the largest difference over
  * 2^20 + 1 evenly spaced values and both sides of every boundary between two
  * codes (where a method that is slightly off flips a code), and the fraction
- * of the evenly spaced values that get a wrong code. CSV columns:
- * method,param,ns_per_op,error,error_kind, one row per method and error kind. */
+ * of the evenly spaced values that get a wrong code. CSV: a machine line,
+ * then method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns, one row
+ * per method and error kind. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "image.h"
-#include "bench_util.h"
+#include "rng.h"
+#include "timing.h"
 
 
 /* ---------------------------------------------------------------- the methods */
@@ -63,15 +65,25 @@ static NOINLINE unsigned char by_root_fit(double L)
     return to_byte(0.662002687 * s1 + 0.684122060 * s2 - 0.323583601 * s3 - 0.0225411470 * L);
 }
 
-/* A table of codes indexed by L rounded to one of lut_size steps. */
-static unsigned char lut[65536];
+/* A table of codes indexed by L rounded to one of lut_size steps. The chart
+ * has four sizes, each its own table; lut points to the one in use. */
+enum { N_LUTS = 4 };
+static const int lut_sizes[N_LUTS] = {256, 1024, 4096, 65536};
+static unsigned char luts[N_LUTS][65536];
+static const unsigned char *lut;
 static int lut_size;
 
-static void lut_fill(int size)
+static void lut_fill(int which)
 {
-    lut_size = size;
+    int size = lut_sizes[which];
     for (int k = 0; k < size; k++)
-        lut[k] = (unsigned char)lroundl(255 * srgb_long((long double)k / (size - 1)));
+        luts[which][k] = (unsigned char)lroundl(255 * srgb_long((long double)k / (size - 1)));
+}
+
+static void lut_use(int which)
+{
+    lut = luts[which];
+    lut_size = lut_sizes[which];
 }
 
 static NOINLINE unsigned char by_lut(double L)
@@ -122,55 +134,77 @@ static accuracy measure_accuracy(method_fn f)
 /* ---------------------------------------------------------------- speed */
 
 #define N_INPUTS (1 << 20)
-#define BATCHES 11
 
 static double inputs[N_INPUTS];
-static double measure_ns(method_fn f)
+
+static void fill_inputs(void)
 {
-    double batch[BATCHES];
-    for (int b = 0; b < BATCHES; b++) {
-        double start = now_ns();
+    bench_rng rng = {0x2545F4914F6CDD1DULL}; /* fixed seed: the same inputs every run */
+    for (int k = 0; k < N_INPUTS; k++)
+        inputs[k] = bench_rng_uniform01(&rng);
+}
+
+/* reps encodings, whole passes over the inputs (the case's cycle). */
+static void run_method(void *ctx, long reps)
+{
+    method_fn f = *(method_fn *)ctx;
+    for (long done = 0; done < reps; done += N_INPUTS) {
         unsigned sum = 0;
         for (int k = 0; k < N_INPUTS; k++)
             sum += f(inputs[k]);
         bench_sink += sum;
-        batch[b] = (now_ns() - start) / N_INPUTS;
-    }
-    return median(batch, BATCHES);
-}
-
-static void fill_inputs(void)
-{
-    uint64_t state = 0x2545F4914F6CDD1DULL; /* fixed seed: the same inputs every run */
-    for (int k = 0; k < N_INPUTS; k++) {
-        state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-        inputs[k] = (double)(state >> 11) / 9007199254740992.0; /* 53 bits in [0, 1) */
     }
 }
 
-static void report(const char *name, const char *param, method_fn f)
+static void run_lut(void *ctx, long reps)
 {
-    double ns = measure_ns(f);
-    accuracy a = measure_accuracy(f);
-    printf("%s,%s,%.3f,%d,max_code_error\n", name, param, ns, a.max_code_error);
-    printf("%s,%s,%.3f,%.6f,wrong_code_fraction\n", name, param, ns, a.wrong_fraction);
+    lut_use(*(const int *)ctx);
+    run_method(&(method_fn){by_lut}, reps);
 }
+
+/* ---------------------------------------------------------------- report */
+
+enum { N_FORMULAS = 5, N_CASES = N_FORMULAS + N_LUTS };
 
 int main(void)
 {
+    static const struct {
+        const char *name, *param;
+        method_fn f;
+    } formulas[N_FORMULAS] = {
+        {"pow", "double", by_pow},         {"powf", "float", by_powf},
+        {"gamma", "2.2", by_gamma22},      {"sqrt", "2.0", by_sqrt},
+        {"root-fit", "3 sqrt", by_root_fit},
+    };
+    static method_fn fns[N_FORMULAS];
+    static int which[N_LUTS];
+    static char lut_params[N_LUTS][16];
+    bench_case cases[N_CASES];
     fill_inputs();
-    printf("method,param,ns_per_op,error,error_kind\n");
-    report("pow", "double", by_pow);
-    report("powf", "float", by_powf);
-    report("gamma", "2.2", by_gamma22);
-    report("sqrt", "2.0", by_sqrt);
-    report("root-fit", "3 sqrt", by_root_fit);
-    const int sizes[] = {256, 1024, 4096, 65536};
-    for (int k = 0; k < 4; k++) {
-        char param[16];
-        snprintf(param, sizeof param, "%d", sizes[k]);
-        lut_fill(sizes[k]);
-        report("lut", param, by_lut);
+    for (int m = 0; m < N_FORMULAS; m++) {
+        fns[m] = formulas[m].f;
+        cases[m] = (bench_case){formulas[m].name, formulas[m].param, run_method, &fns[m], N_INPUTS};
+    }
+    for (int t = 0; t < N_LUTS; t++) {
+        lut_fill(t);
+        which[t] = t;
+        snprintf(lut_params[t], sizeof lut_params[t], "%d", lut_sizes[t]);
+        cases[N_FORMULAS + t] = (bench_case){"lut", lut_params[t], run_lut, &which[t], N_INPUTS};
+    }
+    bench_timing timing[N_CASES];
+    bench_time_cases(cases, N_CASES, timing);
+
+    bench_print_machine();
+    bench_csv_header();
+    for (int c = 0; c < N_CASES; c++) {
+        method_fn f = c < N_FORMULAS ? fns[c] : by_lut;
+        if (c >= N_FORMULAS)
+            lut_use(c - N_FORMULAS);
+        accuracy a = measure_accuracy(f);
+        bench_row(cases[c].method, cases[c].param, &timing[c], "%.0f", a.max_code_error,
+                  "max_code_error");
+        bench_row(cases[c].method, cases[c].param, &timing[c], "%.6f", a.wrong_fraction,
+                  "wrong_code_fraction");
     }
     return 0;
 }

@@ -1,21 +1,23 @@
 # ch01_srgb.gp: figures/ch01-srgb.svg from the CSV of bench/ch01_srgb.c.
 #   gnuplot -e "csv='figures/ch01-srgb.csv'; stem='figures/ch01-srgb'" bench/ch01_srgb.gp
-# x: time per encoded channel; y: share of inputs that get a wrong 8-bit code.
-# A method with no wrong code is drawn on the bottom edge (a log axis has no 0).
-set terminal svg size 760,500 font "Helvetica,13" background "white"
+# x: time per encoded channel, the median with its interquartile range;
+# y: share of inputs that get a wrong 8-bit code, zero on its own row.
+load "bench/chart.gp"
+set terminal svg size 760,520 font "Helvetica,13" background "white"
 set output stem.'.svg'
-set datafile separator ","
-set logscale xy
+set bmargin 5
+set logscale x
 set xrange [0.8:30]
-set yrange [5e-5:300]
-set format y "%g"
-set grid
+set format x "%g"
+lo = -4
+hi = 2
+eval zero_axis_y
 set key bottom left box opaque font ",11"
-set xlabel "time per channel (ns, log scale)"
-set ylabel "inputs with a wrong 8-bit code (%, log scale; 0 drawn at 1e-4)"
+set xlabel "time per channel (ns, log scale; bars: interquartile range)"
+set ylabel "inputs with a wrong 8-bit code (%, log scale)"
 set title "Chapter 01: encoding sRGB, speed against accuracy"
-floor = 1e-4
-pct(f) = (100 * f < floor) ? floor : 100 * f
+eval machine_label
+pct(f) = at_zero(100 * f)
 is(m) = strcol(1) eq m && strcol(5) eq "wrong_code_fraction"
 plot csv using (is("pow") ? $3 : NaN):(pct($4)) with points pt 7 ps 1.6 lc rgb "#1b9e77" title "exact sRGB, double pow (used)", \
      csv using (is("powf") ? $3 : NaN):(pct($4)) with points pt 5 ps 1.4 lc rgb "#66a61e" title "exact sRGB, float powf", \
@@ -23,4 +25,5 @@ plot csv using (is("pow") ? $3 : NaN):(pct($4)) with points pt 7 ps 1.6 lc rgb "
      csv using (is("sqrt") ? $3 : NaN):(pct($4)) with points pt 11 ps 1.6 lc rgb "#e7298a" title "gamma 2.0 (one sqrt)", \
      csv using (is("root-fit") ? $3 : NaN):(pct($4)) with points pt 13 ps 1.6 lc rgb "#7570b3" title "fit in roots (three sqrt)", \
      csv using (is("lut") ? $3 : NaN):(pct($4)) with points pt 6 ps 1.4 lc rgb "#444444" title "lookup table", \
-     csv using (is("lut") ? $3 : NaN):(pct($4)):(sprintf(" %s entries", strcol(2))) with labels left offset 0.6,0 font ",10" notitle
+     csv using (is("lut") ? $3 : NaN):(pct($4)):(sprintf(" %s entries", strcol(2))) with labels left offset 0.6,0 font ",10" notitle, \
+     csv using (strcol(5) eq "wrong_code_fraction" ? $6 : NaN):(pct($4)):($7 - $6):(0) @quartile_bars

@@ -1,38 +1,43 @@
 # ch02_sphere.gp: two charts from the CSV of bench/ch02_sphere.c.
 #   gnuplot -e "csv='figures/ch02-sphere.csv'; stem='figures/ch02-sphere'" bench/ch02_sphere.gp
-# stem-speed-accuracy.svg: time per intersection against the median relative
-#   error of t for a unit sphere 10^4 radii away, one point per form.
+# stem-speed-accuracy.svg: time per intersection (median, interquartile
+#   range) against the median relative error of t for a unit sphere 10^4
+#   radii away, one point per form.
 # stem-distance.svg: median relative error of t and share of misclassified
 #   rays against the distance, one line per form and precision.
-# Zero has no place on a log axis: values below the floor are drawn on it.
-set datafile separator ","
-set grid
+# A relative error of exactly 0 has no place on a log axis and never occurs
+# here: it would be dropped (positive). Misclassified shares are often 0:
+# they get a row labelled 0 of their own (bench/chart.gp).
+load "bench/chart.gp"
 names = "geometric-double quadratic-double robust-double geometric-float quadratic-float robust-float"
 labels = "'geometric (sheet), double' 'textbook quadratic, double' 'robust (used), double' 'geometric (sheet), float' 'textbook quadratic, float' 'robust, float'"
 colors = "#d95f02 #7570b3 #1b9e77 #d95f02 #7570b3 #1b9e77"
 points = "7 5 9 6 4 8"
 is(m, kind) = strcol(1) eq m && strcol(5) eq kind
-floor = 1e-17
-at_floor(y) = y < floor ? floor : y
 
-set terminal svg size 760,500 font "Helvetica,13" background "white"
+set terminal svg size 760,520 font "Helvetica,13" background "white"
 set output stem.'-speed-accuracy.svg'
-set title "Chapter 02: ray-sphere forms at 10^4 radii, speed against accuracy"
+set bmargin 5
+set title "Chapter 02: ray-sphere forms, unit sphere at distance 10^{4}: speed against accuracy"
 set logscale y
 set format y "10^{%L}"
 set xrange [0:*]
 set offsets graph 0, graph 0.12, 0, 0
 set yrange [1e-17:1e-2]
-set xlabel "time per intersection (ns)"
+set xlabel "time per intersection (ns; bars: interquartile range)"
 set ylabel "median relative error of t"
 set key bottom left box opaque font ",11"
-plot for [k=1:6] csv using (is(word(names,k),"t_rel_median") && $2 == 10000 ? $3 : NaN):(at_floor($4)) \
-     with points pt (word(points,k)+0) ps 1.6 lc rgb word(colors,k) title word(labels,k)
+eval machine_label
+plot for [k=1:6] csv using (is(word(names,k),"t_rel_median") && $2 == 10000 ? $3 : NaN):(positive($4)) \
+       with points pt (word(points,k)+0) ps 1.6 lc rgb word(colors,k) title word(labels,k), \
+     csv using (strcol(5) eq "t_rel_median" && $2 == 10000 ? $6 : NaN):(positive($4)):($7 - $6):(0) @quartile_bars
 
 set output stem.'-distance.svg'
-set terminal svg size 760,780 font "Helvetica,13" background "white"
+set terminal svg size 760,800 font "Helvetica,13" background "white"
+unset label 100 # the machine line goes under the bottom panel only
 set multiplot layout 2,1 title "Chapter 02: where each ray-sphere form fails"
 unset title
+set bmargin
 set logscale xy
 set format x "10^{%L}"
 set xrange [1:1.5e7]
@@ -41,12 +46,15 @@ set offsets 0, 0, 0, 0
 set ylabel "median relative error of t"
 set yrange [1e-22:1e-2]
 set key bottom right box opaque font ",10"
-plot for [k=1:6] csv using (is(word(names,k),"t_rel_median") ? $2 : NaN):(at_floor($4)) \
+plot for [k=1:6] csv using (is(word(names,k),"t_rel_median") ? $2 : NaN):(positive($4)) \
      with linespoints pt (word(points,k)+0) ps 0.8 lc rgb word(colors,k) title word(labels,k)
-set ylabel "misclassified rays (%; 0 drawn at 10^{-3})"
-set format y "%g"
-set yrange [1e-3:100]
+set bmargin 5
+eval machine_label
+set ylabel "misclassified rays (%, log scale)"
+lo = -2
+hi = 2
+eval zero_axis_y
 set key top left box opaque font ",10"
-plot for [k=1:6] csv using (is(word(names,k),"misclassified") ? $2 : NaN):(100 * $4 < 1e-3 ? 1e-3 : 100 * $4) \
+plot for [k=1:6] csv using (is(word(names,k),"misclassified") ? $2 : NaN):(at_zero(100 * $4)) \
      with linespoints pt (word(points,k)+0) ps 0.8 lc rgb word(colors,k) title word(labels,k)
 unset multiplot

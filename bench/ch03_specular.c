@@ -18,16 +18,18 @@
  *                              error over v with l at a fixed angle from n
  *                              (param "k:angle")
  *   exponent                   for blinn-fitted: the fitted e (in error)
- * ns_per_op is the median time of one evaluation (cosine and power) over
- * batches. Columns: method,param,ns_per_op,error,error_kind. */
+ * ns_per_op is the time of one evaluation (cosine and power), all ten
+ * method and k pairs timed in the same interleaved rounds (bench/timing.h).
+ * CSV: a machine line, then the columns
+ * method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 
 #include "shade.h"
-#include "bench_util.h"
+#include "rng.h"
+#include "timing.h"
 
 #define N_PAIRS 200000
 
@@ -78,13 +80,9 @@ static NOINLINE double by_blinn_fitted(vec3 n, vec3 l, vec3 v, double k)
 
 static vec3 lights[N_PAIRS], viewers[N_PAIRS];
 static const vec3 NORMAL = {0, 0, 1};
-static uint64_t rng = 0x853C49E6748FEA9BULL; /* fixed seed */
+static bench_rng rng = {0x853C49E6748FEA9BULL}; /* fixed seed */
 
-static double uniform01(void)
-{
-    rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(rng >> 11) / 9007199254740992.0;
-}
+static double uniform01(void) { return bench_rng_uniform01(&rng); }
 
 /* A direction uniform over the hemisphere z > 0. */
 static vec3 hemisphere_direction(void)
@@ -155,18 +153,22 @@ static void fit_blinn_exponent(double k)
 
 /* ---------------------------------------------------------------- speed */
 
-static double time_method(highlight_fn f, double k)
+typedef struct {
+    highlight_fn f;
+    double k, exponent; /* exponent: blinn-fitted's for this k */
+} timed_method;
+
+/* reps evaluations, whole passes over the pairs. */
+static void run_method(void *ctx, long reps)
 {
-    enum { BATCHES = 11 };
-    double batch[BATCHES];
-    for (int b = 0; b < BATCHES; b++) {
-        double start = now_ns(), sum = 0;
+    const timed_method *m = ctx;
+    fitted_exponent = m->exponent;
+    for (long done = 0; done < reps; done += N_PAIRS) {
+        double sum = 0;
         for (int i = 0; i < N_PAIRS; i++)
-            sum += f(NORMAL, lights[i], viewers[i], k);
+            sum += m->f(NORMAL, lights[i], viewers[i], m->k);
         bench_sink += sum;
-        batch[b] = (now_ns() - start) / N_PAIRS;
     }
-    return median(batch, BATCHES);
 }
 
 /* ---------------------------------------------------------------- report */
@@ -179,29 +181,54 @@ static const struct {
     {"phong-schlick", by_phong_schlick}, {"blinn-4k", by_blinn_4k},
     {"blinn-fitted", by_blinn_fitted},
 };
+enum { N_METHODS = sizeof methods / sizeof methods[0], N_K = 2, N_CASES = N_METHODS * N_K };
+
+static void report(const bench_case *c, const timed_method *m, const bench_timing *t)
+{
+    fitted_exponent = m->exponent;
+    error_stats e = hemisphere_error(m->f, m->k, N_PAIRS);
+    bench_row(c->method, c->param, t, "%.4e", e.max_abs, "max_abs");
+    bench_row(c->method, c->param, t, "%.4e", e.rms, "rms");
+    if (m->f == by_blinn_4k || m->f == by_blinn_fitted)
+        for (int theta = 0; theta <= 88; theta += 4) {
+            char param[32];
+            snprintf(param, sizeof param, "%g:%d", m->k, theta);
+            bench_row(c->method, param, t, "%.4e", error_at_incidence(m->f, m->k, theta),
+                      "max_abs_at_incidence");
+        }
+}
 
 int main(void)
 {
+    static const double shininess[N_K] = {10, 100};
+    static char params[N_K][16];
+    static timed_method timed[N_CASES];
+    bench_case cases[N_CASES];
+    bench_timing timing[N_CASES];
     for (int i = 0; i < N_PAIRS; i++) {
         lights[i] = hemisphere_direction();
         viewers[i] = hemisphere_direction();
     }
-    printf("method,param,ns_per_op,error,error_kind\n");
-    const double shininess[] = {10, 100};
-    for (int s = 0; s < 2; s++) {
-        double k = shininess[s];
-        fit_blinn_exponent(k);
-        for (size_t m = 0; m < sizeof methods / sizeof methods[0]; m++) {
-            double ns = time_method(methods[m].f, k);
-            error_stats e = hemisphere_error(methods[m].f, k, N_PAIRS);
-            printf("%s,%g,%.3f,%.4e,max_abs\n", methods[m].name, k, ns, e.max_abs);
-            printf("%s,%g,%.3f,%.4e,rms\n", methods[m].name, k, ns, e.rms);
-            if (methods[m].f == by_blinn_4k || methods[m].f == by_blinn_fitted)
-                for (int theta = 0; theta <= 88; theta += 4)
-                    printf("%s,%g:%d,%.3f,%.4e,max_abs_at_incidence\n", methods[m].name, k, theta,
-                           ns, error_at_incidence(methods[m].f, k, theta));
+    for (int s = 0; s < N_K; s++) {
+        fit_blinn_exponent(shininess[s]);
+        snprintf(params[s], sizeof params[s], "%g", shininess[s]);
+        for (int m = 0; m < N_METHODS; m++) {
+            int c = s * N_METHODS + m;
+            timed[c] = (timed_method){methods[m].f, shininess[s], fitted_exponent};
+            cases[c] = (bench_case){methods[m].name, params[s], run_method, &timed[c], N_PAIRS};
         }
-        printf("blinn-fitted,%g,0,%.4f,exponent\n", k, fitted_exponent);
+    }
+    bench_time_cases(cases, N_CASES, timing);
+
+    bench_print_machine();
+    bench_csv_header();
+    for (int s = 0; s < N_K; s++) {
+        for (int m = 0; m < N_METHODS; m++) {
+            int c = s * N_METHODS + m;
+            report(&cases[c], &timed[c], &timing[c]);
+        }
+        bench_row("blinn-fitted", params[s], NULL, "%.4f", timed[s * N_METHODS].exponent,
+                  "exponent");
     }
     return 0;
 }

@@ -13,36 +13,30 @@
  * of them has leaked through a crack. Each method is run in double and float, with the mesh at the
  * origin and translated by (1e4, 1e4, 1e4) (origins moving with it). Rows:
  *   METHOD-PRECISION,origin|1e4,ns_per_test,leak rate,leak_rate
- * where ns_per_test is the median time of one ray-triangle test over
- * batches (every ray against every triangle, mesh at the origin).
+ * where ns_per_test is the time of one ray-triangle test (every fourth ray
+ * against every triangle, mesh at the origin), the six methods timed in the
+ * same interleaved rounds (bench/timing.h).
  *
  * Brute force. The first N triangles of the Stanford bunny (N from 100 to
- * all 69,451), tested by mesh_intersect against rays aimed into its box:
+ * all 69,451), tested by mesh_intersect against 64 rays aimed into its box,
+ * the seven N timed in the same interleaved rounds:
  *   brute-force,N,ns_per_ray,triangles tested per ray,tests_per_ray
- * Columns: method,param,ns_per_op,error,error_kind. */
+ * CSV: a machine line, then the columns
+ * method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 
 #include "mesh.h"
 #include "obj.h"
-#include "bench_util.h"
+#include "rng.h"
+#include "timing.h"
 
-static const struct {
-    const char *name, *precision;
-    triangle_method test;
-} methods[] = {
-    {"sheet", "double", triangle_hit_sheet},
-    {"moller-trumbore", "double", triangle_hit_moller_trumbore},
-    {"watertight", "double", triangle_hit_watertight},
-    {"sheet", "float", triangle_hit_sheet_float},
-    {"moller-trumbore", "float", triangle_hit_moller_trumbore_float},
-    {"watertight", "float", triangle_hit_watertight_float},
-};
-#define N_METHODS (int)(sizeof methods / sizeof methods[0])
+/* The six methods as chapter 4 lists them: name, precision, function. */
+#define methods TRIANGLE_METHODS
+#define N_METHODS TRIANGLE_METHOD_COUNT
 
 /* ---------------------------------------------------------------- the closed mesh */
 
@@ -102,13 +96,10 @@ static void make_icosphere(void)
 
 /* ---------------------------------------------------------------- the rays */
 
-static uint64_t rng = 0xDA3E39CB94B95BDBULL; /* fixed seed */
+#define SEED 0xDA3E39CB94B95BDBULL /* fixed seed */
+static bench_rng rng = {SEED};
 
-static double uniform01(void)
-{
-    rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(rng >> 11) / 9007199254740992.0;
-}
+static double uniform01(void) { return bench_rng_uniform01(&rng); }
 
 /* A unit vector within 60 degrees of the unit vector axis. */
 static vec3 near_direction(vec3 axis)
@@ -157,7 +148,7 @@ static void aim_at(vec3 target, vec3 offset, int a, int b)
 static void make_rays(vec3 offset)
 {
     n_rays = 0;
-    rng = 0xDA3E39CB94B95BDBULL; /* the same rays at both offsets */
+    rng.state = SEED; /* the same rays at both offsets */
     for (int f = 0; f < n_faces; f++)
         for (int e = 0; e < 3; e++) {
             int a = faces[f][e], b = faces[f][(e + 1) % 3];
@@ -190,12 +181,15 @@ static double leak_rate(triangle_method test, vec3 offset)
     return (double)leaks / n_rays;
 }
 
-static double ns_per_test(triangle_method test)
+/* ---------------------------------------------------------------- speed */
+
+/* reps ray-triangle tests: whole passes of every fourth ray against every
+ * triangle of the mesh at the origin. */
+static void run_test(void *ctx, long reps)
 {
-    enum { BATCHES = 7 };
-    double batch[BATCHES];
-    for (int b = 0; b < BATCHES; b++) {
-        double start = now_ns();
+    triangle_method test = *(const triangle_method *)ctx;
+    long pass = (long)((n_rays + 3) / 4) * n_faces;
+    for (long done = 0; done < reps; done += pass) {
         int hits = 0;
         triangle_hit th;
         for (int k = 0; k < n_rays; k += 4)
@@ -203,12 +197,55 @@ static double ns_per_test(triangle_method test)
                 hits += test(vertices[faces[f][0]], vertices[faces[f][1]], vertices[faces[f][2]],
                              rays[k], 0, INFINITY, &th);
         bench_sink += hits;
-        batch[b] = (now_ns() - start) / ((double)((n_rays + 3) / 4) * n_faces);
     }
-    return median(batch, BATCHES);
+}
+
+static void leaks_and_speed(void)
+{
+    static triangle_method tests[N_METHODS];
+    static char names[N_METHODS][48];
+    bench_case cases[N_METHODS];
+    bench_timing timing[N_METHODS];
+    make_rays((vec3){0, 0, 0});
+    for (int m = 0; m < N_METHODS; m++) {
+        tests[m] = methods[m].hit;
+        snprintf(names[m], sizeof names[m], "%s-%s", methods[m].name, methods[m].precision);
+        cases[m] = (bench_case){names[m], "origin", run_test, &tests[m],
+                                (long)((n_rays + 3) / 4) * n_faces};
+    }
+    bench_time_cases(cases, N_METHODS, timing);
+    const vec3 offsets[2] = {{0, 0, 0}, {1e4, 1e4, 1e4}};
+    const char *placed[2] = {"origin", "1e4"};
+    for (int o = 0; o < 2; o++) {
+        make_rays(offsets[o]);
+        for (int m = 0; m < N_METHODS; m++)
+            bench_row(names[m], placed[o], &timing[m], "%.6f",
+                      leak_rate(methods[m].hit, offsets[o]), "leak_rate");
+    }
 }
 
 /* ---------------------------------------------------------------- brute force */
+
+enum { PROBES = 64, N_COUNTS = 7 };
+static ray probes[PROBES];
+
+typedef struct {
+    mesh view; /* the bunny with triangle_count cut to N */
+    long long tests;
+} brute_force_case;
+
+/* reps rays against the first N triangles, whole passes over the probes. */
+static void run_brute_force(void *ctx, long reps)
+{
+    brute_force_case *b = ctx;
+    for (long done = 0; done < reps; done += PROBES) {
+        hit h;
+        int hits = 0;
+        for (int k = 0; k < PROBES; k++)
+            hits += mesh_intersect(&b->view, probes[k], 0, INFINITY, &h, &b->tests);
+        bench_sink += hits;
+    }
+}
 
 static void brute_force(const char *path)
 {
@@ -221,47 +258,40 @@ static void brute_force(const char *path)
     mesh_compute_bounds(&bunny);
     vec3 centre = vec3_scale(vec3_add(bunny.bounds.lo, bunny.bounds.hi), 0.5);
     vec3 size = vec3_sub(bunny.bounds.hi, bunny.bounds.lo);
-    enum { RAYS = 200 };
-    ray probe[RAYS];
-    for (int k = 0; k < RAYS; k++) { /* from the front, into the box */
+    for (int k = 0; k < PROBES; k++) { /* from the front, into the box */
         vec3 aim = {centre.x + size.x * (uniform01() - 0.5), centre.y + size.y * (uniform01() - 0.5),
                     centre.z};
         vec3 origin = {centre.x, centre.y, centre.z - 4 * size.z};
-        probe[k] = (ray){origin, vec3_normalize(vec3_sub(aim, origin))};
+        probes[k] = (ray){origin, vec3_normalize(vec3_sub(aim, origin))};
     }
     int all = bunny.triangle_count;
-    const int counts[] = {100, 300, 1000, 3000, 10000, 30000, all};
-    for (int c = 0; c < 7; c++) {
-        bunny.triangle_count = counts[c] < all ? counts[c] : all;
-        long long tests = 0;
-        hit h;
-        double start = now_ns();
-        for (int k = 0; k < RAYS; k++)
-            bench_sink += mesh_intersect(&bunny, probe[k], 0, INFINITY, &h, &tests);
-        double ns = (now_ns() - start) / RAYS;
-        printf("brute-force,%d,%.1f,%.1f,tests_per_ray\n", bunny.triangle_count, ns,
-               (double)tests / RAYS);
+    const int counts[N_COUNTS] = {100, 300, 1000, 3000, 10000, 30000, all};
+    static brute_force_case runs[N_COUNTS];
+    static char params[N_COUNTS][16];
+    bench_case cases[N_COUNTS];
+    bench_timing timing[N_COUNTS];
+    for (int c = 0; c < N_COUNTS; c++) {
+        runs[c].view = bunny;
+        runs[c].view.triangle_count = counts[c] < all ? counts[c] : all;
+        snprintf(params[c], sizeof params[c], "%d", runs[c].view.triangle_count);
+        cases[c] = (bench_case){"brute-force", params[c], run_brute_force, &runs[c], PROBES};
     }
-    bunny.triangle_count = all;
+    bench_time_cases(cases, N_COUNTS, timing);
+    for (int c = 0; c < N_COUNTS; c++) {
+        runs[c].tests = 0;
+        run_brute_force(&runs[c], PROBES); /* one pass, counted */
+        bench_row("brute-force", params[c], &timing[c], "%.1f", (double)runs[c].tests / PROBES,
+                  "tests_per_ray");
+    }
     mesh_free(&bunny);
 }
 
 int main(int argc, char **argv)
 {
     make_icosphere();
-    printf("method,param,ns_per_op,error,error_kind\n");
-    const vec3 offsets[2] = {{0, 0, 0}, {1e4, 1e4, 1e4}};
-    const char *placed[2] = {"origin", "1e4"};
-    make_rays(offsets[0]);
-    double ns[N_METHODS];
-    for (int m = 0; m < N_METHODS; m++)
-        ns[m] = ns_per_test(methods[m].test);
-    for (int o = 0; o < 2; o++) {
-        make_rays(offsets[o]);
-        for (int m = 0; m < N_METHODS; m++)
-            printf("%s-%s,%s,%.3f,%.6f,leak_rate\n", methods[m].name, methods[m].precision,
-                   placed[o], ns[m], leak_rate(methods[m].test, offsets[o]));
-    }
+    bench_print_machine();
+    bench_csv_header();
+    leaks_and_speed();
     brute_force(argc > 1 ? argv[1] : "meshes/bunny.obj");
     return 0;
 }

@@ -1,43 +1,50 @@
 # ch04_triangle.gp: two charts from the CSV of bench/ch04_triangle.c.
 #   gnuplot -e "csv='figures/ch04-triangle.csv'; stem='figures/ch04-triangle'" bench/ch04_triangle.gp
-# stem-speed-accuracy.svg: time per ray-triangle test against the share of
-#   rays aimed at shared edges and vertices that miss every triangle there;
+# stem-speed-accuracy.svg: time per ray-triangle test (median,
+#   interquartile range) against the share of rays aimed at shared edges and
+#   vertices that miss every triangle there, zero on a row of its own;
 #   filled marks: mesh at the origin, open marks: translated by 1e4.
-# stem-brute-force.svg: time per ray against the number of triangles tested.
-set datafile separator ","
-set grid
-set terminal svg size 760,500 font "Helvetica,13" background "white"
+# stem-brute-force.svg: time per ray (median, interquartile range) against
+#   the number of triangles tested.
+load "bench/chart.gp"
+set terminal svg size 760,520 font "Helvetica,13" background "white"
 set output stem.'-speed-accuracy.svg'
+set bmargin 5
 set title "Chapter 04: ray-triangle tests, speed against leaks through shared edges"
 names = "sheet-double moller-trumbore-double watertight-double sheet-float moller-trumbore-float watertight-float"
 labels = "'sheet (areas), double' 'Moller-Trumbore, double' 'watertight (used), double' 'sheet (areas), float' 'Moller-Trumbore, float' 'watertight, float'"
 colors = "#d95f02 #7570b3 #1b9e77 #d95f02 #7570b3 #1b9e77"
 points = "5 9 7 13 11 15"  # filled; the open version is one less
 is(m, where) = strcol(1) eq m && strcol(2) eq where && strcol(5) eq "leak_rate"
-floor = 1e-3
-pct(f) = 100 * f < floor ? floor : 100 * f
-set logscale y
-set yrange [5e-4:100]
-set format y "%g"
+lo = -3
+hi = 2
+eval zero_axis_y
+pct(f) = at_zero(100 * f)
 set xrange [0:*]
 set offsets graph 0.02, graph 0.15, 0, 0
-set xlabel "time per ray-triangle test (ns)"
-set ylabel "rays through edges and vertices that leak (%; 0 drawn at 10^{-3})"
+set xlabel "time per ray-triangle test (ns; bars: interquartile range)"
+set ylabel "rays through edges and vertices that leak (%)"
 set key at graph 0.98, graph 0.52 right top box opaque font ",10" title "filled: mesh at the origin, open: moved by 10^4"
+eval machine_label
 plot for [k=1:6] csv using (is(word(names,k),"origin") ? $3 : NaN):(pct($4)) \
        with points pt (word(points,k)+0) ps 1.8 lc rgb word(colors,k) title word(labels,k), \
      for [k=1:6] csv using (is(word(names,k),"1e4") ? $3 : NaN):(pct($4)) \
-       with points pt (word(points,k)-1) ps 2.2 lc rgb word(colors,k) notitle
+       with points pt (word(points,k)-1) ps 2.2 lc rgb word(colors,k) notitle, \
+     csv using (strcol(5) eq "leak_rate" ? $6 : NaN):(pct($4)):($7 - $6):(0) @quartile_bars
 
 set output stem.'-brute-force.svg'
 set title "Chapter 04: brute force, the Stanford bunny's first N triangles"
+unset arrow 90
 set logscale xy
 set offsets 0, 0, 0, 0
 set xrange [50:2e5]
 set yrange [*:*]
+set ytics auto
 set format x "10^{%L}"
 set format y "10^{%L}"
 set xlabel "triangles in the mesh (log scale)"
-set ylabel "time per ray (ns, log scale)"
-set key top left box opaque font ",11" title ""
-plot csv using (strcol(1) eq "brute-force" ? $2 : NaN):3 with linespoints pt 7 ps 1.2 lc rgb "#d95f02" title "every triangle tested (bounding box hit)"
+set ylabel "time per ray (ns, log scale; bars: interquartile range)"
+set key default
+set key inside top left box opaque font ",11"
+plot csv using (strcol(1) eq "brute-force" ? $2 : NaN):3 with linespoints pt 7 ps 1.2 lc rgb "#d95f02" title "every triangle tested (bounding box hit)", \
+     csv using (strcol(1) eq "brute-force" ? $2 : NaN):6:(0):($7 - $6) @quartile_bars

@@ -13,6 +13,7 @@
 #include "scene.h"
 #include "test_util.h"
 #include "sphere.h"
+#include "../bench/rng.h"
 
 typedef int (*roots_fn)(vec3, double, ray, double[2]);
 
@@ -32,13 +33,9 @@ static const struct {
 static const vec3 ORIGIN = {0, 0, 0};
 static const vec3 PLUS_Z = {0, 0, 1};
 
-static uint64_t rng = 12345; /* fixed seed: the same rays every run */
+static bench_rng rng = {12345}; /* fixed seed: the same rays every run */
 
-static double uniform(double lo, double hi)
-{
-    rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
-    return lo + (hi - lo) * (double)(rng >> 11) / 9007199254740992.0;
-}
+static double uniform(double lo, double hi) { return bench_rng_uniform(&rng, lo, hi); }
 
 static vec3 random_unit(void)
 {
@@ -130,6 +127,11 @@ START_TEST(test_negative_d_squared_from_rounding_is_a_hit)
     double D2 = c.x * c.x + c.y * c.y + c.z * c.z - along * along;
     ck_assert_msg(D2 < 0, "precondition: D^2 = %g should round below 0", D2);
     ck_assert(isnan(sqrt(D2))); /* the sheet's D: every comparison with it is false */
+    double sheet_D = sqrt(D2);
+    ck_assert(!(sheet_D <= 1)); /* so the sheet's "D <= r: a hit" misses this head-on ray */
+    double t_hit;
+    sphere sp = {c, 1};
+    ck_assert(sphere_hit_t(&sp, (ray){ORIGIN, d}, 0, INFINITY, &t_hit)); /* the program hits */
     for (int f = 0; f < 3; f++) { /* the double forms */
         double t[2];
         ck_assert_int_eq(forms[f].roots(c, 1, (ray){ORIGIN, d}, t), 2);
@@ -190,7 +192,7 @@ static form_score score_form(roots_fn roots, double D, int n_rays)
     vec3 e1 = vec3_normalize((vec3){1.0, 0.0, -0.3});
     vec3 e2 = {axis.y * e1.z - axis.z * e1.y, axis.z * e1.x - axis.x * e1.z,
                axis.x * e1.y - axis.y * e1.x};
-    rng = 777;
+    rng.state = 777;
     for (int k = 0; k < n_rays; k++) {
         double u = uniform(-1.2, 1.2), v = uniform(-1.2, 1.2);
         ray r = {ORIGIN, vec3_normalize(vec3_add(c, vec3_add(vec3_scale(e1, u), vec3_scale(e2, v))))};
@@ -338,6 +340,20 @@ START_TEST(test_scene_add_object_grows)
 }
 END_TEST
 
+START_TEST(test_the_method_table_names_each_form)
+{
+    ck_assert_int_eq(SPHERE_ROOTS_METHOD_COUNT, N_FORMS);
+    for (int f = 0; f < N_FORMS; f++) {
+        const sphere_roots_method *m = &SPHERE_ROOTS_METHODS[f];
+        char name[48];
+        snprintf(name, sizeof name, "%s%s", m->name,
+                 strcmp(m->precision, "float") == 0 ? " float" : "");
+        ck_assert_msg(m->roots == forms[f].roots && strcmp(name, forms[f].name) == 0,
+                      "entry %d is %s", f, name);
+    }
+}
+END_TEST
+
 Suite *ch02_spheres_suite(void)
 {
     Suite *s = suite_create("ch02 spheres");
@@ -348,6 +364,7 @@ Suite *ch02_spheres_suite(void)
     tcase_add_test(roots, test_sphere_behind_the_origin_is_not_seen);
     tcase_add_test(roots, test_origin_inside_sees_the_far_side);
     tcase_add_test(roots, test_roots_are_ordered);
+    tcase_add_test(roots, test_the_method_table_names_each_form);
     tcase_add_test(roots, test_normals_are_unit_and_outward);
     tcase_add_test(roots, test_nearest_of_several_spheres_wins);
     suite_add_tcase(s, roots);

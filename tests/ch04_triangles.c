@@ -481,12 +481,27 @@ START_TEST(test_fuzz_collinear_triangle_is_not_hit)
 }
 END_TEST
 
+START_TEST(test_the_method_table_names_each_method)
+{
+    ck_assert_int_eq(TRIANGLE_METHOD_COUNT, N_METHODS);
+    for (int m = 0; m < N_METHODS; m++) {
+        const triangle_method_entry *e = &TRIANGLE_METHODS[m];
+        char name[48];
+        snprintf(name, sizeof name, "%s%s", e->name,
+                 strcmp(e->precision, "float") == 0 ? " float" : "");
+        ck_assert_msg(e->hit == methods[m].test && strcmp(name, methods[m].name) == 0,
+                      "entry %d is %s", m, name);
+    }
+}
+END_TEST
+
 Suite *ch04_triangles_suite(void)
 {
     Suite *s = suite_create("ch04 triangles");
     TCase *formulas = tcase_create("formulas");
     tcase_add_test(formulas, test_barycentric_coordinates_rebuild_the_hit_point);
     tcase_add_test(formulas, test_winding_decides_the_normal);
+    tcase_add_test(formulas, test_the_method_table_names_each_method);
     tcase_add_test(formulas, test_smooth_normals_are_unit_and_blend_the_vertices);
     suite_add_tcase(s, formulas);
 

@@ -1,0 +1,295 @@
+/* scene.c: the scene's defaults, its contents, and the queries over them
+ * (chapter 01). */
+#include "scene.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "array.h"
+
+void scene_init(scene *s)
+{
+    memset(s, 0, sizeof *s);
+    s->cam.fov_deg = 60.0;
+    s->cam.width = 320;
+    s->cam.height = 240;
+    s->bg.kind = BACKGROUND_GRADIENT;
+    s->bg.bottom = (vec3){1.0, 1.0, 1.0};
+    s->bg.top = (vec3){0.3, 0.5, 1.0};
+    s->ambient = (vec3){1, 1, 1};
+    s->tone.alpha = s->tone.beta = 1;
+    s->default_material = material_default();
+    s->default_light = (light){.kind = LIGHT_DIRECTIONAL,
+                               .direction = vec3_normalize((vec3){1, -1, 1}),
+                               .intensity = {1, 1, 1}};
+    s->max_depth = 64; /* a guarantee; the cutoff usually ends first */
+    s->cutoff = 0.01;
+}
+
+void scene_free(scene *s)
+{
+    free(s->objects);
+    free(s->materials);
+    free(s->lights);
+    for (int k = 0; k < s->mesh_count; k++)
+        mesh_free(&s->meshes[k]);
+    free(s->meshes);
+    memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
+}
+
+bool scene_add_object(scene *s, object o)
+{
+    object *grown = array_grow(s->objects, s->object_count,
+                               &s->object_capacity, SCENE_MAX_OBJECTS,
+                               sizeof o);
+    if (grown == NULL)
+        return false;
+    s->objects = grown;
+    s->objects[s->object_count++] = o;
+    return true;
+}
+
+/* What the search keeps of the nearest hit so far. */
+typedef struct {
+    const object *object; /* NULL: nothing hit yet */
+    double t;             /* its distance: the search's t_max */
+    int primitive;        /* which triangle of a mesh; 0 otherwise */
+    double b[3];          /* where on that triangle: barycentrics */
+} nearest_hit;
+
+typedef struct {
+    ray r;
+    double t_min;
+    nearest_hit best;
+    render_stats *stats;
+    mesh_ray prepared; /* valid once is_prepared is set */
+    bool is_prepared;
+    bool any_hit; /* a shadow ray's search: the first hit settles it */
+} scene_search;
+
+/* The search's ray with its per-ray constants, made on first use. */
+static const mesh_ray *prepared_ray(scene_search *q)
+{
+    if (!q->is_prepared)
+        q->prepared = mesh_ray_of(q->r), q->is_prepared = true;
+    return &q->prepared;
+}
+
+/* The hit point moved back onto the sphere, with its error bound. */
+static void sphere_refine_hit(const sphere *sp, hit *h)
+{
+    vec3 out = vec3_sub(h->point, sp->center);
+    double length = vec3_length(out);
+    if (!(length > 0)) { /* on the centre: no direction to push along */
+        h->error = vec3_scale(vec3_abs(h->point), gamma_bound(8));
+        return;
+    }
+    vec3 q = vec3_scale(out, sp->radius / length); /* 5 roundings */
+    h->point = vec3_add(sp->center, q);            /* and 1 more */
+    h->error = vec3_add(vec3_scale(vec3_abs(q), gamma_bound(5)),
+                        vec3_scale(vec3_abs(h->point), gamma_bound(1)));
+}
+
+/* How wrong the watertight test's t can be for a ray that starts at p
+ * near the triangle (a, b, c), as a distance from its plane. */
+static double triangle_test_error(vec3 a, vec3 b, vec3 c, vec3 p)
+{
+    vec3 corners[3] = {a, b, c};
+    double M = 0; /* the triangle's reach from p: largest coordinate */
+    for (int k = 0; k < 3; k++) {
+        vec3 r = vec3_abs(vec3_sub(corners[k], p));
+        M = fmax(M, fmax(r.x, fmax(r.y, r.z)));
+    }
+    double twice_area = vec3_length(vec3_cross(vec3_sub(b, a),
+                                               vec3_sub(c, a)));
+    if (!(twice_area > 0))
+        return INFINITY; /* never hit: the test rejects it */
+    return sqrt(3) * (gamma_bound(3) * M +
+                      48 * gamma_bound(4) * M * M * M / twice_area);
+}
+
+/* The hit point rebuilt from its barycentric coordinates w, with its
+ * error bound, widened by the error of the test that could meet the
+ * triangle again. */
+static void triangle_refine_hit(vec3 a, vec3 b, vec3 c, const double w[3],
+                                hit *h)
+{
+    vec3 pa = vec3_scale(a, w[0]), pb = vec3_scale(b, w[1]),
+         pc = vec3_scale(c, w[2]);
+    h->point = vec3_add(vec3_add(pa, pb), pc);
+    vec3 sum = vec3_add(vec3_add(vec3_abs(pa), vec3_abs(pb)), vec3_abs(pc));
+    double test = triangle_test_error(a, b, c, h->point);
+    h->error = vec3_add(vec3_scale(sum, gamma_bound(7)),
+                        (vec3){test, test, test});
+}
+
+static void refine_hit_point(const scene *s, const nearest_hit *best, hit *h)
+{
+    const object *o = best->object;
+    switch (o->kind) {
+    case SHAPE_SPHERE:
+        sphere_refine_hit(&o->sphere, h);
+        break;
+    case SHAPE_TRIANGLE: {
+        const vec3 *c = o->corners;
+        triangle_refine_hit(c[0], c[1], c[2], best->b, h);
+        break;
+    }
+    case SHAPE_MESH: {
+        const mesh *m = &s->meshes[o->mesh];
+        const int *v = m->triangles[best->primitive].v;
+        triangle_refine_hit(m->vertices[v[0]], m->vertices[v[1]],
+                            m->vertices[v[2]], best->b, h);
+        break;
+    }
+    }
+}
+
+/* Narrows q->best when q->r, the ray in o's own space, hits o's shape
+ * nearer than q->best.t. */
+static void shape_intersect(const scene *s, const object *o, scene_search *q)
+{
+    (void)s; /* chapter 04's meshes live in the scene */
+    double t;
+    switch (o->kind) {
+    case SHAPE_SPHERE:
+        q->stats->sphere_tests++;
+        if (sphere_hit_t(&o->sphere, q->r, q->t_min, q->best.t, &t))
+            q->best = (nearest_hit){.object = o, .t = t};
+        break;
+    case SHAPE_TRIANGLE: {
+        triangle_hit th;
+        q->stats->triangle_tests++;
+        const vec3 *c = o->corners;
+        if (triangle_hit_prepared(&prepared_ray(q)->shear, c[0], c[1], c[2],
+                                  q->t_min, q->best.t, &th))
+            q->best = (nearest_hit){o, th.t, 0, {th.b[0], th.b[1], th.b[2]}};
+        break;
+    }
+    case SHAPE_MESH: {
+        triangle_hit th;
+        int k = mesh_nearest(&s->meshes[o->mesh], prepared_ray(q), q->t_min,
+                             q->best.t, &th, q->stats);
+        if (k >= 0)
+            q->best = (nearest_hit){o, th.t, k, {th.b[0], th.b[1], th.b[2]}};
+        break;
+    }
+    }
+}
+
+static void object_intersect(const scene *s, const object *o, scene_search *q)
+{
+    if (q->any_hit && q->best.object != NULL)
+        return; /* an occluder is found: no other object can change that */
+    shape_intersect(s, o, q);
+}
+
+/* Fills the geometry of h for the nearest hit best, found along r. */
+static void shape_fill_hit(const scene *s, const nearest_hit *best, ray r,
+                           hit *h)
+{
+    (void)s;
+    const object *o = best->object;
+    switch (o->kind) {
+    case SHAPE_SPHERE:
+        sphere_fill_hit(&o->sphere, r, best->t, h);
+        break;
+    case SHAPE_TRIANGLE: {
+        const vec3 *c = o->corners;
+        triangle_fill_hit(c[0], c[1], c[2], r, best->t, h);
+        break;
+    }
+    case SHAPE_MESH: {
+        triangle_hit th = {best->t, {best->b[0], best->b[1], best->b[2]}};
+        mesh_fill_hit(&s->meshes[o->mesh], best->primitive, r, &th, h);
+        break;
+    }
+    }
+}
+
+static void object_fill_hit(const scene *s, const nearest_hit *best, ray r,
+                            hit *h)
+{
+    const object *o = best->object;
+    ray local = r; /* the ray in o's own space: the same until chapter 05 */
+    shape_fill_hit(s, best, local, h);
+    refine_hit_point(s, best, h);
+    h->color = o->color;
+    h->material = o->material;
+}
+
+/* Tests every object in turn. */
+static void search_objects(const scene *s, scene_search *q)
+{
+    for (int k = 0; k < s->object_count; k++)
+        object_intersect(s, &s->objects[k], q);
+}
+
+bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
+                     hit *h, render_stats *stats)
+{
+    scene_search q = {.r = r, .t_min = t_min, .stats = stats,
+                      .best = {.object = NULL, .t = t_max}};
+    search_objects(s, &q);
+    if (q.best.object == NULL)
+        return false;
+    object_fill_hit(s, &q.best, r, h);
+    return true;
+}
+
+const material *scene_material(const scene *s, int index)
+{
+    return index == 0 ? &s->default_material : &s->materials[index - 1];
+}
+
+bool scene_add_material(scene *s, material m)
+{
+    material *grown = array_grow(s->materials, s->material_count,
+                                 &s->material_capacity, SCENE_MAX_MATERIALS,
+                                 sizeof m);
+    if (grown == NULL)
+        return false;
+    s->materials = grown;
+    s->materials[s->material_count++] = m;
+    return true;
+}
+
+bool scene_add_light(scene *s, light L)
+{
+    light *grown = array_grow(s->lights, s->light_count, &s->light_capacity,
+                              SCENE_MAX_LIGHTS, sizeof L);
+    if (grown == NULL)
+        return false;
+    s->lights = grown;
+    s->lights[s->light_count++] = L;
+    return true;
+}
+
+int scene_add_mesh(scene *s, mesh m)
+{
+    mesh *grown = array_grow(s->meshes, s->mesh_count, &s->mesh_capacity,
+                             SCENE_MAX_MESHES, sizeof m);
+    if (grown == NULL)
+        return -1;
+    s->meshes = grown;
+    s->meshes[s->mesh_count] = m;
+    return s->mesh_count++;
+}
+
+bool scene_occluded(const scene *s, ray r, double t_min, double t_max,
+                    render_stats *stats)
+{
+    scene_search q = {.r = r, .t_min = t_min, .stats = stats,
+                      .best = {.object = NULL, .t = t_max},
+                      .any_hit = true};
+    search_objects(s, &q);
+    return q.best.object != NULL;
+}
+
+bool scene_can_shadow(const scene *s, const hit *h)
+{
+    if (s->object_count != 1)
+        return s->object_count > 1; /* another object may be in the way */
+    shape_kind kind = s->objects[0].kind;
+    return kind == SHAPE_MESH || (kind == SHAPE_SPHERE && h->inside);
+}

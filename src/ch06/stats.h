@@ -1,0 +1,23 @@
+/* stats.h: counts of the work a render does, for --stats (chapter 01).
+ *
+ * Each chapter adds the counters of its work to the hook. All members are
+ * counts, so that two render_stats add member by member. */
+#ifndef STATS_H
+#define STATS_H
+
+typedef struct {
+    long long primary_rays;
+    long long sphere_tests;
+    long long triangle_tests;
+    long long box_tests;
+    long long light_tests;          /* a point and a light: a possible ray */
+    long long shadow_rays;          /* cast */
+    long long shadow_rays_blocked;  /* of those, the ones that hit something */
+    long long shadow_skipped_dark;  /* the light arrives with no intensity */
+    long long shadow_skipped_alone; /* nothing in the scene could block it */
+    long long reflection_rays;
+    long long reflection_skipped_depth;  /* at the depth limit */
+    long long reflection_skipped_weight; /* below the contribution cutoff */
+} render_stats;
+
+#endif
