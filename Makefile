@@ -54,16 +54,20 @@ NUMS     := $(foreach c,$(CHAPTERS),$(firstword $(subst -, ,$(notdir $(c)))))
 # tangled scenes/ folder gets a link to the repository's meshes/ folder.
 link_meshes = if [ -d $(1)/scenes ]; then ln -sfn $(2)meshes $(1)/scenes/meshes; fi
 
-# chapters_upto NN: the Markdown of chapters 01..NN (chapters are numbered 01, 02, ...)
-chapters_upto = $(wordlist 1,$(patsubst 0%,%,$(1)),$(CHAPTERS))
+# nums_upto NN: the two-digit numbers 01..NN, whether or not each has a chapter
+TWO_DIGITS := $(shell seq -w 1 99)
+nums_upto = $(wordlist 1,$(patsubst 0%,%,$(1)),$(TWO_DIGITS))
+# chapters_upto NN: the Markdown of the chapters numbered 01..NN (a chapter
+# may be written before the one before it: the numbers may have gaps)
+chapters_upto = $(foreach c,$(CHAPTERS),$(if $(filter $(firstword $(subst -, ,$(notdir $(c)))),$(call nums_upto,$(1))),$(c)))
 # c_files NN: the .c files that chapters 01..NN declare with file="..."
 c_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\([^"]*\.c\)".*/\1/p' $(call chapters_upto,$(1))))
 # scene_files NN: scenes declared by chapter NN itself, one figure each
 scene_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\(scenes\/ch$(1)-[^"]*\.scene\)".*/\1/p' $(filter chapters/$(1)-%,$(CHAPTERS))))
 # suites_upto NN: the Check suites of chapters 01..NN
-suites_upto = $(foreach n,$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS)),$(wildcard tests/ch$(n)_*.c))
+suites_upto = $(foreach n,$(filter $(call nums_upto,$(1)),$(NUMS)),$(wildcard tests/ch$(n)_*.c))
 # previous NN: the chapter before NN, empty for the first
-previous = $(lastword $(filter-out $(1),$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS))))
+previous = $(lastword $(filter-out $(1),$(filter $(call nums_upto,$(1)),$(NUMS))))
 
 .PHONY: all test deps src figures charts book clean check-src check-figures \
         check-book check-lines check-quotes test-tangle tools benches \
