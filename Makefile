@@ -403,10 +403,3 @@ test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-
 clean:
 	rm -rf build bin
 
-# ---------------------------------------------------------------- chapter 06's diagrams
-# figures/ch06-diagram-NAME.svg is drawn by tools/diagrams/ch06.awk (which=NAME).
-CH06_DIAGRAMS := figures/ch06-diagram-shadow-ray.svg figures/ch06-diagram-reflection.svg
-figures/ch06-diagram-%.svg: tools/diagrams/ch06.awk
-	awk -v which=$* -f $< > $@.tmp
-	mv $@.tmp $@
-build/book.html: $(CH06_DIAGRAMS)

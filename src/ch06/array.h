@@ -1,4 +1,4 @@
-/* array.h: arrays that grow by doubling, within a limit (chapter 02). */
+/* array.h: arrays that grow by doubling, within a limit (chapter 2). */
 #ifndef ARRAY_H
 #define ARRAY_H
 

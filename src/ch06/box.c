@@ -1,4 +1,4 @@
-/* box.c: the ray-box test (chapter 04). */
+/* box.c: the ray-box test (chapter 4). */
 #include "box.h"
 
 #include <float.h>

@@ -1,4 +1,4 @@
-/* box.h: axis-aligned boxes and the ray-box test (chapter 04). */
+/* box.h: axis-aligned boxes and the ray-box test (chapter 4). */
 #ifndef BOX_H
 #define BOX_H
 

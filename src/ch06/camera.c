@@ -1,4 +1,4 @@
-/* camera.c: primary rays (chapter 01). See camera.h. */
+/* camera.c: primary rays (chapter 1). See camera.h. */
 #include "camera.h"
 
 double camera_pixel_size(const camera *cam)

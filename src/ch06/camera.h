@@ -1,4 +1,4 @@
-/* camera.h: the pinhole camera and its primary rays (chapter 01).
+/* camera.h: the pinhole camera and its primary rays (chapter 1).
  *
  * The eye is at the origin looking down +z, x to the right, y up; the image
  * plane is z = 1. Pixel (i, j) is column i from the left, row j from the

@@ -1,4 +1,4 @@
-/* hit.h: what a ray hit (chapter 02).
+/* hit.h: what a ray hit (chapter 2).
  *
  * Every shape fills the same record. Normals are unit vectors pointing out
  * of the surface (for a closed shape, away from its inside), whichever way
@@ -16,7 +16,9 @@ typedef struct {
     vec3 geometric_normal; /* the surface's own normal: unit, outward */
     bool inside;           /* the ray arrived from inside: <d, n_g> > 0 */
     vec3 color;
+    /* <<hit members>> ch03 */
     int material;
+    /* <<hit members>> += ch06 */
     vec3 error; /* |point - the true surface point| <= error, per coordinate */
 } hit;
 

@@ -1,4 +1,4 @@
-/* image.c: image buffer, sRGB encoding and PNG output (chapter 01). */
+/* image.c: image buffer, sRGB encoding and PNG output (chapter 1). */
 #include "image.h"
 
 #include <errno.h>
@@ -32,6 +32,7 @@ void image_free(image *img)
     img->pixels = NULL;
 }
 
+/* <<colour encoding>> ch01 */
 double srgb_encode(double linear)
 {
     if (!(linear > 0.0)) /* also catches NaN */
@@ -55,6 +56,7 @@ double gamma_encode(double linear, double gamma)
     return linear >= 1.0 ? 1.0 : pow(linear, 1.0 / gamma);
 }
 
+/* <<PNG output>> ch01 */
 /* 8-bit sRGB bytes of the whole image, row by row; NULL if out of memory.
  * 3 * width * height cannot overflow: image_init capped it at 3 * 2^24. */
 static unsigned char *encode_rows(const image *img)
@@ -69,6 +71,7 @@ static unsigned char *encode_rows(const image *img)
     return bytes;
 }
 
+/* <<write bytes to a PNG stream>> ch01 */
 /* Encodes the bytes as PNG into an open stream. */
 static bool write_png_stream(FILE *out, const image *img,
                              const unsigned char *bytes, char *why,
@@ -108,6 +111,7 @@ bool image_write_png_stream(const image *img, FILE *out, char *why,
     return ok;
 }
 
+/* <<write a file by renaming a temporary>> ch01 */
 bool image_write_png(const image *img, const char *path, char *why,
                      size_t why_size)
 {
@@ -125,6 +129,7 @@ bool image_write_png(const image *img, const char *path, char *why,
         snprintf(why, why_size, "cannot create %s: %s", tmp, strerror(errno));
         goto done;
     }
+    /* <<give the new file ordinary permissions>> ch01 */
     mode_t mask = umask(0);
     umask(mask);
     fchmod(fd, 0666 & ~mask);

@@ -1,4 +1,4 @@
-/* image.h: a linear RGB image and its PNG output (chapter 01).
+/* image.h: a linear RGB image and its PNG output (chapter 1).
  *
  * Pixels hold linear light (not yet gamma encoded), row by row from the top.
  * image_write_png encodes them as 8-bit sRGB. */
@@ -34,6 +34,7 @@ static inline void image_set(image *img, int i, int j, vec3 c)
     img->pixels[(size_t)j * img->width + i] = c;
 }
 
+/* <<colour encoding declarations>> ch01 */
 /* The sRGB transfer function: linear light in [0, 1] to encoded [0, 1].
  * Values below 0 (and NaN) give 0, values above 1 give 1. */
 double srgb_encode(double linear);

@@ -1,4 +1,4 @@
-/* light.h: point, directional and spot lights (chapter 03). */
+/* light.h: point, directional and spot lights (chapter 3). */
 #ifndef LIGHT_H
 #define LIGHT_H
 
@@ -8,6 +8,7 @@ typedef enum {
     LIGHT_POINT,
     LIGHT_DIRECTIONAL,
     LIGHT_SPOT,
+    /* <<light kinds>> ch06 */
     LIGHT_AREA, /* a disc, shining like many point lights spread over it */
 } light_kind;
 
@@ -19,6 +20,7 @@ typedef struct {
     double attenuation[3]; /* point and spot: 1 / (a1 + a2 r + a3 r^2) */
     double cos_cutoff;     /* spot: cos Theta_L */
     double exponent;       /* spot: k in cos^k Theta */
+    /* <<light members>> ch06 */
     double radius; /* area: the disc's radius, > 0 */
     int samples;   /* area: how many point lights stand for it */
     enum sample_pattern {

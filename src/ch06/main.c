@@ -1,4 +1,4 @@
-/* main.c: the command line of the renderer (chapter 01). */
+/* main.c: the command line of the renderer (chapter 1). */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -9,6 +9,7 @@
 
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
+    /* <<default scene>> ch06 */
     "# Chapter 06: mirror spheres and hard shadows on a floor.\n"
         "camera fov 50\n"
         "image 320 240\n"
@@ -36,6 +37,7 @@ static const char DEFAULT_SCENE[] =
         "light directional direction 1 -1.5 0.8 intensity 0.35 0.35 0.4\n"
     ;
 
+/* <<command-line options>> ch01 */
 typedef struct {
     const char *scene_path; /* NULL: the built-in scene */
     const char *output;
@@ -66,6 +68,7 @@ static bool option_error(const char *program, const char *message,
     return false;
 }
 
+/* <<parse a size>> ch01 */
 static bool parse_size(const char *text, int *width, int *height)
 {
     char *x, *end;
@@ -81,6 +84,7 @@ static bool parse_size(const char *text, int *width, int *height)
     return true;
 }
 
+/* <<parse the arguments>> ch01 */
 static bool parse_options(int argc, char **argv, options *opt)
 {
     *opt = (options){.output = "out.png"};
@@ -114,6 +118,7 @@ static bool parse_options(int argc, char **argv, options *opt)
     return true;
 }
 
+/* <<loading the scene>> ch01 */
 static void print_scene_error(const scene_error *err)
 {
     if (err->line > 0)
@@ -144,6 +149,7 @@ static bool load_scene(const options *opt, scene *s)
     return true;
 }
 
+/* <<timing>> ch01 */
 static double seconds_now(void)
 {
     struct timespec t;
@@ -155,9 +161,12 @@ static void print_stats(const render_stats *st, double load_s, double render_s,
                         double write_s)
 {
     fprintf(stderr, "primary rays       %lld\n", st->primary_rays);
+    /* <<print statistics>> ch02 */
     fprintf(stderr, "sphere tests       %lld\n", st->sphere_tests);
+    /* <<print statistics>> += ch04 */
     fprintf(stderr, "triangle tests     %lld\n", st->triangle_tests);
     fprintf(stderr, "box tests          %lld\n", st->box_tests);
+    /* <<print statistics>> += ch06 */
     long long facing = st->shadow_rays + st->shadow_skipped_dark +
                        st->shadow_skipped_alone;
     fprintf(stderr, "shadow rays        %lld (%lld blocked)\n", st->shadow_rays,
@@ -176,6 +185,7 @@ static void print_stats(const render_stats *st, double load_s, double render_s,
             1e3 * load_s, 1e3 * render_s, 1e3 * write_s);
 }
 
+/* <<rendering in bands>> ch01 */
 enum { BAND_ROWS = 8 }; /* small enough for smooth progress, large enough to
                            cost nothing */
 
@@ -200,6 +210,7 @@ static void render_in_bands(const scene *s, image *img, render_stats *stats)
     }
 }
 
+/* <<main>> ch01 */
 int main(int argc, char **argv)
 {
     options opt;

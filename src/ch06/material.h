@@ -1,4 +1,4 @@
-/* material.h: the finish of a surface (chapter 03). */
+/* material.h: the finish of a surface (chapter 3). */
 #ifndef MATERIAL_H
 #define MATERIAL_H
 
@@ -13,6 +13,7 @@ typedef struct {
     double ambient, diffuse, specular; /* rho_a, rho_d, rho_s in [0, 1] */
     double shininess;                  /* k >= 1 */
     highlight_model highlight;
+    /* <<material members>> ch06 */
     double reflect; /* alpha_reflect in [0, 1]: 0 (the default) not a mirror */
 } material;
 

@@ -1,8 +1,9 @@
-/* mesh.c: meshes, their normals, and ray-mesh intersection (chapter 04). */
+/* mesh.c: meshes, their normals, and ray-mesh intersection (chapter 4). */
 #include "mesh.h"
 
 #include <stdlib.h>
 
+/* <<mesh storage>> ch04 */
 void mesh_free(mesh *m)
 {
     free(m->vertices);
@@ -24,6 +25,7 @@ void mesh_compute_bounds(mesh *m)
     m->bounds = (box){lo, hi};
 }
 
+/* <<smooth normals>> ch04 */
 /* (b - a) x (c - a): the sheet's n, twice the area long. */
 static vec3 face_normal(vec3 a, vec3 b, vec3 c)
 {
@@ -61,6 +63,7 @@ bool mesh_smooth_normals(mesh *m)
     return true;
 }
 
+/* <<intersecting a mesh>> ch04 */
 /* n normalised, or the zero vector when it has no usable length. */
 static vec3 unit_or_zero(vec3 n)
 {

@@ -1,4 +1,4 @@
-/* mesh.h: indexed triangle meshes and their intersection (chapter 04).
+/* mesh.h: indexed triangle meshes and their intersection (chapter 4).
  *
  * A mesh owns its arrays; mesh_free releases them. Triangles index into
  * vertices; triangle_normals, when not NULL, gives for each triangle the
@@ -34,6 +34,7 @@ void mesh_compute_bounds(mesh *m);
  * makes every triangle use them; false when out of memory. */
 bool mesh_smooth_normals(mesh *m);
 
+/* <<mesh intersection declarations>> ch04 */
 /* The hit record of a hit at th on the triangle (a, b, c): flat shaded. */
 void triangle_fill_hit(vec3 a, vec3 b, vec3 c, ray r, double t, hit *h);
 

@@ -1,9 +1,10 @@
-/* obj.c: the OBJ reader (chapter 04). See obj.h. */
+/* obj.c: the OBJ reader (chapter 4). See obj.h. */
 #include "obj.h"
 
 #include <stdlib.h>
 #include "array.h"
 
+/* <<reading OBJ statements>> ch04 */
 static bool add_vec3(parser *p, vec3 **items, int *count, int *capacity,
                      int max, const char *plural, vec3 value)
 {
@@ -162,6 +163,7 @@ static bool parse_obj_statement(parser *p, void *target)
     return true;
 }
 
+/* <<reading an OBJ file>> ch04 */
 bool mesh_parse_obj(mesh *m, const char *text, size_t length,
                     const char *name, parse_error *err)
 {

@@ -1,4 +1,4 @@
-/* obj.h: reading Wavefront OBJ meshes (chapter 04).
+/* obj.h: reading Wavefront OBJ meshes (chapter 4).
  *
  * On bad input the readers fill err (the OBJ file's line and column, or
  * line 0 when the file cannot be read) and return false; the mesh then

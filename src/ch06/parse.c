@@ -1,4 +1,4 @@
-/* parse.c: lines, tokens, numbers and located errors (chapter 01). */
+/* parse.c: lines, tokens, numbers and located errors (chapter 1). */
 #include "parse.h"
 
 #include <errno.h>
@@ -12,6 +12,7 @@ static int column_of(const parser *p, const char *at)
     return (int)(at - p->line) + 1;
 }
 
+/* <<parser errors>> ch01 */
 bool parse_fail_at(parser *p, const char *at, const char *format, ...)
 {
     parse_error *err = p->err;
@@ -39,6 +40,7 @@ bool parse_expected(parser *p, const char *format, ...)
                          p->token, shown < p->token_length ? "..." : "");
 }
 
+/* <<tokens>> ch01 */
 bool parse_is_blank(char c) { return c == ' ' || c == '\t' || c == '\r'; }
 
 bool parse_next_token(parser *p)
@@ -63,6 +65,7 @@ bool parse_token_is(const parser *p, const char *word)
            memcmp(p->token, word, (size_t)p->token_length) == 0;
 }
 
+/* <<numbers and colours>> ch01 */
 bool parse_number(parser *p, const char *what, double *out)
 {
     char text[64];
@@ -104,6 +107,7 @@ bool parse_color(parser *p, const char *what, vec3 *out)
     *out = (vec3){c[0], c[1], c[2]};
     return true;
 }
+/* <<numbers and colours>> += ch02 */
 
 bool parse_point(parser *p, const char *what, vec3 *out)
 {
@@ -118,6 +122,7 @@ bool parse_point(parser *p, const char *what, vec3 *out)
     *out = (vec3){c[0], c[1], c[2]};
     return true;
 }
+/* <<numbers and colours>> += ch03 */
 
 bool parse_coefficient(parser *p, const char *what, double *out)
 {
@@ -149,6 +154,7 @@ bool parse_direction(parser *p, const char *what, vec3 *out)
     return true;
 }
 
+/* <<parse every line>> ch01 */
 bool parse_lines(const char *text, size_t length, const char *name,
                  parse_error *err, line_parser parse_line, void *target)
 {
@@ -173,6 +179,7 @@ bool parse_lines(const char *text, size_t length, const char *name,
     return true;
 }
 
+/* <<reading a file>> ch01 */
 static bool file_error(parse_error *err, const char *path, const char *message)
 {
     snprintf(err->file, sizeof err->file, "%s", path);

@@ -1,5 +1,5 @@
 /* parse.h: reading text files line by line, with located errors
- * (chapter 01).
+ * (chapter 1).
  *
  * A parser walks a text one line at a time, cutting each line into tokens
  * separated by blanks; '#' outside a token ends the line. Every function
@@ -28,6 +28,7 @@ typedef struct {
     parse_error *err;
 } parser;
 
+/* <<parser declarations>> ch01 */
 /* Fills p->err at the column of at, formatted like printf; returns false. */
 bool parse_fail_at(parser *p, const char *at, const char *format, ...);
 
@@ -64,11 +65,13 @@ bool parse_lines(const char *text, size_t length, const char *name,
  * NUL-terminated; false with err filled (line 0) when it cannot be read. */
 bool parse_read_file(const char *path, long max_bytes, char **text,
                      size_t *length, parse_error *err);
+/* <<parser declarations>> += ch02 */
 
 /* A point: three numbers within +-PARSE_MAX_COORDINATE. */
 bool parse_point(parser *p, const char *what, vec3 *out);
 
 #define PARSE_MAX_COORDINATE 1e50 /* fourth powers of coordinates stay finite */
+/* <<parser declarations>> += ch03 */
 
 /* A coefficient rho in [0, 1], as the sheet requires of rho_a, rho_d,
  * rho_s; a number greater than 0; a direction: three numbers, not all

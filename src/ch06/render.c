@@ -1,6 +1,7 @@
-/* render.c: rendering a scene into an image (chapter 01). */
+/* render.c: rendering a scene into an image (chapter 1). */
 #include "render.h"
 
+/* <<render includes>> ch03 */
 #include "shade.h"
 
 void render_rows(const scene *s, image *img, int first, int last,
@@ -12,6 +13,7 @@ void render_rows(const scene *s, image *img, int first, int last,
             ray r = camera_view_ray(&view, i, j);
             stats->primary_rays++;
             vec3 c = trace(s, r, 0, stats);
+            /* <<map the pixel's light for display>> ch03 */
             if (s->tone.alpha != 1 || s->tone.beta != 1) /* the defaults only clip */
                 c = (vec3){tone_map(c.x, s->tone.alpha, s->tone.beta),
                            tone_map(c.y, s->tone.alpha, s->tone.beta),

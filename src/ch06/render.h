@@ -1,4 +1,4 @@
-/* render.h: rendering a scene into an image (chapter 01). */
+/* render.h: rendering a scene into an image (chapter 1). */
 #ifndef RENDER_H
 #define RENDER_H
 

@@ -4,6 +4,7 @@
 
 #include <string.h>
 
+/* <<the random stream>> ch06 */
 /* One SplitMix64 step: advance by the golden ratio, then mix the bits. */
 static uint64_t splitmix64(uint64_t *state)
 {
@@ -32,6 +33,7 @@ double sample_next(sample_stream *g)
     return (double)(splitmix64(&g->state) >> 11) * 0x1p-53;
 }
 
+/* <<points in the unit square>> ch06 */
 /* Cell k of n equal cells: m rows, the first n % m of them one cell
  * wider; row r is as tall as its share of the cells. */
 static void cell_of(int k, int n, double *x0, double *y0, double *w,
@@ -63,6 +65,7 @@ void sample_square(enum sample_pattern pattern, int k, int n,
     *u = x0 + jx * w, *v = y0 + jy * h;
 }
 
+/* <<points on the disc>> ch06 */
 vec3 disc_point(vec3 center, vec3 axis, double radius, double u, double v)
 {
     double sign = copysign(1.0, axis.z);

@@ -1,10 +1,11 @@
 /* scene.c: the scene's defaults, its contents, and the queries over them
- * (chapter 01). */
+ * (chapter 1). */
 #include "scene.h"
 
 #include <stdlib.h>
 #include <string.h>
 
+/* <<scene helpers>> ch02 */
 #include "array.h"
 
 void scene_init(scene *s)
@@ -16,27 +17,33 @@ void scene_init(scene *s)
     s->bg.kind = BACKGROUND_GRADIENT;
     s->bg.bottom = (vec3){1.0, 1.0, 1.0};
     s->bg.top = (vec3){0.3, 0.5, 1.0};
+    /* <<scene member defaults>> ch03 */
     s->ambient = (vec3){1, 1, 1};
     s->tone.alpha = s->tone.beta = 1;
     s->default_material = material_default();
     s->default_light = (light){.kind = LIGHT_DIRECTIONAL,
                                .direction = vec3_normalize((vec3){1, -1, 1}),
                                .intensity = {1, 1, 1}};
+    /* <<scene member defaults>> += ch06 */
     s->max_depth = 64; /* a guarantee; the cutoff usually ends first */
     s->cutoff = 0.01;
 }
 
 void scene_free(scene *s)
 {
+    /* <<free scene members>> ch02 */
     free(s->objects);
+    /* <<free scene members>> += ch03 */
     free(s->materials);
     free(s->lights);
+    /* <<free scene members>> += ch04 */
     for (int k = 0; k < s->mesh_count; k++)
         mesh_free(&s->meshes[k]);
     free(s->meshes);
     memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
 }
 
+/* <<scene contents>> ch02 */
 bool scene_add_object(scene *s, object o)
 {
     object *grown = array_grow(s->objects, s->object_count,
@@ -49,6 +56,7 @@ bool scene_add_object(scene *s, object o)
     return true;
 }
 
+/* <<the search for the nearest hit>> ch02 */
 /* What the search keeps of the nearest hit so far. */
 typedef struct {
     const object *object; /* NULL: nothing hit yet */
@@ -62,11 +70,14 @@ typedef struct {
     double t_min;
     nearest_hit best;
     render_stats *stats;
+    /* <<search members>> ch04 */
     mesh_ray prepared; /* valid once is_prepared is set */
     bool is_prepared;
+    /* <<search members>> += ch06 */
     bool any_hit; /* a shadow ray's search: the first hit settles it */
 } scene_search;
 
+/* <<search helpers>> ch04 */
 /* The search's ray with its per-ray constants, made on first use. */
 static const mesh_ray *prepared_ray(scene_search *q)
 {
@@ -74,6 +85,7 @@ static const mesh_ray *prepared_ray(scene_search *q)
         q->prepared = mesh_ray_of(q->r), q->is_prepared = true;
     return &q->prepared;
 }
+/* <<search helpers>> += ch06 */
 
 /* The hit point moved back onto the sphere, with its error bound. */
 static void sphere_refine_hit(const sphere *sp, hit *h)
@@ -149,7 +161,7 @@ static void refine_hit_point(const scene *s, const nearest_hit *best, hit *h)
  * nearer than q->best.t. */
 static void shape_intersect(const scene *s, const object *o, scene_search *q)
 {
-    (void)s; /* chapter 04's meshes live in the scene */
+    (void)s; /* chapter 4's meshes live in the scene */
     double t;
     switch (o->kind) {
     case SHAPE_SPHERE:
@@ -157,6 +169,7 @@ static void shape_intersect(const scene *s, const object *o, scene_search *q)
         if (sphere_hit_t(&o->sphere, q->r, q->t_min, q->best.t, &t))
             q->best = (nearest_hit){.object = o, .t = t};
         break;
+    /* <<intersect the other shapes>> ch04 */
     case SHAPE_TRIANGLE: {
         triangle_hit th;
         q->stats->triangle_tests++;
@@ -179,6 +192,7 @@ static void shape_intersect(const scene *s, const object *o, scene_search *q)
 
 static void object_intersect(const scene *s, const object *o, scene_search *q)
 {
+    /* <<search an object in its own space>> ch06 */
     if (q->any_hit && q->best.object != NULL)
         return; /* an occluder is found: no other object can change that */
     shape_intersect(s, o, q);
@@ -194,6 +208,7 @@ static void shape_fill_hit(const scene *s, const nearest_hit *best, ray r,
     case SHAPE_SPHERE:
         sphere_fill_hit(&o->sphere, r, best->t, h);
         break;
+    /* <<fill the hits of the other shapes>> ch04 */
     case SHAPE_TRIANGLE: {
         const vec3 *c = o->corners;
         triangle_fill_hit(c[0], c[1], c[2], r, best->t, h);
@@ -211,10 +226,12 @@ static void object_fill_hit(const scene *s, const nearest_hit *best, ray r,
                             hit *h)
 {
     const object *o = best->object;
-    ray local = r; /* the ray in o's own space: the same until chapter 05 */
+    ray local = r; /* the ray in o's own space: the same until chapter 5 */
     shape_fill_hit(s, best, local, h);
+    /* <<bound the rounding of the hit point>> ch06 */
     refine_hit_point(s, best, h);
     h->color = o->color;
+    /* <<fill the object's part of the hit>> ch03 */
     h->material = o->material;
 }
 
@@ -236,6 +253,7 @@ bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
     object_fill_hit(s, &q.best, r, h);
     return true;
 }
+/* <<scene contents>> += ch03 */
 
 const material *scene_material(const scene *s, int index)
 {
@@ -264,6 +282,7 @@ bool scene_add_light(scene *s, light L)
     s->lights[s->light_count++] = L;
     return true;
 }
+/* <<scene contents>> += ch04 */
 
 int scene_add_mesh(scene *s, mesh m)
 {
@@ -275,6 +294,7 @@ int scene_add_mesh(scene *s, mesh m)
     s->meshes[s->mesh_count] = m;
     return s->mesh_count++;
 }
+/* <<scene contents>> += ch06 */
 
 bool scene_occluded(const scene *s, ray r, double t_min, double t_max,
                     render_stats *stats)

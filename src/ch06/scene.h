@@ -1,4 +1,4 @@
-/* scene.h: what to render (chapter 01).
+/* scene.h: what to render (chapter 1).
  *
  * scene_init fills in the defaults, scene_free releases what the scene
  * owns. Later chapters add objects, materials, lights, and the queries that
@@ -10,10 +10,14 @@
 #include <stddef.h>
 #include "camera.h"
 #include "stats.h"
+/* <<scene includes>> ch02 */
 #include "sphere.h"
+/* <<scene includes>> += ch03 */
 #include "light.h"
 #include "material.h"
+/* <<scene includes>> += ch04 */
 #include "mesh.h"
+/* <<scene includes>> += ch06 */
 #include "offset.h"
 #include "sample.h"
 
@@ -24,8 +28,10 @@ typedef struct {
     vec3 bottom, top; /* a solid background uses bottom only */
 } background;
 
+/* <<scene types>> ch02 */
 typedef enum {
     SHAPE_SPHERE,
+    /* <<shape kinds>> ch04 */
     SHAPE_TRIANGLE,
     SHAPE_MESH,
 } shape_kind;
@@ -36,18 +42,22 @@ typedef struct {
     shape_kind kind;
     union {
         sphere sphere; /* SHAPE_SPHERE */
+        /* <<shapes of an object>> ch04 */
         vec3 corners[3]; /* SHAPE_TRIANGLE */
         int mesh;        /* SHAPE_MESH: index into the scene's meshes */
     };
     vec3 color;
+    /* <<object members>> ch03 */
     int material; /* 0: the scene's default material; k: the scene's k-th */
 } object;
 
 typedef struct {
     camera cam;
     background bg;
+    /* <<scene members>> ch02 */
     object *objects;
     int object_count, object_capacity;
+    /* <<scene members>> += ch03 */
     vec3 ambient; /* I_a */
     struct {
         double alpha, beta;
@@ -58,8 +68,10 @@ typedef struct {
     light default_light; /* used only when the scene has no light */
     light *lights;
     int light_count, light_capacity;
+    /* <<scene members>> += ch04 */
     mesh *meshes;
     int mesh_count, mesh_capacity;
+    /* <<scene members>> += ch06 */
     int max_depth; /* reflections deeper than this are not traced */
     double cutoff; /* nor those whose weight would fall below this */
 } scene;
@@ -67,6 +79,7 @@ typedef struct {
 void scene_init(scene *s);
 void scene_free(scene *s);
 
+/* <<scene functions>> ch02 */
 /* A million: far beyond what a renderer without a tree can draw. */
 #define SCENE_MAX_OBJECTS (1 << 20)
 
@@ -76,6 +89,7 @@ bool scene_add_object(scene *s, object o);
 /* The nearest hit along r with t in (t_min, t_max), filled into h. */
 bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
                      hit *h, render_stats *stats);
+/* <<scene functions>> += ch03 */
 
 #define SCENE_MAX_MATERIALS 4096
 #define SCENE_MAX_LIGHTS 4096 /* every light costs every shaded point */
@@ -85,12 +99,14 @@ const material *scene_material(const scene *s, int index);
 /* Append a material or a light; false when out of memory or at the limit. */
 bool scene_add_material(scene *s, material m);
 bool scene_add_light(scene *s, light L);
+/* <<scene functions>> += ch04 */
 
 #define SCENE_MAX_MESHES 65536 /* meshes loaded; objects may share them */
 
 /* Takes m over and returns its index in the scene, or -1 (out of memory,
  * or SCENE_MAX_MESHES reached: m is then the caller's to free). */
 int scene_add_mesh(scene *s, mesh m);
+/* <<scene functions>> += ch06 */
 
 /* Is there any hit along r with t in (t_min, t_max)? Stops at the first. */
 bool scene_occluded(const scene *s, ray r, double t_min, double t_max,

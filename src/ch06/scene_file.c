@@ -1,4 +1,4 @@
-/* scene_file.c: the statements of a scene file (chapter 01). */
+/* scene_file.c: the statements of a scene file (chapter 1). */
 #include "scene_file.h"
 
 #include <stdio.h>
@@ -6,6 +6,7 @@
 #include <string.h>
 #include "image.h"
 
+/* <<statement helpers>> ch03 */
 
 /* The index of the material named by the token just read: 0 for "default",
  * k for the scene's k-th material, -1 if there is none of that name. */
@@ -26,7 +27,9 @@ static bool read_material_name(parser *p, const scene *s, int *material)
                                  "above");
     return true;
 }
+/* <<statement helpers>> += ch04 */
 #include "obj.h"
+/* <<statement helpers>> += ch06 */
 
 #define AREA_LIGHT_MAX_SAMPLES 1024 /* shadow rays per point and light */
 
@@ -83,6 +86,7 @@ static bool parse_area_light(parser *p, scene *s, light L)
     return true;
 }
 
+/* <<statements>> ch01 */
 static bool parse_camera(parser *p, scene *s)
 {
     if (!parse_next_token(p))
@@ -104,6 +108,7 @@ static bool parse_camera(parser *p, scene *s)
     return true;
 }
 
+/* <<image statement>> ch01 */
 static bool read_side(parser *p, const char *what, int *out)
 {
     long n = 0;
@@ -131,6 +136,7 @@ static bool parse_image(parser *p, scene *s)
     return true;
 }
 
+/* <<background statement>> ch01 */
 static bool parse_background(parser *p, scene *s)
 {
     const char *rest = p->next;
@@ -143,10 +149,12 @@ static bool parse_background(parser *p, scene *s)
     s->bg.kind = BACKGROUND_SOLID;
     return parse_color(p, "a colour component", &s->bg.bottom);
 }
+/* <<statements>> += ch02 */
 
 /* The settings every object statement accepts, for error messages. */
 static const char object_setting_names[] =
     "color"
+    /* <<names of object settings>> ch03 */
     ", material"
     ;
 
@@ -154,10 +162,11 @@ static const char object_setting_names[] =
  * *known says whether it was one; false on bad input. */
 static bool parse_object_setting(parser *p, scene *s, object *o, bool *known)
 {
-    (void)s; /* chapter 03 looks materials up in the scene */
+    (void)s; /* chapter 3 looks materials up in the scene */
     *known = true;
     if (parse_token_is(p, "color"))
         return parse_color(p, "a colour component", &o->color);
+    /* <<object settings>> ch03 */
     if (parse_token_is(p, "material"))
         return read_material_name(p, s, &o->material);
     *known = false;
@@ -197,9 +206,11 @@ static bool parse_sphere(parser *p, scene *s)
                              SCENE_MAX_OBJECTS);
     return true;
 }
+/* <<statements>> += ch03 */
 
 static const char material_setting_names[] =
     "emission, ambient, diffuse, specular, shininess, highlight"
+    /* <<names of material settings>> ch06 */
     ", reflect"
     ;
 
@@ -233,12 +244,14 @@ static bool read_material_setting(parser *p, material *m)
     }
     if (parse_token_is(p, "highlight"))
         return read_highlight_model(p, m);
+    /* <<material settings>> ch06 */
     if (parse_token_is(p, "reflect"))
         return parse_coefficient(p, "a reflectivity", &m->reflect);
     return parse_expected(p, "expected a material setting (%s)",
                           material_setting_names);
 }
 
+/* <<the material statement>> ch03 */
 static bool parse_material(parser *p, scene *s)
 {
     material m = material_default();
@@ -266,6 +279,8 @@ static bool parse_material(parser *p, scene *s)
     return true;
 }
 
+/* <<the light statement>> ch03 */
+/* <<reading attenuation>> ch03 */
 static bool read_attenuation(parser *p, double a[3])
 {
     const char *where[3];
@@ -318,6 +333,7 @@ static bool read_light_setting(parser *p, light *L)
         [LIGHT_DIRECTIONAL] = "direction, intensity",
         [LIGHT_SPOT] = "position, direction, angle, exponent, intensity, "
                        "attenuation",
+        /* <<the settings of other kinds of light>> ch06 */
         [LIGHT_AREA] = "position, direction, radius, samples, pattern, intensity, "
                        "attenuation",
     };
@@ -338,6 +354,7 @@ static bool read_light_setting(parser *p, light *L)
 }
 
 static const char other_light_kinds[] = ""
+    /* <<names of other kinds of light>> ch06 */
     ", area"
     ;
 
@@ -356,6 +373,7 @@ static bool parse_light(parser *p, scene *s)
         L.kind = LIGHT_DIRECTIONAL;
     else if (named && parse_token_is(p, "spot"))
         L.kind = LIGHT_SPOT;
+    /* <<other kinds of light>> ch06 */
     else if (named && parse_token_is(p, "area"))
         return parse_area_light(p, s, L);
     else
@@ -375,6 +393,7 @@ static bool parse_ambient(parser *p, scene *s)
     return parse_color(p, "an ambient intensity", &s->ambient);
 }
 
+/* <<the tonemap statement>> ch03 */
 static bool parse_tonemap(parser *p, scene *s)
 {
     if (!parse_next_token(p))
@@ -392,7 +411,9 @@ static bool parse_tonemap(parser *p, scene *s)
     } while (parse_next_token(p));
     return true;
 }
+/* <<statements>> += ch04 */
 
+/* <<the triangle statement>> ch04 */
 static bool parse_triangle(parser *p, scene *s)
 {
     object o = {.kind = SHAPE_TRIANGLE, .color = {0.8, 0.8, 0.8},
@@ -419,6 +440,7 @@ static bool parse_triangle(parser *p, scene *s)
     return true;
 }
 
+/* <<the mesh statement>> ch04 */
 /* PATH of the token, relative to the folder of the file being parsed. */
 static bool resolve_path(const parser *p, const char *token, int length,
                          char *out, size_t size)
@@ -446,6 +468,7 @@ static bool load_mesh_file(parser *p, const char *file, int length, mesh *m)
     return false; /* the OBJ file's own line and column */
 }
 
+/* <<placing a mesh>> ch04 */
 static bool read_scale(parser *p, double *scale)
 {
     if (!parse_number(p, "a scale", scale))
@@ -536,6 +559,7 @@ static bool parse_mesh(parser *p, scene *s)
                              SCENE_MAX_OBJECTS);
     return true;
 }
+/* <<statements>> += ch06 */
 
 #define SCENE_MAX_DEPTH 100 /* a guarantee, not a budget: see chapter 06 */
 
@@ -562,6 +586,7 @@ static bool parse_recursion(parser *p, scene *s)
     return true;
 }
 
+/* <<the statement loop>> ch01 */
 typedef bool (*statement_parser)(parser *p, scene *s);
 
 static const struct {
@@ -571,13 +596,17 @@ static const struct {
     {"camera", parse_camera},
     {"image", parse_image},
     {"background", parse_background},
+    /* <<scene keywords>> ch02 */
     {"sphere", parse_sphere},
+    /* <<scene keywords>> += ch03 */
     {"ambient", parse_ambient},
     {"tonemap", parse_tonemap},
     {"material", parse_material},
     {"light", parse_light},
+    /* <<scene keywords>> += ch04 */
     {"triangle", parse_triangle},
     {"mesh", parse_mesh},
+    /* <<scene keywords>> += ch06 */
     {"recursion", parse_recursion},
 };
 

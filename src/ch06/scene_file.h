@@ -1,4 +1,4 @@
-/* scene_file.h: reading a scene from text (chapter 01).
+/* scene_file.h: reading a scene from text (chapter 1).
  *
  * scene_parse and scene_load apply a scene file on top of what the scene
  * already holds (scene_init's defaults, usually). On bad input they return

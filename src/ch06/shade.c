@@ -1,6 +1,7 @@
-/* shade.c: the Phong model, lights and tone mapping (chapter 03). */
+/* shade.c: the Phong model, lights and tone mapping (chapter 3). */
 #include "shade.h"
 
+/* <<highlights>> ch03 */
 double phong_cosine(vec3 n, vec3 l, vec3 v)
 {
     /* l mirrored about n */
@@ -29,6 +30,7 @@ double specular_blinn(vec3 n, vec3 l, vec3 v, double k)
     return pow(blinn_cosine(n, l, v), 4.0 * k);
 }
 
+/* <<lights>> ch03 */
 double light_attenuation(const light *L, double r)
 {
     const double *a = L->attenuation;
@@ -59,6 +61,7 @@ light_sample light_toward(const light *L, vec3 point)
     return (light_sample){l, r, vec3_scale(L->intensity, factor)};
 }
 
+/* <<tone mapping>> ch03 */
 double tone_map(double I, double alpha, double beta)
 {
     if (!(I > 0))
@@ -67,11 +70,14 @@ double tone_map(double I, double alpha, double beta)
     return mapped < 1 ? mapped : 1;
 }
 
+/* <<shading a hit>> ch03 */
+/* <<light visibility>> ch03 */
 /* Can the light of ls reach the hit point h->point? */
 static bool light_reaches(const scene *s, const hit *h,
                           const light_sample *ls, render_stats *stats)
 {
-    (void)s, (void)h, (void)ls, (void)stats; /* used from chapter 06 on */
+    (void)s, (void)h, (void)ls, (void)stats; /* used from chapter 6 on */
+    /* <<is the light blocked>> ch06 */
     vec3 I = ls->intensity;
     if (I.x == 0 && I.y == 0 && I.z == 0) {
         stats->shadow_skipped_dark++;
@@ -106,6 +112,7 @@ static double highlight(const material *m, vec3 n, vec3 l, vec3 v)
 static vec3 direct_light(const scene *s, const material *m, const hit *h,
                          vec3 n, vec3 v, const light *L, render_stats *stats)
 {
+    /* <<lights made of many points>> ch06 */
     if (L->kind == LIGHT_AREA) { /* the sum of its point lights */
         vec3 sum = {0, 0, 0};
         sample_stream g = sample_stream_at(h->point, L->position);

@@ -1,4 +1,4 @@
-/* shade.h: the Phong model, lights and tone mapping (chapter 03).
+/* shade.h: the Phong model, lights and tone mapping (chapter 3).
  *
  * Vectors: n is the unit surface normal, l the unit vector towards a light,
  * v the unit vector towards the viewer. The highlight functions assume
@@ -18,6 +18,7 @@ typedef struct {
     vec3 intensity;
 } light_sample;
 
+/* <<shading functions>> ch03 */
 /* <r, v> with r = 2n<n,l> - l, clamped at 0. */
 double phong_cosine(vec3 n, vec3 l, vec3 v);
 /* <n, h> with h = (l + v) / |l + v|, clamped at 0; 0 when v = -l. */

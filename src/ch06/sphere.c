@@ -1,4 +1,4 @@
-/* sphere.c: the ray-sphere hit used by the renderer (chapter 02). */
+/* sphere.c: the ray-sphere hit used by the renderer (chapter 2). */
 #include "sphere.h"
 
 const sphere_roots_method SPHERE_ROOTS_METHODS[SPHERE_ROOTS_METHOD_COUNT] = {

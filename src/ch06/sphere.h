@@ -1,4 +1,4 @@
-/* sphere.h: spheres and ray-sphere intersection (chapter 02).
+/* sphere.h: spheres and ray-sphere intersection (chapter 2).
  *
  * The sphere_roots_* functions solve |o + t d - center| = radius for t. Each
  * returns the number of roots, 0 or 2 (a tangent gives two equal roots),

@@ -1,4 +1,4 @@
-/* stats.h: counts of the work a render does, for --stats (chapter 01).
+/* stats.h: counts of the work a render does, for --stats (chapter 1).
  *
  * Each chapter adds the counters of its work to the hook. All members are
  * counts, so that two render_stats add member by member. */
@@ -7,9 +7,12 @@
 
 typedef struct {
     long long primary_rays;
+    /* <<statistics counters>> ch02 */
     long long sphere_tests;
+    /* <<statistics counters>> += ch04 */
     long long triangle_tests;
     long long box_tests;
+    /* <<statistics counters>> += ch06 */
     long long light_tests;          /* a point and a light: a possible ray */
     long long shadow_rays;          /* cast */
     long long shadow_rays_blocked;  /* of those, the ones that hit something */

@@ -1,8 +1,10 @@
-/* trace.c: what a ray sees (chapter 01). See trace.h. */
+/* trace.c: what a ray sees (chapter 1). See trace.h. */
 #include "trace.h"
 
+/* <<trace includes>> ch03 */
 #include "shade.h"
 
+/* <<trace helpers>> ch06 */
 static vec3 trace_path(const scene *s, ray r, int depth, double weight,
                        render_stats *stats);
 
@@ -37,7 +39,9 @@ static vec3 trace_path(const scene *s, ray r, int depth, double weight,
     hit h;
     if (!scene_intersect(s, r, 0.0, INFINITY, &h, stats))
         return background_color(&s->bg, r.dir);
+    /* <<shade the hit>> ch03 */
     vec3 color = shade(s, &h, vec3_scale(r.dir, -1), stats);
+    /* <<add the light of secondary rays>> ch06 */
     color = add_reflection(s, &h, r, depth, weight, color, stats);
     return color;
 }
@@ -52,5 +56,6 @@ vec3 background_color(const background *bg, vec3 dir)
 
 vec3 trace(const scene *s, ray r, int depth, render_stats *stats)
 {
+    /* <<trace a ray>> ch06 */
     return trace_path(s, r, depth, 1.0, stats);
 }

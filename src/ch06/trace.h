@@ -1,7 +1,7 @@
-/* trace.h: what a ray sees (chapter 01).
+/* trace.h: what a ray sees (chapter 1).
  *
  * trace returns the linear colour that arrives along r. depth counts the
- * bounces that led to r (0 for a primary ray); from chapter 06 on, trace
+ * bounces that led to r (0 for a primary ray); from chapter 6 on, trace
  * calls itself for secondary rays with depth + 1. */
 #ifndef TRACE_H
 #define TRACE_H

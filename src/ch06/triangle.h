@@ -1,4 +1,4 @@
-/* triangle.h: ray-triangle intersection (chapter 04).
+/* triangle.h: ray-triangle intersection (chapter 4).
  *
  * Each triangle_hit_* function tests the ray r against the triangle
  * (a, b, c). On a hit with t_min < t < t_max it returns true and fills
@@ -47,6 +47,7 @@ typedef struct {
 #define TRIANGLE_METHOD_COUNT 6
 extern const triangle_method_entry TRIANGLE_METHODS[TRIANGLE_METHOD_COUNT];
 
+/* <<the watertight test for one ray and many triangles>> ch04 */
 /* The watertight test's per-ray constants: which axis the ray runs along
  * (kz) and the shear that makes it the z axis. */
 typedef struct {

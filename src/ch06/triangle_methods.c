@@ -1,4 +1,4 @@
-/* triangle_methods.c: the three ray-triangle methods in double (chapter 04). */
+/* triangle_methods.c: the three ray-triangle methods in double (chapter 4). */
 #include "triangle.h"
 
 typedef double real;
@@ -6,6 +6,8 @@ typedef long double wider; /* the watertight test's fallback precision */
 /* triangle_hit_NAME: the double versions are the plain names. */
 #define TRIANGLE_METHOD(name) triangle_hit_##name
 
+/* <<ray-triangle methods in any precision>> ch04 */
+/* <<vectors in the working precision>> ch02 */
 typedef struct {
     real x, y, z;
 } rvec;
@@ -28,6 +30,7 @@ static inline real rvec_dot(rvec a, rvec b)
 }
 /* sqrt in double then rounded: correctly rounded in float as well. */
 static inline real real_sqrt(real x) { return (real)sqrt((double)x); }
+/* <<vectors in the working precision>> += ch04 */
 static inline rvec rvec_add(rvec a, rvec b)
 {
     return (rvec){a.x + b.x, a.y + b.y, a.z + b.z};
@@ -45,6 +48,7 @@ static inline bool is_degenerate(rvec a, rvec b, rvec c)
     return n.x == 0 && n.y == 0 && n.z == 0;
 }
 
+/* <<the sheet's method>> ch04 */
 bool TRIANGLE_METHOD(sheet)(vec3 a, vec3 b, vec3 c, ray r, double t_min,
                             double t_max, triangle_hit *out)
 {
@@ -72,6 +76,7 @@ bool TRIANGLE_METHOD(sheet)(vec3 a, vec3 b, vec3 c, ray r, double t_min,
     return true;
 }
 
+/* <<Moller-Trumbore>> ch04 */
 bool TRIANGLE_METHOD(moller_trumbore)(vec3 a, vec3 b, vec3 c, ray r,
                                       double t_min, double t_max,
                                       triangle_hit *out)
@@ -98,6 +103,8 @@ bool TRIANGLE_METHOD(moller_trumbore)(vec3 a, vec3 b, vec3 c, ray r,
     return true;
 }
 
+/* <<watertight>> ch04 */
+/* <<shear the ray onto the z axis>> ch04 */
 /* The ray's origin, its axes permuted so that it runs along z, and the
  * shear that turns it into the z axis: all the edge functions need of it. */
 typedef struct {
@@ -124,6 +131,7 @@ static inline sheared_ray shear_ray(ray r)
 static inline bool hit_sheared(const sheared_ray *s, vec3 a, vec3 b, vec3 c,
                                double t_min, double t_max, triangle_hit *out)
 {
+    /* <<shear the triangle>> ch04 */
     rvec pa = rvec_sub(rvec_from(a), s->origin);
     rvec pb = rvec_sub(rvec_from(b), s->origin);
     rvec pc = rvec_sub(rvec_from(c), s->origin);
@@ -132,6 +140,7 @@ static inline bool hit_sheared(const sheared_ray *s, vec3 a, vec3 b, vec3 c,
     real ax = A[s->kx] - s->sx * A[s->kz], ay = A[s->ky] - s->sy * A[s->kz];
     real bx = B[s->kx] - s->sx * B[s->kz], by = B[s->ky] - s->sy * B[s->kz];
     real cx = C[s->kx] - s->sx * C[s->kz], cy = C[s->ky] - s->sy * C[s->kz];
+    /* <<the three edge functions>> ch04 */
     real u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
     /* exactly on an edge: decide more precisely */
     if (u == 0 || v == 0 || w == 0) {
@@ -160,6 +169,7 @@ bool TRIANGLE_METHOD(watertight)(vec3 a, vec3 b, vec3 c, ray r, double t_min,
     return hit_sheared(&s, a, b, c, t_min, t_max, out);
 }
 
+/* <<the nearest of many triangles>> ch04 */
 const triangle_method_entry TRIANGLE_METHODS[TRIANGLE_METHOD_COUNT] = {
     {"sheet", "double", triangle_hit_sheet},
     {"moller-trumbore", "double", triangle_hit_moller_trumbore},

@@ -1,4 +1,4 @@
-/* vec.h: 3-vectors and rays (chapter 01).
+/* vec.h: 3-vectors and rays (chapter 1).
  *
  * A vec3 is a point, a direction or a linear RGB colour; the function's name
  * says which it expects. All functions take and return values, never
@@ -12,6 +12,7 @@ typedef struct {
     double x, y, z;
 } vec3;
 
+/* <<vector operations>> ch01 */
 static inline vec3 vec3_add(vec3 a, vec3 b)
 {
     return (vec3){a.x + b.x, a.y + b.y, a.z + b.z};
@@ -51,15 +52,18 @@ static inline vec3 vec3_lerp(vec3 a, vec3 b, double t)
     return vec3_add(vec3_scale(a, 1.0 - t), vec3_scale(b, t));
 }
 
+/* <<math constants>> ch01 */
 #ifndef M_PI
 #define M_PI 3.14159265358979323846 /* POSIX has it; strict C11 does not */
 #endif
+/* <<vector operations>> += ch04 */
 
 static inline vec3 vec3_cross(vec3 a, vec3 b)
 {
     return (vec3){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
                   a.x * b.y - a.y * b.x};
 }
+/* <<vector operations>> += ch06 */
 
 /* i mirrored about the plane with unit normal n: i - 2 n <n, i>. */
 static inline vec3 vec3_reflect(vec3 i, vec3 n)
@@ -67,6 +71,7 @@ static inline vec3 vec3_reflect(vec3 i, vec3 n)
     return vec3_sub(i, vec3_scale(n, 2 * vec3_dot(n, i)));
 }
 
+/* <<ray type>> ch01 */
 /* The half-line origin + t dir, t >= 0. Rays made by the renderer have
  * |dir| = 1, so that t is a distance. */
 typedef struct {

@@ -1064,8 +1064,8 @@ static void ch06_offset(const char *dir)
     point(pc, C_R);
     math(pc, 10, 12, "start", C_R, "p̃");
     point(start, C_N);
-    math(start, -10, -8, "end", C_N, "p̃ + δ n_g");
-    text_s(V(20, 30), "start", INK, FS_MATH, 1, "δ = |n_x| e_x + |n_y| e_y");
+    math(start, -10, -8, "end", C_N, "p̃ + d n_g");
+    text_s(V(20, 30), "start", INK, FS_MATH, 1, "d = |n_x| e_x + |n_y| e_y");
     finish();
 }
 
