@@ -17,15 +17,18 @@
  *   max_abs_at       the angle of the largest error, in degrees
  *   reflectance      for glass, param "1.5:side:angle": the method's F_R
  *                    every half degree (ns_per_op 0), for the lower panel
- * ns_per_op is the median over batches of the time per evaluation, the
- * function called through a pointer as a renderer would call it. */
+ * ns_per_op is the time of one evaluation, the function called through a
+ * pointer from another file as the renderer calls it; all eighteen method,
+ * medium and side cases are timed in the same interleaved rounds
+ * (bench/timing.h). CSV: a machine line, then the columns
+ * method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns. */
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 
 #include "optics.h"
-#include "bench_util.h"
+#include "timing.h"
 
 #define N_ANGLES 90001
 
@@ -74,49 +77,81 @@ static error_stats errors(fresnel_fn f, double eta1, double eta2)
     return e;
 }
 
-/* The time of one evaluation: the median over batches of all the angles.
- * (One method at a time; the only place that reads the clock.) */
-static double time_per_evaluation(fresnel_fn f, double eta1, double eta2)
+/* One timed case: a method, and the two indices. */
+typedef struct {
+    fresnel_fn f;
+    double eta1, eta2;
+} fresnel_case;
+
+/* reps evaluations, whole passes over the angles. */
+static void run_fresnel_case(void *ctx, long reps)
 {
-    enum { BATCHES = 15 };
-    double batch[BATCHES];
-    for (int b = 0; b < BATCHES; b++) {
-        double start = now_ns(), sum = 0;
+    const fresnel_case *c = ctx;
+    for (long done = 0; done < reps; done += N_ANGLES) {
+        double sum = 0;
         for (int k = 0; k < N_ANGLES; k++)
-            sum += f(cosines[k], eta1, eta2);
+            sum += c->f(cosines[k], c->eta1, c->eta2);
         bench_sink += sum;
-        batch[b] = (now_ns() - start) / N_ANGLES;
     }
-    return median(batch, BATCHES);
+}
+
+enum { N_MEDIA = 3, N_CASES = N_MEDIA * 2 * N_METHODS };
+
+static void report(const bench_case *c, const fresnel_case *fc,
+                   const bench_timing *t)
+{
+    error_stats e = errors(fc->f, fc->eta1, fc->eta2);
+    bench_row(c->method, c->param, t, "%.4e", e.max_abs, "max_abs");
+    bench_row(c->method, c->param, t, "%.4e", e.rms, "rms");
+    bench_row(c->method, c->param, t, "%.2f", e.max_at_deg, "max_abs_at");
+}
+
+/* Glass's reflectance by each method every half degree, both sides. */
+static void curves(void)
+{
+    for (int side = 0; side < 2; side++)
+        for (int m = 0; m < N_METHODS; m++)
+            for (int a = 0; a <= 180; a++) {
+                double c = cos(a * 0.5 * M_PI / 180);
+                double F = side ? methods[m].f(c, 1.5, 1)
+                                : methods[m].f(c, 1, 1.5);
+                char param[48];
+                snprintf(param, sizeof param, "1.5:%s:%g",
+                         side ? "inside" : "outside", a * 0.5);
+                bench_row(methods[m].name, param, NULL, "%.6f", F,
+                          "reflectance");
+            }
 }
 
 int main(void)
 {
     for (int k = 0; k < N_ANGLES; k++)
         cosines[k] = cos((M_PI / 2) * k / (N_ANGLES - 1));
-    printf("method,param,ns_per_op,error,error_kind\n");
-    const double media[] = {1.33, 1.5, 2.42};
-    for (int k = 0; k < 3; k++)
+    static const double media[N_MEDIA] = {1.33, 1.5, 2.42};
+    static char params[N_MEDIA * 2][32];
+    static fresnel_case timed[N_CASES];
+    bench_case cases[N_CASES];
+    bench_timing timing[N_CASES];
+    int n = 0;
+    for (int k = 0; k < N_MEDIA; k++)
         for (int side = 0; side < 2; side++) {
-            double eta1 = side ? media[k] : 1, eta2 = side ? 1 : media[k];
-            const char *where = side ? "inside" : "outside";
-            for (int m = 0; m < N_METHODS; m++) {
-                double ns = time_per_evaluation(methods[m].f, eta1, eta2);
-                error_stats e = errors(methods[m].f, eta1, eta2);
-                printf("%s,%g:%s,%.3f,%.4e,max_abs\n", methods[m].name, media[k], where, ns,
-                       e.max_abs);
-                printf("%s,%g:%s,%.3f,%.4e,rms\n", methods[m].name, media[k], where, ns, e.rms);
-                printf("%s,%g:%s,%.3f,%.2f,max_abs_at\n", methods[m].name, media[k], where, ns,
-                       e.max_at_deg);
+            char *param = params[2 * k + side];
+            snprintf(param, sizeof params[0], "%g:%s", media[k],
+                     side ? "inside" : "outside");
+            for (int m = 0; m < N_METHODS; m++, n++) {
+                timed[n] = (fresnel_case){methods[m].f, side ? media[k] : 1,
+                                          side ? 1 : media[k]};
+                cases[n] = (bench_case){methods[m].name, param,
+                                        run_fresnel_case, &timed[n],
+                                        N_ANGLES};
             }
         }
-    for (int side = 0; side < 2; side++)
-        for (int m = 0; m < N_METHODS; m++)
-            for (int a = 0; a <= 180; a++) {
-                double theta = a * 0.5 * M_PI / 180;
-                double F = side ? methods[m].f(cos(theta), 1.5, 1) : methods[m].f(cos(theta), 1, 1.5);
-                printf("%s,1.5:%s:%g,0,%.6f,reflectance\n", methods[m].name,
-                       side ? "inside" : "outside", a * 0.5, F);
-            }
+    bench_time_cases(cases, N_CASES, timing);
+
+    bench_print_machine();
+    bench_csv_header();
+    for (int c = 0; c < N_CASES; c++)
+        report(&cases[c], &timed[c], &timing[c]);
+    curves();
     return 0;
 }

@@ -6,9 +6,8 @@
 #   inside (open).
 # Bottom: the reflectance of glass against the angle of incidence, from
 #   outside and from inside, by each method.
-set datafile separator ","
-set grid
-set terminal svg size 760,860 font "Helvetica,13" background "white"
+load "bench/chart.gp"
+set terminal svg size 760,880 font "Helvetica,13" background "white"
 set output stem.'-speed-accuracy.svg'
 set multiplot layout 2,1 title "Chapter 07: Fresnel reflectance, speed against accuracy"
 names = "exact schlick schlick-tir"
@@ -18,30 +17,31 @@ media = "1.33 1.5 2.42"
 mnames = "'water 1.33' 'glass 1.5' 'diamond 2.42'"
 points = "5 7 9"  # square, circle, triangle: filled; the open one is one less
 is(m, p) = strcol(1) eq m && strcol(2) eq p && strcol(5) eq "max_abs"
-floor = 1e-17
-at_floor(y) = y < floor ? floor : y
 
 set logscale y
 set format y "10^{%L}"
 set yrange [1e-17:10]
 set xrange [0:*]
 set offsets graph 0.05, graph 0.1, 0, 0
-set xlabel "time per evaluation (ns)"
+set xlabel "time per evaluation (ns; bars: interquartile range)"
 set ylabel "largest error over all angles"
 set key at graph 0.02, graph 0.8 left top box opaque font ",10" \
     title "filled: light from outside, open: from inside"
-plot for [m=1:3] csv using (is(word(names,m), word(media,2).":outside") ? $3 : NaN):(at_floor($4)) \
+plot for [m=1:3] csv using (is(word(names,m), word(media,2).":outside") ? $3 : NaN):(positive($4)) \
        with points pt 7 ps 1.6 lc rgb word(colors,m) title word(labels,m), \
      for [k=1:3] csv using (NaN):(NaN) with points pt (word(points,k)+0) ps 1.4 lc rgb "#555555" \
        title word(mnames,k), \
-     for [m=1:3] for [k=1:3] csv using (is(word(names,m), word(media,k).":outside") ? $3 : NaN):(at_floor($4)) \
+     for [m=1:3] for [k=1:3] csv using (is(word(names,m), word(media,k).":outside") ? $3 : NaN):(positive($4)) \
        with points pt (word(points,k)+0) ps 1.6 lc rgb word(colors,m) notitle, \
-     for [m=1:3] for [k=1:3] csv using (is(word(names,m), word(media,k).":inside") ? $3 : NaN):(at_floor($4)) \
-       with points pt (word(points,k)-1) ps 1.8 lc rgb word(colors,m) notitle
+     for [m=1:3] for [k=1:3] csv using (is(word(names,m), word(media,k).":inside") ? $3 : NaN):(positive($4)) \
+       with points pt (word(points,k)-1) ps 1.8 lc rgb word(colors,m) notitle, \
+     csv using (strcol(5) eq "max_abs" ? $6 : NaN):(positive($4)):($7 - $6):(0) @quartile_bars
 
 unset logscale y
 set format y "%g"
 set offsets 0, 0, 0, 0
+set bmargin 5
+eval machine_label
 set xrange [0:90]
 set yrange [0:1.02]
 set xtics 10

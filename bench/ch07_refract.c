@@ -24,17 +24,21 @@
  *   param "critical:L"  out of glass (eta = 1.5) at theta_c - 10^L radians,
  *                       from 0.1 down to 1e-16, 2,000 frames
  *   param "all"         into and out of glass, 200,000 angles evenly over
- *                       [0, 90) degrees in turned frames, with the median
- *                       time per refraction over batches in ns_per_op */
+ *                       [0, 90) degrees in turned frames, with the time
+ *                       per refraction, both forms timed in the same
+ *                       interleaved rounds (bench/timing.h)
+ * CSV: a machine line, then the columns
+ * method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns; the sweeps'
+ * rows have no times. */
 #include <float.h>
 #include <math.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "optics.h"
-#include "bench_util.h"
+#include "rng.h"
+#include "timing.h"
 
 #define N_FRAMES 2000
 #define N_ALL 200000
@@ -49,13 +53,9 @@ static const struct {
 
 /* ---------------------------------------------------------------- inputs */
 
-static uint64_t rng = 0x2545F4914F6CDD1DULL; /* fixed seed */
+static bench_rng rng = {0x2545F4914F6CDD1DULL}; /* fixed seed */
 
-static double uniform01(void)
-{
-    rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(rng >> 11) / 9007199254740992.0;
-}
+static double uniform01(void) { return bench_rng_uniform01(&rng); }
 
 typedef struct {
     vec3 n, u; /* unit normal, unit tangent */
@@ -142,15 +142,16 @@ static void measure(refract_fn f, vec3 i, vec3 n, double eta, error_stats *e)
  * sweep) on consecutive lines, so that a chart can join them. */
 typedef struct {
     char method[16], param[32], kind[8];
-    double ns, error;
+    const bench_timing *t; /* NULL: not timed */
+    double error;
     int order;
 } row;
 
 static row rows[4096];
 static int row_count;
 
-static void add_row(const char *method, const char *param, double ns, double error,
-                    const char *kind)
+static void add_row(const char *method, const char *param,
+                    const bench_timing *t, double error, const char *kind)
 {
     if (row_count == (int)(sizeof rows / sizeof rows[0]))
         abort(); /* more rows than this program makes */
@@ -158,19 +159,20 @@ static void add_row(const char *method, const char *param, double ns, double err
     snprintf(r->method, sizeof r->method, "%s", method);
     snprintf(r->param, sizeof r->param, "%s", param);
     snprintf(r->kind, sizeof r->kind, "%s", kind);
-    r->ns = ns, r->error = error, r->order = row_count++;
+    r->t = t, r->error = error, r->order = row_count++;
 }
 
 /* A largest error over no refracted ray at all (every one NaN, wrongly
  * decided or reflected) is NaN: nothing to draw. */
-static void report(const char *method, const char *param, double ns, const error_stats *e)
+static void report(const char *method, const char *param,
+                   const bench_timing *t, const error_stats *e)
 {
     bool none = e->measured == 0;
-    add_row(method, param, ns, none ? NAN : e->snell, "snell");
-    add_row(method, param, ns, none ? NAN : e->unit, "unit");
-    add_row(method, param, ns, none ? NAN : e->angle, "angle");
-    add_row(method, param, ns, (double)e->nan / e->count, "nan");
-    add_row(method, param, ns, (double)e->wrong / e->count, "wrong");
+    add_row(method, param, t, none ? NAN : e->snell, "snell");
+    add_row(method, param, t, none ? NAN : e->unit, "unit");
+    add_row(method, param, t, none ? NAN : e->angle, "angle");
+    add_row(method, param, t, (double)e->nan / e->count, "nan");
+    add_row(method, param, t, (double)e->wrong / e->count, "wrong");
 }
 
 /* The sweep a row belongs to: its param up to the colon. */
@@ -195,10 +197,11 @@ static int row_compare(const void *pa, const void *pb)
 static void print_rows(void)
 {
     qsort(rows, (size_t)row_count, sizeof rows[0], row_compare);
-    printf("method,param,ns_per_op,error,error_kind\n");
+    bench_print_machine();
+    bench_csv_header();
     for (int k = 0; k < row_count; k++)
-        printf("%s,%s,%.3f,%.4e,%s\n", rows[k].method, rows[k].param, rows[k].ns,
-               rows[k].error, rows[k].kind);
+        bench_row(rows[k].method, rows[k].param, rows[k].t, "%.4e",
+                  rows[k].error, rows[k].kind);
 }
 
 /* ---------------------------------------------------------------- sweeps */
@@ -212,12 +215,12 @@ static void sweep_grazing(void)
         snprintf(param, sizeof param, "grazing:%.2f", -k / 4.0);
         for (int m = 0; m < N_METHODS; m++) {
             error_stats e = {0};
-            rng = 12345; /* the same frames for both methods */
+            rng.state = 12345; /* the same frames for both methods */
             for (int j = 0; j < N_FRAMES; j++) {
                 frame f = random_frame();
                 measure(methods[m].refract, incident(f, c, s), f.n, eta, &e);
             }
-            report(methods[m].name, param, 0, &e);
+            report(methods[m].name, param, NULL, &e);
         }
     }
     for (int k = 16; k <= 312; k += 8) {
@@ -230,7 +233,7 @@ static void sweep_grazing(void)
         for (int m = 0; m < N_METHODS; m++) {
             error_stats e = {0};
             measure(methods[m].refract, (vec3){1, -c, 0}, (vec3){0, 1, 0}, eta, &e);
-            report(methods[m].name, param, 0, &e);
+            report(methods[m].name, param, NULL, &e);
         }
     }
 }
@@ -244,12 +247,12 @@ static void sweep_critical(void)
         snprintf(param, sizeof param, "critical:%.2f", -k / 4.0);
         for (int m = 0; m < N_METHODS; m++) {
             error_stats e = {0};
-            rng = 54321;
+            rng.state = 54321;
             for (int j = 0; j < N_FRAMES; j++) {
                 frame f = random_frame();
                 measure(methods[m].refract, incident(f, cos(theta), sin(theta)), f.n, eta, &e);
             }
-            report(methods[m].name, param, 0, &e);
+            report(methods[m].name, param, NULL, &e);
         }
     }
 }
@@ -259,25 +262,21 @@ static void sweep_critical(void)
 static vec3 all_i[N_ALL], all_n[N_ALL];
 static double all_eta[N_ALL];
 
-/* The time of one refraction: the median over batches of all the inputs.
- * (One method at a time; the only place that reads the clock.) */
-static double time_per_refraction(refract_fn f)
+/* reps refractions by the form f, whole passes over the inputs. */
+static void run_refraction(void *ctx, long reps)
 {
-    enum { BATCHES = 15 };
-    double batch[BATCHES];
-    for (int b = 0; b < BATCHES; b++) {
-        double start = now_ns(), sum = 0;
+    refract_fn f = *(const refract_fn *)ctx;
+    for (long done = 0; done < reps; done += N_ALL) {
+        double sum = 0;
         for (int k = 0; k < N_ALL; k++)
             sum += f(all_i[k], all_n[k], all_eta[k]).dir.y;
         bench_sink += sum;
-        batch[b] = (now_ns() - start) / N_ALL;
     }
-    return median(batch, BATCHES);
 }
 
 static void all_angles(void)
 {
-    rng = 777;
+    rng.state = 777;
     for (int k = 0; k < N_ALL; k++) {
         double theta = (M_PI / 2) * (k / 2) / (N_ALL / 2); /* below 90 degrees */
         frame f = random_frame();
@@ -285,12 +284,20 @@ static void all_angles(void)
         all_n[k] = f.n;
         all_eta[k] = k % 2 ? 1.5 : 1 / 1.5; /* out of and into glass */
     }
+    static refract_fn forms[N_METHODS];
+    static bench_timing timing[N_METHODS];
+    bench_case cases[N_METHODS];
     for (int m = 0; m < N_METHODS; m++) {
-        double ns = time_per_refraction(methods[m].refract);
+        forms[m] = methods[m].refract;
+        cases[m] = (bench_case){methods[m].name, "all", run_refraction,
+                                &forms[m], N_ALL};
+    }
+    bench_time_cases(cases, N_METHODS, timing);
+    for (int m = 0; m < N_METHODS; m++) {
         error_stats e = {0};
         for (int k = 0; k < N_ALL; k++)
             measure(methods[m].refract, all_i[k], all_n[k], all_eta[k], &e);
-        report(methods[m].name, "all", ns, &e);
+        report(methods[m].name, "all", &timing[m], &e);
     }
 }
 

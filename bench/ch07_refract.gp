@@ -6,32 +6,34 @@
 #   errors in Snell's law and in |t|; middle, the share of NaN directions,
 #   down to exactly grazing; bottom, out of glass as the ray nears the
 #   critical angle: the errors in Snell's law, in |t| and in the direction.
-set datafile separator ","
-set grid
-set terminal svg size 760,460 font "Helvetica,13" background "white"
+load "bench/chart.gp"
+set terminal svg size 760,480 font "Helvetica,13" background "white"
 set output stem.'-speed-accuracy.svg'
 set title "Chapter 07: the refracted direction, speed against accuracy"
 is(m, p, kind) = strcol(1) eq m && strcol(2) eq p && strcol(5) eq kind
-floor = 1e-18
-at_floor(y) = y < floor ? floor : y
 set logscale y
 set format y "10^{%L}"
 set yrange [1e-17:1e-12]
 set xrange [0:*]
 set offsets graph 0.05, graph 0.25, 0, 0
-set xlabel "time per refraction (ns)"
+set xlabel "time per refraction (ns; bars: interquartile range)"
+set bmargin 5
+eval machine_label
 set ylabel "largest error over all angles"
 set key top left box opaque font ",10"
-plot csv using (is("standard","all","snell") ? $3 : NaN):(at_floor($4)) with points pt 7 ps 1.8 lc rgb "#1b9e77" title "standard (used): Snell's law", \
-     csv using (is("standard","all","unit") ? $3 : NaN):(at_floor($4)) with points pt 5 ps 1.6 lc rgb "#1b9e77" title "standard: |t| - 1", \
-     csv using (is("standard","all","angle") ? $3 : NaN):(at_floor($4)) with points pt 9 ps 1.8 lc rgb "#1b9e77" title "standard: direction (rad)", \
-     csv using (is("sheet","all","snell") ? $3 : NaN):(at_floor($4)) with points pt 6 ps 1.8 lc rgb "#d95f02" title "sheet: Snell's law", \
-     csv using (is("sheet","all","unit") ? $3 : NaN):(at_floor($4)) with points pt 4 ps 1.6 lc rgb "#d95f02" title "sheet: |t| - 1", \
-     csv using (is("sheet","all","angle") ? $3 : NaN):(at_floor($4)) with points pt 8 ps 1.8 lc rgb "#d95f02" title "sheet: direction (rad)"
+plot csv using (is("standard","all","snell") ? $3 : NaN):(positive($4)) with points pt 7 ps 1.8 lc rgb "#1b9e77" title "standard (used): Snell's law", \
+     csv using (is("standard","all","unit") ? $3 : NaN):(positive($4)) with points pt 5 ps 1.6 lc rgb "#1b9e77" title "standard: |t| - 1", \
+     csv using (is("standard","all","angle") ? $3 : NaN):(positive($4)) with points pt 9 ps 1.8 lc rgb "#1b9e77" title "standard: direction (rad)", \
+     csv using (is("sheet","all","snell") ? $3 : NaN):(positive($4)) with points pt 6 ps 1.8 lc rgb "#d95f02" title "sheet: Snell's law", \
+     csv using (is("sheet","all","unit") ? $3 : NaN):(positive($4)) with points pt 4 ps 1.6 lc rgb "#d95f02" title "sheet: |t| - 1", \
+     csv using (is("sheet","all","angle") ? $3 : NaN):(positive($4)) with points pt 8 ps 1.8 lc rgb "#d95f02" title "sheet: direction (rad)", \
+     csv using (strcol(2) eq "all" && strcol(5) ne "nan" && strcol(5) ne "wrong" ? $6 : NaN):(positive($4)):($7 - $6):(0) @quartile_bars
 
 set output stem.'-accuracy.svg'
 set terminal svg size 760,1180 font "Helvetica,13" background "white"
 unset title
+unset label 100
+set bmargin
 set multiplot layout 3,1 title "Chapter 07: the refracted direction near grazing and near the critical angle"
 sweep(m, prefix, kind) = strcol(1) eq m && strcol(2)[1:strlen(prefix)] eq prefix && strcol(5) eq kind
 # param "prefix:L" holds log10 of the x value; "axis:zero" is drawn at 1e-308
@@ -48,10 +50,10 @@ set yrange [1e-17:1e-14]
 set xlabel "cos θ_{1} into glass (log scale)"
 set ylabel "largest error"
 set key at graph 0.02, graph 0.97 left top box opaque font ",10"
-plot csv using (sweep("standard","grazing:","snell") ? x("grazing:") : NaN):(at_floor($4)) with linespoints pt 7 ps 0.6 lc rgb "#1b9e77" title "standard: Snell's law", \
-     csv using (sweep("sheet","grazing:","snell") ? x("grazing:") : NaN):(at_floor($4)) with linespoints pt 6 ps 0.6 lc rgb "#d95f02" title "sheet: Snell's law", \
-     csv using (sweep("standard","grazing:","unit") ? x("grazing:") : NaN):(at_floor($4)) with linespoints pt 5 ps 0.5 lc rgb "#66a61e" title "standard: |t| - 1", \
-     csv using (sweep("sheet","grazing:","unit") ? x("grazing:") : NaN):(at_floor($4)) with linespoints pt 4 ps 0.5 lc rgb "#e7298a" title "sheet: |t| - 1"
+plot csv using (sweep("standard","grazing:","snell") ? x("grazing:") : NaN):(positive($4)) with linespoints pt 7 ps 0.6 lc rgb "#1b9e77" title "standard: Snell's law", \
+     csv using (sweep("sheet","grazing:","snell") ? x("grazing:") : NaN):(positive($4)) with linespoints pt 6 ps 0.6 lc rgb "#d95f02" title "sheet: Snell's law", \
+     csv using (sweep("standard","grazing:","unit") ? x("grazing:") : NaN):(positive($4)) with linespoints pt 5 ps 0.5 lc rgb "#66a61e" title "standard: |t| - 1", \
+     csv using (sweep("sheet","grazing:","unit") ? x("grazing:") : NaN):(positive($4)) with linespoints pt 4 ps 0.5 lc rgb "#e7298a" title "sheet: |t| - 1"
 
 # 2: the share of NaN directions, down to exactly grazing
 unset logscale y
@@ -77,12 +79,14 @@ set xtics auto
 set format x "10^{%L}"
 set yrange [1e-17:1e-6]
 set xlabel "θ_{c} − θ_{1} out of glass (radians, log scale)"
+set bmargin 5
+eval machine_label
 set ylabel "largest error"
 set key at graph 0.02, graph 0.97 left top box opaque font ",10"
-plot csv using (sweep("standard","critical:","angle") ? x("critical:") : NaN):(at_floor($4)) with linespoints pt 9 ps 0.8 lc rgb "#1b9e77" title "standard: direction (rad)", \
-     csv using (sweep("sheet","critical:","angle") ? x("critical:") : NaN):(at_floor($4)) with linespoints pt 8 ps 0.8 lc rgb "#d95f02" title "sheet: direction (rad)", \
-     csv using (sweep("standard","critical:","snell") ? x("critical:") : NaN):(at_floor($4)) with linespoints pt 7 ps 0.6 lc rgb "#1b9e77" title "standard: Snell's law", \
-     csv using (sweep("sheet","critical:","snell") ? x("critical:") : NaN):(at_floor($4)) with linespoints pt 6 ps 0.6 lc rgb "#d95f02" title "sheet: Snell's law", \
-     csv using (sweep("standard","critical:","unit") ? x("critical:") : NaN):(at_floor($4)) with linespoints pt 5 ps 0.5 lc rgb "#66a61e" title "standard: |t| - 1", \
-     csv using (sweep("sheet","critical:","unit") ? x("critical:") : NaN):(at_floor($4)) with linespoints pt 4 ps 0.5 lc rgb "#e7298a" title "sheet: |t| - 1"
+plot csv using (sweep("standard","critical:","angle") ? x("critical:") : NaN):(positive($4)) with linespoints pt 9 ps 0.8 lc rgb "#1b9e77" title "standard: direction (rad)", \
+     csv using (sweep("sheet","critical:","angle") ? x("critical:") : NaN):(positive($4)) with linespoints pt 8 ps 0.8 lc rgb "#d95f02" title "sheet: direction (rad)", \
+     csv using (sweep("standard","critical:","snell") ? x("critical:") : NaN):(positive($4)) with linespoints pt 7 ps 0.6 lc rgb "#1b9e77" title "standard: Snell's law", \
+     csv using (sweep("sheet","critical:","snell") ? x("critical:") : NaN):(positive($4)) with linespoints pt 6 ps 0.6 lc rgb "#d95f02" title "sheet: Snell's law", \
+     csv using (sweep("standard","critical:","unit") ? x("critical:") : NaN):(positive($4)) with linespoints pt 5 ps 0.5 lc rgb "#66a61e" title "standard: |t| - 1", \
+     csv using (sweep("sheet","critical:","unit") ? x("critical:") : NaN):(positive($4)) with linespoints pt 4 ps 0.5 lc rgb "#e7298a" title "sheet: |t| - 1"
 unset multiplot
