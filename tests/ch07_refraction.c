@@ -2,19 +2,22 @@
  * reflectance, transparent materials and the checker pattern (chapter 07).
  *
  * Expected values come from closed forms (stated beside each) computed in
- * long double, never from the functions under test. Tolerances are in
+ * long double, or from a second scene that must give the same picture for
+ * a reason stated beside it, never from the functions under test. Tolerances are in
  * units of DBL_EPSILON (2.2e-16, the spacing of doubles at 1) or degrees,
  * with the reason beside each. */
 #include <check.h>
 #include <float.h>
 #include <math.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
 #include "optics.h"
+#include "render.h"
 #include "scene.h"
+#include "trace.h"
 #include "test_util.h"
+#include "../bench/rng.h"
 
 #define EPS DBL_EPSILON
 #define DEG (M_PI / 180)
@@ -29,13 +32,9 @@ static const struct {
 
 /* ---------------------------------------------------------------- helpers */
 
-static uint64_t rng = 0x9E3779B97F4A7C15ULL; /* fixed seed: reproducible */
+static bench_rng rng = {0x9E3779B97F4A7C15ULL}; /* fixed seed: reproducible */
 
-static double uniform01(void)
-{
-    rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(rng >> 11) / 9007199254740992.0;
-}
+static double uniform01(void) { return bench_rng_uniform01(&rng); }
 
 /* A unit normal n and a unit vector u along the surface, turned at random. */
 static void random_frame(vec3 *n, vec3 *u)
@@ -528,6 +527,298 @@ START_TEST(test_checker_changes_colour_from_one_cube_to_the_next)
 }
 END_TEST
 
+
+/* ---------------------------------------------------------------- the tree */
+
+/* A scene parsed from text; fails the test on a parse error. */
+static void scene_of(scene *s, const char *text)
+{
+    scene_error err;
+    ck_assert_msg(parse_text(s, text, &err), "%s:%d:%d: %s", err.file, err.line, err.col,
+                  err.message);
+}
+
+START_TEST(test_glass_of_index_one_is_invisible)
+{
+    /* A clear ball of index 1 in front of the eye: F_R = 0 at both
+     * surfaces (so no reflected ray), t = i, and the eye sees exactly what
+     * it sees without the ball. */
+    const char *ball = "background gradient 1 1 1  0.1 0.3 0.9\n"
+                       "material clear ambient 0 diffuse 0 specular 0 transparency 1 ior 1\n"
+                       "sphere center 0 0 5 radius 1 material clear\n";
+    scene with, without;
+    scene_of(&with, ball);
+    scene_of(&without, "background gradient 1 1 1  0.1 0.3 0.9\n");
+    for (int k = 0; k < 50; k++) {
+        /* through the ball at up to 30 degrees from its normals */
+        vec3 d = vec3_normalize((vec3){0.01 * k - 0.25, 0.007 * k - 0.17, 5});
+        render_stats st = {0};
+        vec3 a = trace(&with, (ray){{0, 0, 0}, d}, 0, &st);
+        vec3 b = trace(&without, (ray){{0, 0, 0}, d}, 0, &(render_stats){0});
+        ck_assert_int_eq(st.refraction_rays, 2); /* in and out */
+        ck_assert_int_eq(st.reflection_rays, 0);
+        /* t differs from i by about eps / cos theta per surface (the
+         * formulas tests), and the sky's colour changes by at most 0.45 per
+         * unit of direction: 64 eps is far above that */
+        ck_assert_msg(vec3_length(vec3_sub(a, b)) <= 64 * EPS, "off by %g",
+                      vec3_length(vec3_sub(a, b)));
+    }
+    scene_free(&with), scene_free(&without);
+}
+END_TEST
+
+START_TEST(test_weights_multiply_along_the_path)
+{
+    /* Head-on through a clear glass ball: F_R = 0.04 at both surfaces. With
+     * the cutoff at 0.05 both reflections (weights 0.04 and 0.96 x 0.04) are
+     * cut, and the ball shows its own shading, black, in their place: the
+     * eye sees (1 - 0.04)^2 = 0.9216 of the sky behind. */
+    const char *text = "background 0.5 0.6 0.7\n"
+                       "material glass ambient 0 diffuse 0 specular 0 transparency 1 ior 1.5\n"
+                       "sphere center 0 0 5 radius 1 material glass\n"
+                       "recursion cutoff 0.05\n";
+    scene s;
+    scene_of(&s, text);
+    render_stats st = {0};
+    vec3 seen = trace(&s, (ray){{0, 0, 0}, {0, 0, 1}}, 0, &st);
+    /* 16 eps: F is within 4 eps of 0.04 and three products round */
+    ck_assert(fabs(seen.x - 0.9216 * 0.5) <= 16 * EPS);
+    ck_assert(fabs(seen.z - 0.9216 * 0.7) <= 16 * EPS);
+    ck_assert_int_eq(st.refraction_rays, 2);
+    ck_assert_int_eq(st.reflection_rays, 0);
+    ck_assert_int_eq(st.reflection_skipped_weight, 2); /* cut in each branch */
+    scene_free(&s);
+    /* Half transparent, glowing 0.2: each surface shows 0.5 of its own
+     * light E and 0.5 of F E + (1 - F) (what is beyond), the reflections
+     * still cut: c2 = E/2 + (F E + (1 - F) B)/2 at the back, and
+     * c1 = E/2 + (F E + (1 - F) c2)/2 at the front */
+    scene_of(&s, "background 0.5 0.6 0.7\n"
+                 "material half ambient 0 diffuse 0 specular 0 emission 0.2 0.2 0.2 "
+                 "transparency 0.5 ior 1.5\n"
+                 "sphere center 0 0 5 radius 1 material half\nrecursion cutoff 0.05\n");
+    st = (render_stats){0};
+    seen = trace(&s, (ray){{0, 0, 0}, {0, 0, 1}}, 0, &st);
+    long double E = 0.2, F = 0.04, B = 0.5;
+    long double c2 = E / 2 + (F * E + (1 - F) * B) / 2, c1 = E / 2 + (F * E + (1 - F) * c2) / 2;
+    ck_assert_msg(fabsl(seen.x - c1) <= 16 * EPS, "%.17g against %.17Lg", seen.x, c1);
+    ck_assert_int_eq(st.refraction_rays, 2);
+    scene_free(&s);
+    /* at the depth limit 0 neither branch is traced */
+    scene_of(&s, "material glass transparency 1\nsphere material glass\nrecursion depth 0\n");
+    st = (render_stats){0};
+    trace(&s, (ray){{0, 0, 0}, {0, 0, 1}}, 0, &st);
+    ck_assert(st.refraction_rays == 0 && st.reflection_rays == 0);
+    ck_assert(st.refraction_skipped_depth == 1 && st.reflection_skipped_depth == 1);
+    scene_free(&s);
+}
+END_TEST
+
+START_TEST(test_opaque_material_spawns_no_refracted_ray)
+{
+    /* ior is set but the material is opaque: not one ray for glass */
+    const char *text = "material m ior 1.5 fresnel schlick\n"
+                       "sphere center 0 0 5 radius 1 material m\n"
+                       "sphere center 0 -101 5 radius 100\n"
+                       "image 32 24\n";
+    scene s;
+    scene_of(&s, text);
+    image img;
+    ck_assert(image_init(&img, 32, 24));
+    render_stats st = {0};
+    render(&s, &img, &st);
+    ck_assert(st.refraction_rays == 0 && st.reflection_rays == 0);
+    ck_assert(st.refraction_skipped_depth == 0 && st.refraction_skipped_weight == 0);
+    ck_assert(st.total_reflections == 0);
+    image_free(&img);
+    scene_free(&s);
+}
+END_TEST
+
+/* A box of 12 triangles from lo to hi, each wound so that its normal points
+ * out of the box, with the given settings. */
+static void add_box(char *text, size_t size, vec3 lo, vec3 hi, const char *settings)
+{
+    const double x[2] = {lo.x, hi.x}, y[2] = {lo.y, hi.y}, z[2] = {lo.z, hi.z};
+    /* each face: its axis, its side, and two corners' orders that make
+     * (b - a) x (c - a) point outwards in this frame */
+    static const int faces[6][2] = {{1, 1}, {1, 0}, {2, 0}, {2, 1}, {0, 0}, {0, 1}};
+    for (int f = 0; f < 6; f++) {
+        int axis = faces[f][0], side = faces[f][1];
+        int u = (axis + 1) % 3, v = (axis + 2) % 3; /* u x v = +axis */
+        double c[4][3];
+        const int du[4] = {0, 1, 1, 0}, dv[4] = {0, 0, 1, 1};
+        for (int k = 0; k < 4; k++) {
+            int kk = side ? k : 3 - k; /* reversed on the low side */
+            c[k][axis] = side ? (axis == 0 ? x[1] : axis == 1 ? y[1] : z[1])
+                              : (axis == 0 ? x[0] : axis == 1 ? y[0] : z[0]);
+            c[k][u] = (u == 0 ? x : u == 1 ? y : z)[du[kk]];
+            c[k][v] = (v == 0 ? x : v == 1 ? y : z)[dv[kk]];
+        }
+        const int tri[2][3] = {{0, 1, 2}, {0, 2, 3}};
+        for (int t = 0; t < 2; t++) {
+            size_t used = strlen(text);
+            snprintf(text + used, size - used,
+                     "triangle a %.17g %.17g %.17g b %.17g %.17g %.17g c %.17g %.17g %.17g %s\n",
+                     c[tri[t][0]][0], c[tri[t][0]][1], c[tri[t][0]][2], c[tri[t][1]][0],
+                     c[tri[t][1]][1], c[tri[t][1]][2], c[tri[t][2]][0], c[tri[t][2]][1],
+                     c[tri[t][2]][2], settings);
+        }
+    }
+}
+
+START_TEST(test_box_triangles_face_outwards)
+{
+    /* add_box's winding, checked against the box itself: a ray from the
+     * centre meets every face from inside */
+    static char text[8192];
+    add_box(text, sizeof text, (vec3){-1, -2, -3}, (vec3){1, 2, 3}, "");
+    scene s;
+    scene_of(&s, text);
+    const vec3 dirs[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (int k = 0; k < 6; k++) {
+        hit h;
+        ray r = {{0.1, 0.2, 0.3}, dirs[k]};
+        ck_assert(scene_intersect(&s, r, 0, INFINITY, &h, &(render_stats){0}));
+        ck_assert_msg(h.inside, "face %d faces inwards", k);
+    }
+    scene_free(&s);
+}
+END_TEST
+
+/* Rays into a glass slab from above, through it and out below; counts the
+ * rays lost: not meeting the bottom from inside, or meeting the slab again
+ * after leaving it. With offset, each secondary ray starts at chapter 6's
+ * ray_leaving; without, at the hit point itself. */
+static int lost_in_slab(const scene *s, double top, double bottom, vec3 centre, bool offset)
+{
+    int lost = 0;
+    bench_rng g = {2024};
+    for (int k = 0; k < 2000; k++) {
+        double theta = bench_rng_uniform(&g, 0, 80) * DEG, phi = bench_rng_uniform(&g, 0, 2 * M_PI);
+        vec3 d = {sin(theta) * cos(phi), -cos(theta), sin(theta) * sin(phi)};
+        vec3 aim = vec3_add(centre, (vec3){bench_rng_uniform(&g, -0.5, 0.5), top - centre.y,
+                                           bench_rng_uniform(&g, -0.5, 0.5)});
+        ray r = {vec3_sub(aim, vec3_scale(d, 3)), d};
+        hit h1, h2, h3;
+        render_stats st = {0};
+        ck_assert(scene_intersect(s, r, 0, INFINITY, &h1, &st) && !h1.inside);
+        refraction in = refract_standard(d, h1.normal, 1 / 1.5);
+        ray r2 = offset ? ray_leaving(&h1, in.dir) : (ray){h1.point, in.dir};
+        if (!scene_intersect(s, r2, 0, INFINITY, &h2, &st) || !h2.inside ||
+            fabs(h2.point.y - bottom) > 1e-6) {
+            lost++;
+            continue;
+        }
+        /* from inside the normal on the ray's side is the outward one turned */
+        refraction out = refract_standard(in.dir, vec3_scale(h2.normal, -1), 1.5);
+        ck_assert(!out.total); /* parallel faces: never past the critical angle */
+        ray r3 = offset ? ray_leaving(&h2, out.dir) : (ray){h2.point, out.dir};
+        lost += scene_intersect(s, r3, 0, INFINITY, &h3, &st);
+    }
+    return lost;
+}
+
+START_TEST(test_thin_slab_at_1e4_loses_no_ray)
+{
+    /* A slab a thousandth of a unit thick, 2 wide, 1e4 from the origin on
+     * every axis: the offset of chapter 6 starts each refracted ray on the
+     * far side of the surface it crosses, so every ray goes in through the
+     * top, out through the bottom, and never meets the slab again. From
+     * the hit point itself, some rays meet the surface they start on. */
+    const vec3 centre = {1e4, 1e4, 1e4};
+    const double top = 1e4 + 0.0005, bottom = 1e4 - 0.0005;
+    static char text[8192];
+    add_box(text, sizeof text, (vec3){centre.x - 1, bottom, centre.z - 1},
+            (vec3){centre.x + 1, top, centre.z + 1}, "");
+    scene s;
+    scene_of(&s, text);
+    ck_assert_int_eq(lost_in_slab(&s, top, bottom, centre, true), 0);
+    ck_assert_int_gt(lost_in_slab(&s, top, bottom, centre, false), 0);
+    scene_free(&s);
+}
+END_TEST
+
+START_TEST(test_total_internal_reflection_is_a_perfect_mirror)
+{
+    /* The eye inside a box of glass looks at its floor 60 degrees from the
+     * vertical, past the critical angle: F_R = 1, and the glass shows
+     * exactly what a perfect mirror (reflect 1) in its place shows: the
+     * same reflected ray, from the same origin, of the same weight. */
+    static char glass[8192], mirror[8192];
+    const char *head = "ambient 0.3 0.3 0.3\nrecursion depth 5\n"
+                       "material glass ambient 0 diffuse 0 specular 0 transparency 1 ior 1.5\n"
+                       "material mirror ambient 0 diffuse 0 specular 0 reflect 1\n"
+                       "sphere center 0 -0.5 9 radius 0.4 color 1 0.2 0.1\n";
+    snprintf(glass, sizeof glass, "%s", head);
+    snprintf(mirror, sizeof mirror, "%s", head);
+    add_box(glass, sizeof glass, (vec3){-5, -1, -5}, (vec3){5, 1, 50}, "material glass");
+    add_box(mirror, sizeof mirror, (vec3){-5, -1, -5}, (vec3){5, 1, 50}, "material mirror");
+    scene g, m;
+    scene_of(&g, glass);
+    scene_of(&m, mirror);
+    for (int k = 0; k < 20; k++) {
+        double theta = (50 + k) * DEG; /* from the vertical; critical: 41.81 */
+        ray r = {{0, 0, 0}, {0.01 * k, -cos(theta), sin(theta)}};
+        r.dir = vec3_normalize(r.dir);
+        render_stats sg = {0}, sm = {0};
+        vec3 a = trace(&g, r, 0, &sg), b = trace(&m, r, 0, &sm);
+        ck_assert_msg(a.x == b.x && a.y == b.y && a.z == b.z, "at %d", k);
+        ck_assert_int_eq(sg.refraction_rays, 0);
+        ck_assert_int_eq(sg.total_reflections, sg.reflection_rays + sg.reflection_skipped_depth);
+        ck_assert_int_eq(sg.reflection_rays, sm.reflection_rays);
+    }
+    scene_free(&g), scene_free(&m);
+}
+END_TEST
+
+START_TEST(test_cli_renders_total_reflection_without_nan)
+{
+    /* Under water looking up: most rays meet the surface past the critical
+     * angle. image_set refuses a pixel that is not finite, so a NaN would
+     * stop the binary; it renders, and --stats counts the work. */
+    make_tmpdir();
+    static char text[8192];
+    snprintf(text, sizeof text,
+             "camera fov 110\nimage 48 64\n"
+             "material water ambient 0 diffuse 0 specular 0.2 transparency 1 ior 1.33\n"
+             "material schlick ambient 0 diffuse 0 transparency 1 ior 1.5 fresnel schlick\n"
+             "triangle a -30 -2.5 -5 b 30 -2.5 -5 c 0 -2.5 40 checker 0 0 0\n"
+             "sphere center 0 -1.5 6 radius 0.7 material schlick\n"
+             "light point position 0 0.5 3\n");
+    add_box(text, sizeof text, (vec3){-30, -3, -5}, (vec3){30, 1, 40}, "material water");
+    const char *path = write_file("pool.scene", text);
+    char scene_path[256], out_path[256], errors[4096];
+    snprintf(scene_path, sizeof scene_path, "%s", path);
+    snprintf(out_path, sizeof out_path, "%s", tmp_path("out.png"));
+    const char *args[] = {scene_path, "-o", out_path, "--stats", NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
+    ck_assert(file_exists(out_path));
+    long long refracted = -1, cut_deep = -1, cut_light = -1, total = -1;
+    const char *line = strstr(errors, "refraction rays");
+    ck_assert_msg(line != NULL, "%s", errors);
+    ck_assert(sscanf(line, "refraction rays %lld not traced %lld at the depth limit, %lld below "
+                           "the cutoff, %lld totally reflected",
+                     &refracted, &cut_deep, &cut_light, &total) == 4);
+    ck_assert(refracted > 0 && total > 0);
+    remove_tmpdir();
+}
+END_TEST
+
+START_TEST(test_cli_rejects_a_bad_index_and_writes_nothing)
+{
+    make_tmpdir();
+    const char *path = write_file("bad.scene", "material glass transparency 1 ior -1.5\n");
+    char scene_path[256], out_path[256], errors[1024];
+    snprintf(scene_path, sizeof scene_path, "%s", path);
+    snprintf(out_path, sizeof out_path, "%s", tmp_path("out.png"));
+    const char *args[] = {scene_path, "-o", out_path, NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+    ck_assert_msg(strstr(errors, "bad.scene:1:35: error:") != NULL, "%s", errors);
+    ck_assert(!file_exists(out_path));
+    remove_tmpdir();
+}
+END_TEST
+
 Suite *ch07_refraction_suite(void)
 {
     Suite *s = suite_create("ch07 refraction");
@@ -553,10 +844,21 @@ Suite *ch07_refraction_suite(void)
     tcase_add_test(edges, test_index_one_is_no_surface);
     suite_add_tcase(s, edges);
 
+    TCase *tree = tcase_create("the ray tree");
+    tcase_add_test(tree, test_glass_of_index_one_is_invisible);
+    tcase_add_test(tree, test_weights_multiply_along_the_path);
+    tcase_add_test(tree, test_opaque_material_spawns_no_refracted_ray);
+    tcase_add_test(tree, test_box_triangles_face_outwards);
+    tcase_add_test(tree, test_thin_slab_at_1e4_loses_no_ray);
+    tcase_add_test(tree, test_total_internal_reflection_is_a_perfect_mirror);
+    tcase_add_test(tree, test_cli_renders_total_reflection_without_nan);
+    suite_add_tcase(s, tree);
+
     TCase *scenes = tcase_create("bad input");
     tcase_add_test(scenes, test_material_settings_and_their_defaults);
     tcase_add_test(scenes, test_scene_rejects_bad_optical_settings);
     tcase_add_test(scenes, test_checker_changes_colour_from_one_cube_to_the_next);
+    tcase_add_test(scenes, test_cli_rejects_a_bad_index_and_writes_nothing);
     suite_add_tcase(s, scenes);
     return s;
 }

@@ -18,6 +18,8 @@ typedef struct {
     vec3 color;
     /* <<hit members>> ch03 */
     int material;
+    /* <<hit members>> += ch06 */
+    vec3 error; /* |point - the true surface point| <= error, per coordinate */
 } hit;
 
 #endif

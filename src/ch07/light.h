@@ -8,6 +8,8 @@ typedef enum {
     LIGHT_POINT,
     LIGHT_DIRECTIONAL,
     LIGHT_SPOT,
+    /* <<light kinds>> ch06 */
+    LIGHT_AREA, /* a disc, shining like many point lights spread over it */
 } light_kind;
 
 typedef struct {
@@ -18,6 +20,14 @@ typedef struct {
     double attenuation[3]; /* point and spot: 1 / (a1 + a2 r + a3 r^2) */
     double cos_cutoff;     /* spot: cos Theta_L */
     double exponent;       /* spot: k in cos^k Theta */
+    /* <<light members>> ch06 */
+    double radius; /* area: the disc's radius, > 0 */
+    int samples;   /* area: how many point lights stand for it */
+    enum sample_pattern {
+        SAMPLE_UNIFORM,    /* independent random points */
+        SAMPLE_STRATIFIED, /* one random point in each of N equal cells */
+        SAMPLE_GRID,       /* the centre of each cell */
+    } pattern;             /* area: where the point lights go */
 } light;
 
 #endif

@@ -10,21 +10,53 @@
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
     /* <<default scene>> ch07 */
-    "# Chapter 7: glass and water over a checkered floor.\n"
+    "# Chapter 7: glass, water and a mirror over a checkered floor.\n"
         "camera fov 50\n"
         "image 320 240\n"
         "background gradient 0.9 0.9 0.95  0.35 0.5 0.85\n"
         "ambient 0.3 0.3 0.32\n"
         "material floor diffuse 0.8 specular 0\n"
-        "material glass ambient 0.05 diffuse 0.1 specular 0.6 shininess 200 "
+        "material glass ambient 0 diffuse 0 specular 0.8 shininess 300 "
         "transparency 1 ior 1.5\n"
-        "material water ambient 0.05 diffuse 0.2 specular 0.4 shininess 80 "
-        "transparency 0.9 ior 1.33\n"
-        "sphere center 0 -1001 6 radius 1000 color 0.9 0.88 0.8 checker 0.25 "
-        "0.3 0.45 tile 0.5 material floor\n"
-        "sphere center -0.7 -0.2 5.5 radius 0.8 color 0.9 0.9 0.9 material glass\n"
-        "sphere center 1.1 -0.5 6.5 radius 0.5 color 0.6 0.8 0.9 material water\n"
-        "light point position -3 4 2 intensity 1 1 1\n"
+        "material water ambient 0.3 diffuse 0.6 specular 0.5 shininess 120 "
+        "transparency 0.85 ior 1.33\n"
+        "material mirror ambient 0.02 diffuse 0.05 specular 0.5 shininess 200 "
+        "reflect 0.85\n"
+        "triangle a -40 -1 0  b 40 -1 0  c -40 -1 60 color 0.9 0.88 0.8 "
+        "checker 0.25 0.3 0.45 tile 0.5 material floor\n"
+        "triangle a 40 -1 0  b 40 -1 60  c -40 -1 60 color 0.9 0.88 0.8 "
+        "checker 0.25 0.3 0.45 tile 0.5 material floor\n"
+        "sphere center -1 -0.15 5.2 radius 0.85 material glass\n"
+        "triangle a -1.5 -1 9.5  b 3.5 -1 7.5  c 3.5 2.3 7.5 color 0.9 0.9 0.9 "
+        "material mirror\n"
+        "triangle a -1.5 -1 9.5  b 3.5 2.3 7.5  c -1.5 2.3 9.5 color 0.9 0.9 0.9 "
+        "material mirror\n"
+        "triangle a 0.2 -0.35 4.2  b 0.2 -0.35 5.6  c 2.2 -0.35 5.6"
+        " color 0.25 0.55 0.75 material water\n"
+        "triangle a 0.2 -0.35 4.2  b 2.2 -0.35 5.6  c 2.2 -0.35 4.2"
+        " color 0.25 0.55 0.75 material water\n"
+        "triangle a 0.2 -0.99 4.2  b 2.2 -0.99 4.2  c 2.2 -0.99 5.6"
+        " color 0.25 0.55 0.75 material water\n"
+        "triangle a 0.2 -0.99 4.2  b 2.2 -0.99 5.6  c 0.2 -0.99 5.6"
+        " color 0.25 0.55 0.75 material water\n"
+        "triangle a 0.2 -0.99 4.2  b 0.2 -0.35 4.2  c 2.2 -0.35 4.2"
+        " color 0.25 0.55 0.75 material water\n"
+        "triangle a 0.2 -0.99 4.2  b 2.2 -0.35 4.2  c 2.2 -0.99 4.2"
+        " color 0.25 0.55 0.75 material water\n"
+        "triangle a 0.2 -0.99 5.6  b 2.2 -0.99 5.6  c 2.2 -0.35 5.6"
+        " color 0.25 0.55 0.75 material water\n"
+        "triangle a 0.2 -0.99 5.6  b 2.2 -0.35 5.6  c 0.2 -0.35 5.6"
+        " color 0.25 0.55 0.75 material water\n"
+        "triangle a 0.2 -0.99 4.2  b 0.2 -0.99 5.6  c 0.2 -0.35 5.6"
+        " color 0.25 0.55 0.75 material water\n"
+        "triangle a 0.2 -0.99 4.2  b 0.2 -0.35 5.6  c 0.2 -0.35 4.2"
+        " color 0.25 0.55 0.75 material water\n"
+        "triangle a 2.2 -0.99 4.2  b 2.2 -0.35 4.2  c 2.2 -0.35 5.6"
+        " color 0.25 0.55 0.75 material water\n"
+        "triangle a 2.2 -0.99 4.2  b 2.2 -0.35 5.6  c 2.2 -0.99 5.6"
+        " color 0.25 0.55 0.75 material water\n"
+        "light point position -3 4 2 intensity 0.9 0.85 0.8\n"
+        "light directional direction 1 -1.5 0.8 intensity 0.3 0.3 0.35\n"
     ;
 
 /* <<command-line options>> ch01 */
@@ -156,6 +188,27 @@ static void print_stats(const render_stats *st, double load_s, double render_s,
     /* <<print statistics>> += ch04 */
     fprintf(stderr, "triangle tests     %lld\n", st->triangle_tests);
     fprintf(stderr, "box tests          %lld\n", st->box_tests);
+    /* <<print statistics>> += ch06 */
+    long long facing = st->shadow_rays + st->shadow_skipped_dark +
+                       st->shadow_skipped_alone;
+    fprintf(stderr, "shadow rays        %lld (%lld blocked)\n", st->shadow_rays,
+            st->shadow_rays_blocked);
+    fprintf(stderr,
+            "  not cast         %lld light behind the surface, %lld no light "
+            "to block,\n                   %lld nothing that could block\n",
+            st->light_tests - facing, st->shadow_skipped_dark,
+            st->shadow_skipped_alone);
+    fprintf(stderr, "reflection rays    %lld\n", st->reflection_rays);
+    fprintf(stderr, "  not traced       %lld at the depth limit, %lld below "
+                    "the cutoff\n",
+            st->reflection_skipped_depth, st->reflection_skipped_weight);
+    /* <<print statistics>> += ch07 */
+    fprintf(stderr, "refraction rays    %lld\n", st->refraction_rays);
+    fprintf(stderr,
+            "  not traced       %lld at the depth limit, %lld below the "
+            "cutoff,\n                   %lld totally reflected\n",
+            st->refraction_skipped_depth, st->refraction_skipped_weight,
+            st->total_reflections);
     fprintf(stderr,
             "time               scene %.1f ms, render %.1f ms, write %.1f ms\n",
             1e3 * load_s, 1e3 * render_s, 1e3 * write_s);

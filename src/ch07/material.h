@@ -13,7 +13,9 @@ typedef struct {
     double ambient, diffuse, specular; /* rho_a, rho_d, rho_s in [0, 1] */
     double shininess;                  /* k >= 1 */
     highlight_model highlight;
-    /* <<material members>> ch07 */
+    /* <<material members>> ch06 */
+    double reflect; /* alpha_reflect in [0, 1]: 0 (the default) not a mirror */
+    /* <<material members>> += ch07 */
     double ior;          /* refractive index of the inside relative to the
                             outside, 0.001 to 1000 */
     double transparency; /* in [0, 1]: 0 opaque, 1 clear */

@@ -34,6 +34,9 @@ void scene_init(scene *s)
     s->default_light = (light){.kind = LIGHT_DIRECTIONAL,
                                .direction = vec3_normalize((vec3){1, -1, 1}),
                                .intensity = {1, 1, 1}};
+    /* <<scene member defaults>> += ch06 */
+    s->max_depth = 64; /* a guarantee; the cutoff usually ends first */
+    s->cutoff = 0.01;
 }
 
 void scene_free(scene *s)
@@ -80,6 +83,8 @@ typedef struct {
     /* <<search members>> ch04 */
     mesh_ray prepared; /* valid once is_prepared is set */
     bool is_prepared;
+    /* <<search members>> += ch06 */
+    bool any_hit; /* a shadow ray's search: the first hit settles it */
 } scene_search;
 
 /* <<search helpers>> ch04 */
@@ -89,6 +94,77 @@ static const mesh_ray *prepared_ray(scene_search *q)
     if (!q->is_prepared)
         q->prepared = mesh_ray_of(q->r), q->is_prepared = true;
     return &q->prepared;
+}
+/* <<search helpers>> += ch06 */
+
+/* The hit point moved back onto the sphere, with its error bound. */
+static void sphere_refine_hit(const sphere *sp, hit *h)
+{
+    vec3 out = vec3_sub(h->point, sp->center);
+    double length = vec3_length(out);
+    if (!(length > 0)) { /* on the centre: no direction to push along */
+        h->error = vec3_scale(vec3_abs(h->point), gamma_bound(8));
+        return;
+    }
+    vec3 q = vec3_scale(out, sp->radius / length); /* 5 roundings */
+    h->point = vec3_add(sp->center, q);            /* and 1 more */
+    h->error = vec3_add(vec3_scale(vec3_abs(q), gamma_bound(5)),
+                        vec3_scale(vec3_abs(h->point), gamma_bound(1)));
+}
+
+/* How wrong the watertight test's t can be for a ray that starts at p
+ * near the triangle (a, b, c), as a distance from its plane. */
+static double triangle_test_error(vec3 a, vec3 b, vec3 c, vec3 p)
+{
+    vec3 corners[3] = {a, b, c};
+    double M = 0; /* the triangle's reach from p: largest coordinate */
+    for (int k = 0; k < 3; k++) {
+        vec3 r = vec3_abs(vec3_sub(corners[k], p));
+        M = fmax(M, fmax(r.x, fmax(r.y, r.z)));
+    }
+    double twice_area = vec3_length(vec3_cross(vec3_sub(b, a),
+                                               vec3_sub(c, a)));
+    if (!(twice_area > 0))
+        return INFINITY; /* never hit: the test rejects it */
+    return sqrt(3) * (gamma_bound(3) * M +
+                      48 * gamma_bound(4) * M * M * M / twice_area);
+}
+
+/* The hit point rebuilt from its barycentric coordinates w, with its
+ * error bound, widened by the error of the test that could meet the
+ * triangle again. */
+static void triangle_refine_hit(vec3 a, vec3 b, vec3 c, const double w[3],
+                                hit *h)
+{
+    vec3 pa = vec3_scale(a, w[0]), pb = vec3_scale(b, w[1]),
+         pc = vec3_scale(c, w[2]);
+    h->point = vec3_add(vec3_add(pa, pb), pc);
+    vec3 sum = vec3_add(vec3_add(vec3_abs(pa), vec3_abs(pb)), vec3_abs(pc));
+    double test = triangle_test_error(a, b, c, h->point);
+    h->error = vec3_add(vec3_scale(sum, gamma_bound(7)),
+                        (vec3){test, test, test});
+}
+
+static void refine_hit_point(const scene *s, const nearest_hit *best, hit *h)
+{
+    const object *o = best->object;
+    switch (o->kind) {
+    case SHAPE_SPHERE:
+        sphere_refine_hit(&o->sphere, h);
+        break;
+    case SHAPE_TRIANGLE: {
+        const vec3 *c = o->corners;
+        triangle_refine_hit(c[0], c[1], c[2], best->b, h);
+        break;
+    }
+    case SHAPE_MESH: {
+        const mesh *m = &s->meshes[o->mesh];
+        const int *v = m->triangles[best->primitive].v;
+        triangle_refine_hit(m->vertices[v[0]], m->vertices[v[1]],
+                            m->vertices[v[2]], best->b, h);
+        break;
+    }
+    }
 }
 
 /* Narrows q->best when q->r, the ray in o's own space, hits o's shape
@@ -126,6 +202,9 @@ static void shape_intersect(const scene *s, const object *o, scene_search *q)
 
 static void object_intersect(const scene *s, const object *o, scene_search *q)
 {
+    /* <<search an object in its own space>> ch06 */
+    if (q->any_hit && q->best.object != NULL)
+        return; /* an occluder is found: no other object can change that */
     shape_intersect(s, o, q);
 }
 
@@ -159,6 +238,8 @@ static void object_fill_hit(const scene *s, const nearest_hit *best, ray r,
     const object *o = best->object;
     ray local = r; /* the ray in o's own space: the same until chapter 5 */
     shape_fill_hit(s, best, local, h);
+    /* <<bound the rounding of the hit point>> ch06 */
+    refine_hit_point(s, best, h);
     h->color = o->color;
     /* <<fill the object's part of the hit>> ch03 */
     h->material = o->material;
@@ -225,4 +306,23 @@ int scene_add_mesh(scene *s, mesh m)
     s->meshes = grown;
     s->meshes[s->mesh_count] = m;
     return s->mesh_count++;
+}
+/* <<scene contents>> += ch06 */
+
+bool scene_occluded(const scene *s, ray r, double t_min, double t_max,
+                    render_stats *stats)
+{
+    scene_search q = {.r = r, .t_min = t_min, .stats = stats,
+                      .best = {.object = NULL, .t = t_max},
+                      .any_hit = true};
+    search_objects(s, &q);
+    return q.best.object != NULL;
+}
+
+bool scene_can_shadow(const scene *s, const hit *h)
+{
+    if (s->object_count != 1)
+        return s->object_count > 1; /* another object may be in the way */
+    shape_kind kind = s->objects[0].kind;
+    return kind == SHAPE_MESH || (kind == SHAPE_SPHERE && h->inside);
 }

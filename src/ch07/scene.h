@@ -17,6 +17,9 @@
 #include "material.h"
 /* <<scene includes>> += ch04 */
 #include "mesh.h"
+/* <<scene includes>> += ch06 */
+#include "offset.h"
+#include "sample.h"
 /* <<scene includes>> += ch07 */
 #include "optics.h"
 
@@ -74,6 +77,9 @@ typedef struct {
     /* <<scene members>> += ch04 */
     mesh *meshes;
     int mesh_count, mesh_capacity;
+    /* <<scene members>> += ch06 */
+    int max_depth; /* reflections deeper than this are not traced */
+    double cutoff; /* nor those whose weight would fall below this */
 } scene;
 
 void scene_init(scene *s);
@@ -106,5 +112,15 @@ bool scene_add_light(scene *s, light L);
 /* Takes m over and returns its index in the scene, or -1 (out of memory,
  * or SCENE_MAX_MESHES reached: m is then the caller's to free). */
 int scene_add_mesh(scene *s, mesh m);
+/* <<scene functions>> += ch06 */
+
+/* Is there any hit along r with t in (t_min, t_max)? Stops at the first. */
+bool scene_occluded(const scene *s, ray r, double t_min, double t_max,
+                    render_stats *stats);
+
+/* Could anything in s block a shadow ray leaving the hit h towards a light
+ * above its surface? False only for a lone sphere hit from outside and a
+ * lone triangle, which cannot shadow themselves. */
+bool scene_can_shadow(const scene *s, const hit *h);
 
 #endif

@@ -29,6 +29,62 @@ static bool read_material_name(parser *p, const scene *s, int *material)
 }
 /* <<statement helpers>> += ch04 */
 #include "obj.h"
+/* <<statement helpers>> += ch06 */
+
+#define AREA_LIGHT_MAX_SAMPLES 1024 /* shadow rays per point and light */
+
+static bool read_light_setting(parser *p, light *L); /* chapter 03 */
+
+static bool read_sample_pattern(parser *p, light *L)
+{
+    bool named = parse_next_token(p);
+    if (named && parse_token_is(p, "uniform"))
+        L->pattern = SAMPLE_UNIFORM;
+    else if (named && parse_token_is(p, "stratified"))
+        L->pattern = SAMPLE_STRATIFIED;
+    else if (named && parse_token_is(p, "grid"))
+        L->pattern = SAMPLE_GRID;
+    else
+        return parse_expected(p, "expected 'uniform', 'stratified' or "
+                                 "'grid'");
+    return true;
+}
+
+static bool read_area_setting(parser *p, light *L)
+{
+    if (parse_token_is(p, "radius")) {
+        if (!parse_positive(p, "a disc radius", &L->radius))
+            return false;
+        return L->radius <= PARSE_MAX_COORDINATE ||
+               parse_expected(p, "expected a disc radius of at most 1e50");
+    }
+    if (parse_token_is(p, "samples")) {
+        long n;
+        if (!parse_int(p, "a number of samples", &n))
+            return false;
+        if (n < 1 || n > AREA_LIGHT_MAX_SAMPLES)
+            return parse_expected(p, "expected a number of samples from 1 "
+                                     "to %d", AREA_LIGHT_MAX_SAMPLES);
+        L->samples = (int)n;
+        return true;
+    }
+    if (parse_token_is(p, "pattern"))
+        return read_sample_pattern(p, L);
+    return read_light_setting(p, L);
+}
+
+static bool parse_area_light(parser *p, scene *s, light L)
+{
+    L.kind = LIGHT_AREA, L.radius = 1, L.samples = 16;
+    L.pattern = SAMPLE_STRATIFIED;
+    while (parse_next_token(p))
+        if (!read_area_setting(p, &L))
+            return false;
+    if (!scene_add_light(s, L))
+        return parse_fail_at(p, p->line, "more than %d lights",
+                             SCENE_MAX_LIGHTS);
+    return true;
+}
 /* <<statement helpers>> += ch07 */
 
 static bool read_ior(parser *p, double *ior)
@@ -197,7 +253,9 @@ static bool parse_sphere(parser *p, scene *s)
 
 static const char material_setting_names[] =
     "emission, ambient, diffuse, specular, shininess, highlight"
-    /* <<names of material settings>> ch07 */
+    /* <<names of material settings>> ch06 */
+    ", reflect"
+    /* <<names of material settings>> += ch07 */
     ", ior, transparency, fresnel"
     ;
 
@@ -231,7 +289,10 @@ static bool read_material_setting(parser *p, material *m)
     }
     if (parse_token_is(p, "highlight"))
         return read_highlight_model(p, m);
-    /* <<material settings>> ch07 */
+    /* <<material settings>> ch06 */
+    if (parse_token_is(p, "reflect"))
+        return parse_coefficient(p, "a reflectivity", &m->reflect);
+    /* <<material settings>> += ch07 */
     if (parse_token_is(p, "ior"))
         return read_ior(p, &m->ior);
     if (parse_token_is(p, "transparency"))
@@ -324,6 +385,9 @@ static bool read_light_setting(parser *p, light *L)
         [LIGHT_DIRECTIONAL] = "direction, intensity",
         [LIGHT_SPOT] = "position, direction, angle, exponent, intensity, "
                        "attenuation",
+        /* <<the settings of other kinds of light>> ch06 */
+        [LIGHT_AREA] = "position, direction, radius, samples, pattern, intensity, "
+                       "attenuation",
     };
     bool placed = L->kind != LIGHT_DIRECTIONAL, aimed = L->kind != LIGHT_POINT;
     if (parse_token_is(p, "intensity"))
@@ -342,6 +406,8 @@ static bool read_light_setting(parser *p, light *L)
 }
 
 static const char other_light_kinds[] = ""
+    /* <<names of other kinds of light>> ch06 */
+    ", area"
     ;
 
 static bool parse_light(parser *p, scene *s)
@@ -359,6 +425,9 @@ static bool parse_light(parser *p, scene *s)
         L.kind = LIGHT_DIRECTIONAL;
     else if (named && parse_token_is(p, "spot"))
         L.kind = LIGHT_SPOT;
+    /* <<other kinds of light>> ch06 */
+    else if (named && parse_token_is(p, "area"))
+        return parse_area_light(p, s, L);
     else
         return parse_expected(p, "expected a kind of light (point, "
                                  "directional, spot%s)", other_light_kinds);
@@ -542,6 +611,32 @@ static bool parse_mesh(parser *p, scene *s)
                              SCENE_MAX_OBJECTS);
     return true;
 }
+/* <<statements>> += ch06 */
+
+#define SCENE_MAX_DEPTH 100 /* a guarantee, not a budget: see chapter 06 */
+
+static bool parse_recursion(parser *p, scene *s)
+{
+    if (!parse_next_token(p))
+        return parse_expected(p, "expected 'depth' or 'cutoff'");
+    do {
+        if (parse_token_is(p, "depth")) {
+            long depth;
+            if (!parse_int(p, "a recursion depth", &depth))
+                return false;
+            if (depth < 0 || depth > SCENE_MAX_DEPTH)
+                return parse_expected(p, "expected a recursion depth from "
+                                         "0 to %d", SCENE_MAX_DEPTH);
+            s->max_depth = (int)depth;
+        } else if (parse_token_is(p, "cutoff")) {
+            if (!parse_coefficient(p, "a contribution cutoff", &s->cutoff))
+                return false;
+        } else {
+            return parse_expected(p, "expected 'depth' or 'cutoff'");
+        }
+    } while (parse_next_token(p));
+    return true;
+}
 
 /* <<the statement loop>> ch01 */
 typedef bool (*statement_parser)(parser *p, scene *s);
@@ -563,6 +658,8 @@ static const struct {
     /* <<scene keywords>> += ch04 */
     {"triangle", parse_triangle},
     {"mesh", parse_mesh},
+    /* <<scene keywords>> += ch06 */
+    {"recursion", parse_recursion},
 };
 
 static bool parse_statement(parser *p, void *target)

@@ -77,6 +77,23 @@ static bool light_reaches(const scene *s, const hit *h,
                           const light_sample *ls, render_stats *stats)
 {
     (void)s, (void)h, (void)ls, (void)stats; /* used from chapter 6 on */
+    /* <<is the light blocked>> ch06 */
+    vec3 I = ls->intensity;
+    if (I.x == 0 && I.y == 0 && I.z == 0) {
+        stats->shadow_skipped_dark++;
+        return false; /* nothing arrives that a shadow could take away */
+    }
+    if (!scene_can_shadow(s, h)) {
+        stats->shadow_skipped_alone++;
+        return true;
+    }
+    stats->shadow_rays++;
+    /* ls->distance is from the hit point; the offset origin is closer to
+     * the light by far less than any object could be thick */
+    bool blocked = scene_occluded(s, ray_leaving(h, ls->l), 0.0, ls->distance,
+                                  stats);
+    stats->shadow_rays_blocked += blocked;
+    return !blocked;
     return true;
 }
 
@@ -95,6 +112,17 @@ static double highlight(const material *m, vec3 n, vec3 l, vec3 v)
 static vec3 direct_light(const scene *s, const material *m, const hit *h,
                          vec3 n, vec3 v, const light *L, render_stats *stats)
 {
+    /* <<lights made of many points>> ch06 */
+    if (L->kind == LIGHT_AREA) { /* the sum of its point lights */
+        vec3 sum = {0, 0, 0};
+        sample_stream g = sample_stream_at(h->point, L->position);
+        for (int k = 0; k < L->samples; k++) {
+            light point = area_light_point(L, k, &g);
+            sum = vec3_add(sum, direct_light(s, m, h, n, v, &point, stats));
+        }
+        return sum;
+    }
+    stats->light_tests++;
     light_sample ls = light_toward(L, h->point);
     double nl = vec3_dot(n, ls.l);
     if (nl <= 0)

@@ -63,6 +63,13 @@ static inline vec3 vec3_cross(vec3 a, vec3 b)
     return (vec3){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
                   a.x * b.y - a.y * b.x};
 }
+/* <<vector operations>> += ch06 */
+
+/* i mirrored about the plane with unit normal n: i - 2 n <n, i>. */
+static inline vec3 vec3_reflect(vec3 i, vec3 n)
+{
+    return vec3_sub(i, vec3_scale(n, 2 * vec3_dot(n, i)));
+}
 
 /* <<ray type>> ch01 */
 /* The half-line origin + t dir, t >= 0. Rays made by the renderer have
