@@ -67,7 +67,7 @@ double fresnel_schlick(double cos_i, double eta1, double eta2)
 double fresnel_schlick_tir(double cos_i, double eta1, double eta2)
 {
     if (eta1 <= eta2)
-        return fresnel_schlick(cos_i, eta1, eta2); /* already the thinner */
+        return fresnel_schlick(cos_i, eta1, eta2); /* from the thinner side */
     double cos_t = transmitted_cosine(cos_i, eta1, eta2);
     return cos_t < 0 ? 1 : fresnel_schlick(cos_t, eta1, eta2);
 }
