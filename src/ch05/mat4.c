@@ -289,5 +289,5 @@ transform transform_shear(mat4 shear)
 bool transform_of_matrix(mat4 m, transform *out)
 {
     out->m = m;
-    return mat4_inverse_affine(m, &out->inv);
+    return mat4_inverse(m, &out->inv); /* Gauss-Jordan: see the chart */
 }

@@ -200,8 +200,8 @@ transform transform_scale(vec3 s);
 transform transform_rotate(vec3 a, double deg);
 /* One of the sheet's shears, S = I + N with N N = 0: inverse I - N. */
 transform transform_shear(mat4 shear);
-/* Any affine matrix, inverted by mat4_inverse_affine; false when it is
- * singular. */
+/* Any affine matrix, inverted by Gauss-Jordan (mat4_inverse); false when
+ * it is singular. */
 bool transform_of_matrix(mat4 m, transform *out);
 
 #endif
