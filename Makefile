@@ -10,6 +10,7 @@
 #   make src          rewrite the committed plain tangle src/chNN
 #   make figures      render figures/chNN-*.png
 #   make charts       run bench/ and redraw figures/chNN-*.svg
+#   make diagrams     redraw the explanatory figures/chNN-diagram-*.svg
 #   make book         build/book.html          make clean
 #   make SAN=1 test   the same with AddressSanitizer and UBSan
 #   make WERROR=1     warnings are errors (CI)
@@ -87,7 +88,12 @@ SRC$(1) := $$(call c_files,$(1))
 OBJ$(1) := $$(patsubst %.c,$$(O$(1))/%.o,$$(SRC$(1)))
 LIB$(1) := $$(filter-out $$(O$(1))/main.o,$$(OBJ$(1)))
 SUITES$(1) := $$(call suites_upto,$(1))
-FIGS$(1) := figures/ch$(1)-default.png $$(patsubst scenes/%.scene,figures/%.png,$$(call scene_files,$(1)))
+# Pictures of what the program does not do (a method it rejects, drawn for
+# comparison) come from bench/pictures/chNN_NAME.c, which links the
+# chapter's program and writes figures/chNN-NAME.png itself.
+PICS$(1) := $$(patsubst bench/pictures/ch$(1)_%.c,figures/ch$(1)-%.png,$$(wildcard bench/pictures/ch$(1)_*.c))
+FIGS$(1) := figures/ch$(1)-default.png $$(patsubst scenes/%.scene,figures/%.png,$$(call scene_files,$(1))) \
+            $$(PICS$(1))
 
 # The --line tangle is what gets compiled: errors point at the chapter.
 $$(T$(1))/.stamp: $$(call chapters_upto,$(1)) $(TANGLE)
@@ -157,8 +163,16 @@ figures/ch$(1)-default.png: $(BIN)/ch$(1)
 figures/ch$(1)-%.png: $$(T$(1))/scenes/ch$(1)-%.scene $(BIN)/ch$(1)
 	$(BIN)/ch$(1) $$< -o $$@
 
-check-figures-ch$(1): $(BIN)/ch$(1) $(B)/tools/pngdiff $$(T$(1))/.stamp
-	@sh tools/check_figures.sh $(BIN)/ch$(1) $(B)/tools/pngdiff $$(T$(1)) $$(FIGS$(1))
+$(B)/pictures/ch$(1)_%: $$(O$(1))/bench/pictures/ch$(1)_%.o $$(LIB$(1))
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
+
+$$(PICS$(1)): figures/ch$(1)-%.png: $(B)/pictures/ch$(1)_%
+	$$< $$@
+
+check-figures-ch$(1): $(BIN)/ch$(1) $(B)/tools/pngdiff $$(T$(1))/.stamp \
+                      $$(patsubst figures/ch$(1)-%.png,$(B)/pictures/ch$(1)_%,$$(PICS$(1)))
+	@PICTURES=$(B)/pictures sh tools/check_figures.sh $(BIN)/ch$(1) $(B)/tools/pngdiff $$(T$(1)) $$(FIGS$(1))
 
 # Benchmarks link the chapter's program (all but main) like the tests do.
 $$(O$(1))/bench/%.o: bench/%.c $$(T$(1))/.stamp | deps
@@ -169,7 +183,7 @@ $(B)/bench/ch$(1)_%: $$(O$(1))/bench/ch$(1)_%.o $$(LIB$(1))
 	@mkdir -p $$(@D)
 	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
 
--include $$(wildcard $$(O$(1))/*.d $$(O$(1))/tests/*.d $$(O$(1))/bench/*.d)
+-include $$(wildcard $$(O$(1))/*.d $$(O$(1))/tests/*.d $$(O$(1))/bench/*.d $$(O$(1))/bench/pictures/*.d)
 endef
 
 $(foreach n,$(NUMS),$(eval $(call chapter_rules,$(n))))
@@ -185,6 +199,20 @@ figures: $(ALL_FIGS)
 benches: $(BENCHES)
 check-src: $(foreach n,$(NUMS),check-src-ch$(n))
 check-figures: $(foreach n,$(NUMS),check-figures-ch$(n))
+
+# ---------------------------------------------------------------- diagrams
+# Explanatory diagrams computed by small programs: tools/diagrams/chNN_NAME.c
+# writes figures/chNN-diagram-NAME.svg (committed, like the charts).
+.PHONY: diagrams diagrams-ch05
+$(B)/tools/diagrams/ch05_%: tools/diagrams/ch05_%.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(LDFLAGS) -lm
+
+figures/ch05-diagram-%.svg: $(B)/tools/diagrams/ch05_%
+	$< > $@.tmp && mv $@.tmp $@
+
+diagrams-ch05: figures/ch05-diagram-normal.svg
+diagrams: diagrams-ch05
 
 # ---------------------------------------------------------------- charts
 # bench/chNN_x.c writes figures/chNN-x.csv; bench/chNN_x.gp draws figures/chNN-x*.svg
