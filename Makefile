@@ -8,7 +8,9 @@
 #   make chNN         build bin/chNN           make test-chNN  its suites
 #   make run-chNN     render its own scene     make diff-chNN  what it adds
 #   make src          rewrite the committed plain tangle src/chNN
-#   make figures      render figures/chNN-*.png
+#   make figures      render figures/chNN-*.png, the failure figures too
+#   make failures     render figures/chNN-failure-*.png: what a naive method
+#                     draws beside what the program draws
 #   make charts       run bench/ and redraw figures/chNN-*.svg
 #   make diagrams     redraw the explanatory figures/chNN-diagram-*.svg
 #   make book         build/book.html          make clean
@@ -88,12 +90,7 @@ SRC$(1) := $$(call c_files,$(1))
 OBJ$(1) := $$(patsubst %.c,$$(O$(1))/%.o,$$(SRC$(1)))
 LIB$(1) := $$(filter-out $$(O$(1))/main.o,$$(OBJ$(1)))
 SUITES$(1) := $$(call suites_upto,$(1))
-# Pictures of what the program does not do (a method it rejects, drawn for
-# comparison) come from bench/pictures/chNN_NAME.c, which links the
-# chapter's program and writes figures/chNN-NAME.png itself.
-PICS$(1) := $$(patsubst bench/pictures/ch$(1)_%.c,figures/ch$(1)-%.png,$$(wildcard bench/pictures/ch$(1)_*.c))
-FIGS$(1) := figures/ch$(1)-default.png $$(patsubst scenes/%.scene,figures/%.png,$$(call scene_files,$(1))) \
-            $$(PICS$(1))
+FIGS$(1) := figures/ch$(1)-default.png $$(patsubst scenes/%.scene,figures/%.png,$$(call scene_files,$(1)))
 
 # The --line tangle is what gets compiled: errors point at the chapter.
 $$(T$(1))/.stamp: $$(call chapters_upto,$(1)) $(TANGLE)
@@ -163,16 +160,8 @@ figures/ch$(1)-default.png: $(BIN)/ch$(1)
 figures/ch$(1)-%.png: $$(T$(1))/scenes/ch$(1)-%.scene $(BIN)/ch$(1)
 	$(BIN)/ch$(1) $$< -o $$@
 
-$(B)/pictures/ch$(1)_%: $$(O$(1))/bench/pictures/ch$(1)_%.o $$(LIB$(1))
-	@mkdir -p $$(@D)
-	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
-
-$$(PICS$(1)): figures/ch$(1)-%.png: $(B)/pictures/ch$(1)_%
-	$$< $$@
-
-check-figures-ch$(1): $(BIN)/ch$(1) $(B)/tools/pngdiff $$(T$(1))/.stamp \
-                      $$(patsubst figures/ch$(1)-%.png,$(B)/pictures/ch$(1)_%,$$(PICS$(1)))
-	@PICTURES=$(B)/pictures sh tools/check_figures.sh $(BIN)/ch$(1) $(B)/tools/pngdiff $$(T$(1)) $$(FIGS$(1))
+check-figures-ch$(1): $(BIN)/ch$(1) $(B)/tools/pngdiff $$(T$(1))/.stamp
+	@sh tools/check_figures.sh $(BIN)/ch$(1) $(B)/tools/pngdiff $$(T$(1)) $$(FIGS$(1))
 
 # Benchmarks link the chapter's program (all but main) like the tests do.
 $$(O$(1))/bench/%.o: bench/%.c $$(T$(1))/.stamp | deps
@@ -183,7 +172,17 @@ $(B)/bench/ch$(1)_%: $$(O$(1))/bench/ch$(1)_%.o $$(LIB$(1))
 	@mkdir -p $$(@D)
 	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
 
--include $$(wildcard $$(O$(1))/*.d $$(O$(1))/tests/*.d $$(O$(1))/bench/*.d $$(O$(1))/bench/pictures/*.d)
+# Failure figures (failures/chNN_*.c) link it the same way.
+$$(O$(1))/failures/%.o: failures/%.c $$(T$(1))/.stamp | deps
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) $$(PNG_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
+
+$(B)/failures/ch$(1)_%: $$(O$(1))/failures/ch$(1)_%.o $$(LIB$(1))
+	@mkdir -p $$(@D)
+	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
+
+-include $$(wildcard $$(O$(1))/*.d $$(O$(1))/tests/*.d $$(O$(1))/bench/*.d \
+                     $$(O$(1))/failures/*.d)
 endef
 
 $(foreach n,$(NUMS),$(eval $(call chapter_rules,$(n))))
@@ -194,8 +193,33 @@ $(foreach n,$(NUMS),$(eval $(call chapter_rules,$(n))))
 ALL_FIGS := $(foreach n,$(NUMS),$(FIGS$(n)))
 BENCHES  := $(patsubst bench/%.c,$(B)/bench/%,$(wildcard bench/ch[0-9][0-9]_*.c))
 
+# ---------------------------------------------------------------- failures
+# failures/chNN_NAME.c renders what a naive method draws next to what the
+# program draws, into figures/chNN-failure-NAME.png (NAME with - for _), and
+# exits non-zero when the naive half no longer shows the failure.
+FAILURES := $(wildcard failures/ch[0-9][0-9]_*.c)
+failure_name = $(basename $(notdir $(1)))
+failure_chapter = $(firstword $(subst _, ,$(call failure_name,$(1))))
+failure_png = figures/$(call failure_chapter,$(1))-failure-$(subst _,-,$(patsubst \
+                $(call failure_chapter,$(1))_%,%,$(call failure_name,$(1)))).png
+FAILURE_BINS := $(foreach f,$(FAILURES),$(B)/failures/$(call failure_name,$(f)))
+FAILURE_FIGS := $(foreach f,$(FAILURES),$(call failure_png,$(f)))
+
+define failure_rule
+$(call failure_png,$(1)): $(B)/failures/$(call failure_name,$(1))
+	$$< $$@
+endef
+$(foreach f,$(FAILURES),$(eval $(call failure_rule,$(f))))
+
+.PHONY: failures check-failures
+failures: deps $(FAILURE_FIGS)
+
+# The committed failure figures must be what the programs draw now.
+check-failures: $(FAILURE_BINS) $(B)/tools/pngdiff
+	@sh tools/check_failures.sh $(B)/tools/pngdiff $(B)/failures $(FAILURE_FIGS)
+
 src: $(foreach n,$(NUMS),src-ch$(n))
-figures: $(ALL_FIGS)
+figures: $(ALL_FIGS) $(FAILURE_FIGS)
 benches: $(BENCHES)
 check-src: $(foreach n,$(NUMS),check-src-ch$(n))
 check-figures: $(foreach n,$(NUMS),check-figures-ch$(n))
@@ -297,7 +321,8 @@ valgrind: all $(B)/test/tangle $(foreach n,$(NUMS),$(B)/test/ch$(n))
 CHARTS := $(wildcard figures/ch[0-9][0-9]-*.svg)
 
 book: build/book.html
-build/book.html: book.md $(CHAPTERS) tools/weave.lua tools/weave.sh tools/book.css $(ALL_FIGS) $(CHARTS) | deps
+build/book.html: book.md $(CHAPTERS) tools/weave.lua tools/weave.sh tools/book.css $(ALL_FIGS) \
+                 $(FAILURE_FIGS) $(CHARTS) | deps
 	@mkdir -p $(@D)
 	sh tools/weave.sh book.md $@ $(CHAPTERS)
 
@@ -321,7 +346,8 @@ check-lines: $(TANGLE) | deps
 check-quotes:
 	@sh tools/check_quotes.sh bench/quotes.txt
 
-test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures check-book \
+test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures \
+      check-failures check-book \
       check-lines check-quotes
 	@echo "make test: all passed"
 

@@ -3,10 +3,8 @@
 # Renders each figure again with the chapter's binary and compares it with the
 # committed copy (the version in git's HEAD when there is one, so that a
 # figure rewritten by `make` cannot vouch for itself). A figure
-# figures/chNN-default.png is the binary's embedded scene; a figure with a
-# picture program $PICTURES/chNN_NAME (built from bench/pictures/) is what
-# that program writes; any other figures/chNN-NAME.png is
-# TANGLE_DIR/scenes/chNN-NAME.scene.
+# figures/chNN-default.png is the binary's embedded scene; any other
+# figures/chNN-NAME.png is TANGLE_DIR/scenes/chNN-NAME.scene.
 set -u
 bin=$1 pngdiff=$2 tangled=$3
 shift 3
@@ -24,15 +22,10 @@ for fig in "$@"; do
     echo "$fig: error: no committed figure (run make figures and commit it)"
     status=1; continue
   fi
-  picture="${PICTURES:-}/$(echo "$name" | sed 's/-/_/')"
-  if [ -n "${PICTURES:-}" ] && [ -x "$picture" ]; then
-    "$picture" "$out/$name.png"
-  else
-    case "$name" in
-      *-default) "$bin" -o "$out/$name.png" ;;
-      *) "$bin" "$tangled/scenes/$name.scene" -o "$out/$name.png" ;;
-    esac
-  fi || { echo "$fig: error: it failed to render"; status=1; continue; }
+  case "$name" in
+    *-default) "$bin" -o "$out/$name.png" ;;
+    *) "$bin" "$tangled/scenes/$name.scene" -o "$out/$name.png" ;;
+  esac || { echo "$fig: error: $bin failed to render it"; status=1; continue; }
   # Two 8-bit codes of slack absorb libm differences between machines.
   "$pngdiff" --tolerance 2 "$committed" "$out/$name.png" || status=1
 done
