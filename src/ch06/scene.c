@@ -206,6 +206,25 @@ static void refine_hit_point(const scene *s, const nearest_hit *best, hit *h)
     }
 }
 
+/* The refined object-space point p, with error e, taken to the world by
+ * t: its image M p and the bound of that image. */
+static void place_hit_point(const transform *t, vec3 p, vec3 e, hit *h)
+{
+    const double(*m)[4] = t->m.m;
+    const double pc[3] = {p.x, p.y, p.z}, ec[3] = {e.x, e.y, e.z};
+    double bound[3];
+    for (int i = 0; i < 3; i++) {
+        double carried = 0, product = fabs(m[i][3]);
+        for (int j = 0; j < 3; j++) {
+            carried += fabs(m[i][j]) * ec[j];
+            product += fabs(m[i][j] * pc[j]);
+        }
+        bound[i] = (1 + gamma_bound(3)) * carried + gamma_bound(3) * product;
+    }
+    h->point = mat4_mul_point(t->m, p);
+    h->error = (vec3){bound[0], bound[1], bound[2]};
+}
+
 /* Narrows q->best when q->r, the ray in o's own space, hits o's shape
  * nearer than q->best.t. */
 static void shape_intersect(const scene *s, const object *o, scene_search *q)
@@ -289,9 +308,13 @@ static void object_fill_hit(const scene *s, const nearest_hit *best, ray r,
     shape_fill_hit(s, best, local, h);
     /* <<bound the rounding of the hit point>> ch06 */
     refine_hit_point(s, best, h);
+    vec3 object_point = h->point, object_error = h->error;
     /* <<bring the hit back into the world>> ch05 */
     if (placed != NULL)
         hit_to_world(placed, r, h);
+    /* <<bring the hit back into the world>> += ch06 */
+    if (placed != NULL)
+        place_hit_point(placed, object_point, object_error, h);
     h->color = o->color;
     /* <<fill the object's part of the hit>> ch03 */
     h->material = o->material;
