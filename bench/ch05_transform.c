@@ -23,6 +23,12 @@
  * where X* is the inverse of the exact product of the double steps,
  * computed in __float128 (113 bits).
  *
+ * The 24 normal cases (method and transform) and the 21 inverse cases
+ * (method and k), the two halves of the speed-accuracy chart, are timed
+ * together in the same interleaved rounds (bench/timing.h): an operation is
+ * one normal, or one inverse, over whole passes of the 20,000 normals or
+ * the 200 transforms.
+ *
  * Drift. A rotation by 0.7 degrees about (1, 2, 3) composed with itself N
  * times, as an animation's frame loop would, in float and double; and two
  * cures: Gram-Schmidt re-orthonormalisation after every frame, and the
@@ -31,7 +37,13 @@
  *   drift-PRECISION-HOW,N,ns_per_frame,largest angle to the exact R(0.7 N),angle_deg
  *   drift-PRECISION-HOW,all,ns_per_frame,first N off by more than 0.01 degree,frames_to_0.01deg
  *     (0 when it never is, up to the largest N)
- * Columns: method,param,ns_per_op,error,error_kind. */
+ * The errors come from one run of ten million frames, measured as it goes;
+ * the time per frame from the six loops alone, without the measuring, timed
+ * together in their own interleaved rounds (each batch starts again at frame
+ * 1); it is the same in every row of a method.
+ *
+ * CSV: a machine line, then the columns
+ * method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns. */
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -39,7 +51,7 @@
 #include <string.h>
 
 #include "vec.h"
-#include "bench_util.h"
+#include "timing.h"
 
 typedef __float128 quad;
 
@@ -141,36 +153,49 @@ static void true_normal(mat4 a, vec3 n, long double out[3])
     out[2] = sign * (at1[0] * at2[1] - at1[1] * at2[0]);
 }
 
-/* One batch of method over every normal: its time per normal. */
-static double time_normal_batch(normal_method method, const normal_matrices *t)
+enum { N_TRANSFORMS = 6 };
+static const char *transform_names[N_TRANSFORMS] = {
+    "rotation", "uniform-scale", "scale-2-1-1", "scale-10-1-0.1", "shear-1", "shear-5",
+};
+static normal_matrices normal_cases[N_TRANSFORMS];
+static double normal_error[N_TRANSFORMS][N_NORMAL_METHODS]; /* largest angle, degrees */
+
+/* One timed case: a method on one transform. */
+typedef struct {
+    normal_method method;
+    const normal_matrices *t;
+} normal_case;
+
+/* reps normals: whole passes over the 20,000. */
+static void run_normals(void *ctx, long reps)
 {
-    double start = now_ns();
-    double sum = 0;
-    for (int k = 0; k < NORMALS; k++)
-        sum += method(t, normals[k]).x;
-    bench_sink += sum;
-    return (now_ns() - start) / NORMALS;
+    const normal_case *c = ctx;
+    for (long done = 0; done < reps; done += NORMALS) {
+        double sum = 0;
+        for (int k = 0; k < NORMALS; k++)
+            sum += c->method(c->t, normals[k]).x;
+        bench_sink += sum;
+    }
 }
 
+/* The normals, the transforms and every method's largest error. */
 static void measure_normals(void)
 {
     for (int k = 0; k < NORMALS; k++)
         normals[k] = random_unit();
     vec3 axis = vec3_normalize((vec3){1, 2, 3});
-    struct {
-        const char *name;
-        transform t;
-    } cases[6] = {
-        {"rotation", transform_rotate(axis, 40)},
-        {"uniform-scale", transform_then(transform_scale((vec3){3, 3, 3}), transform_rotate(axis, 40))},
-        {"scale-2-1-1", transform_scale((vec3){2, 1, 1})},
-        {"scale-10-1-0.1", transform_scale((vec3){10, 1, 0.1})},
-        {"shear-1", transform_shear(mat4_shear_xz(1, 0))},
-        {"shear-5", transform_shear(mat4_shear_xz(5, 0))},
+    transform cases[N_TRANSFORMS] = {
+        transform_rotate(axis, 40),
+        transform_then(transform_scale((vec3){3, 3, 3}), transform_rotate(axis, 40)),
+        transform_scale((vec3){2, 1, 1}),
+        transform_scale((vec3){10, 1, 0.1}),
+        transform_shear(mat4_shear_xz(1, 0)),
+        transform_shear(mat4_shear_xz(5, 0)),
     };
-    for (int c = 0; c < 6; c++) {
-        normal_matrices t = {cases[c].t.m, cases[c].t.inv, mat4_cofactor3(cases[c].t.m),
-                             mat4_det3(cases[c].t.m) < 0 ? -1 : 1};
+    for (int c = 0; c < N_TRANSFORMS; c++) {
+        normal_matrices t = {cases[c].m, cases[c].inv, mat4_cofactor3(cases[c].m),
+                             mat4_det3(cases[c].m) < 0 ? -1 : 1};
+        normal_cases[c] = t;
         for (int m = 0; m < N_NORMAL_METHODS; m++) {
             double worst = 0;
             for (int k = 0; k < NORMALS; k++) {
@@ -180,12 +205,7 @@ static void measure_normals(void)
                 double e = degrees_between_l(g, want);
                 worst = e > worst ? e : worst;
             }
-            enum { BATCHES = 9 };
-            double batch[BATCHES];
-            for (int b = 0; b < BATCHES; b++)
-                batch[b] = time_normal_batch(normal_methods[m].transform, &t);
-            printf("%s,%s,%.3f,%.6g,max_angle_deg\n", normal_methods[m].name, cases[c].name,
-                   median(batch, BATCHES), worst);
+            normal_error[c][m] = worst;
         }
     }
 }
@@ -327,33 +347,43 @@ static const struct {
 };
 #define N_INVERSE_METHODS (int)(sizeof inverse_methods / sizeof inverse_methods[0])
 
-enum { TRANSFORMS = 200 };
-static test_transform tests[TRANSFORMS];
-static mat4 composed[TRANSFORMS];
+enum { TRANSFORMS = 200, N_KAPPAS = 7 }; /* k = 10^0, 10^2, ..., 10^12 */
+static test_transform tests[N_KAPPAS][TRANSFORMS];
+static mat4 composed[N_KAPPAS][TRANSFORMS];
+static double residual_error[N_KAPPAS][N_INVERSE_METHODS]; /* largest ||M X - I|| */
+static double forward_err[N_KAPPAS][N_INVERSE_METHODS];    /* largest ||X - X*|| / ||X*|| */
 
-/* One batch of method over every test transform: its time per inverse. */
-static double time_inverse_batch(inverse_method invert)
+/* One timed case: a method on the 200 transforms of one k. */
+typedef struct {
+    inverse_method invert;
+    int kappa;
+} inverse_case;
+
+/* reps inverses: whole passes over the 200 transforms. */
+static void run_inverses(void *ctx, long reps)
 {
-    double start = now_ns();
-    double sum = 0;
-    for (int k = 0; k < TRANSFORMS; k++)
-        sum += invert(&tests[k], composed[k]).m[0][0];
-    bench_sink += sum;
-    return (now_ns() - start) / TRANSFORMS;
+    const inverse_case *c = ctx;
+    for (long done = 0; done < reps; done += TRANSFORMS) {
+        double sum = 0;
+        for (int k = 0; k < TRANSFORMS; k++)
+            sum += c->invert(&tests[c->kappa][k], composed[c->kappa][k]).m[0][0];
+        bench_sink += sum;
+    }
 }
 
+/* The test transforms of every k and every method's largest errors. */
 static void measure_inverses(void)
 {
-    for (int e = 0; e <= 12; e += 2) {
-        double kappa = pow(10, e), root = sqrt(kappa);
-        qmat exact[TRANSFORMS];
+    static qmat exact[TRANSFORMS];
+    for (int e = 0; e < N_KAPPAS; e++) {
+        double kappa = pow(10, 2 * e), root = sqrt(kappa);
         for (int k = 0; k < TRANSFORMS; k++) {
-            test_transform *t = &tests[k];
+            test_transform *t = &tests[e][k];
             t->steps[0] = transform_rotate(random_unit(), uniform(-180, 180));
             t->steps[1] = transform_scale((vec3){root, 1, 1 / root});
             t->steps[2] = transform_rotate(random_unit(), uniform(-180, 180));
             t->steps[3] = transform_translate((vec3){uniform(-10, 10), uniform(-10, 10), uniform(-10, 10)});
-            composed[k] = compose(t).m;
+            composed[e][k] = compose(t).m;
             qmat product = qmat_of(t->steps[0].m); /* the exact steps, multiplied in 113 bits */
             for (int s = 1; s < 4; s++)
                 product = qmat_mul(qmat_of(t->steps[s].m), product);
@@ -362,19 +392,56 @@ static void measure_inverses(void)
         for (int m = 0; m < N_INVERSE_METHODS; m++) {
             double worst_residual = 0, worst_forward = 0;
             for (int k = 0; k < TRANSFORMS; k++) {
-                mat4 x = inverse_methods[m].invert(&tests[k], composed[k]);
-                worst_residual = fmax(worst_residual, residual_of(composed[k], x));
+                mat4 x = inverse_methods[m].invert(&tests[e][k], composed[e][k]);
+                worst_residual = fmax(worst_residual, residual_of(composed[e][k], x));
                 worst_forward = fmax(worst_forward, forward_error(x, exact[k]));
             }
-            enum { BATCHES = 9 };
-            double batch[BATCHES];
-            for (int b = 0; b < BATCHES; b++)
-                batch[b] = time_inverse_batch(inverse_methods[m].invert);
-            double ns = median(batch, BATCHES);
-            printf("%s,1e%d,%.3f,%.6g,residual\n", inverse_methods[m].name, e, ns, worst_residual);
-            printf("%s,1e%d,%.3f,%.6g,forward\n", inverse_methods[m].name, e, ns, worst_forward);
+            residual_error[e][m] = worst_residual;
+            forward_err[e][m] = worst_forward;
         }
     }
+}
+
+/* Both halves of the speed-accuracy chart, timed in the same rounds; then
+ * their rows. */
+static void time_and_print_speed_accuracy(void)
+{
+    enum { N_NORMAL_CASES = N_TRANSFORMS * N_NORMAL_METHODS,
+           N_INVERSE_CASES = N_KAPPAS * N_INVERSE_METHODS,
+           N_CASES = N_NORMAL_CASES + N_INVERSE_CASES };
+    static normal_case normal_ctx[N_NORMAL_CASES];
+    static inverse_case inverse_ctx[N_INVERSE_CASES];
+    static char kappa_names[N_KAPPAS][8];
+    bench_case cases[N_CASES];
+    bench_timing timing[N_CASES];
+    int n = 0;
+    for (int c = 0; c < N_TRANSFORMS; c++)
+        for (int m = 0; m < N_NORMAL_METHODS; m++, n++) {
+            normal_ctx[n] = (normal_case){normal_methods[m].transform, &normal_cases[c]};
+            cases[n] = (bench_case){normal_methods[m].name, transform_names[c], run_normals,
+                                    &normal_ctx[n], NORMALS};
+        }
+    for (int e = 0; e < N_KAPPAS; e++) {
+        snprintf(kappa_names[e], sizeof kappa_names[e], "1e%d", 2 * e);
+        for (int m = 0; m < N_INVERSE_METHODS; m++, n++) {
+            inverse_ctx[n - N_NORMAL_CASES] = (inverse_case){inverse_methods[m].invert, e};
+            cases[n] = (bench_case){inverse_methods[m].name, kappa_names[e], run_inverses,
+                                    &inverse_ctx[n - N_NORMAL_CASES], TRANSFORMS};
+        }
+    }
+    bench_time_cases(cases, N_CASES, timing); /* all 45 take turns */
+    n = 0;
+    for (int c = 0; c < N_TRANSFORMS; c++)
+        for (int m = 0; m < N_NORMAL_METHODS; m++, n++)
+            bench_row(cases[n].method, cases[n].param, &timing[n], "%.6g", normal_error[c][m],
+                      "max_angle_deg");
+    for (int e = 0; e < N_KAPPAS; e++)
+        for (int m = 0; m < N_INVERSE_METHODS; m++, n++) {
+            bench_row(cases[n].method, cases[n].param, &timing[n], "%.6g", residual_error[e][m],
+                      "residual");
+            bench_row(cases[n].method, cases[n].param, &timing[n], "%.6g", forward_err[e][m],
+                      "forward");
+        }
 }
 
 /* ---------------------------------------------------------------- drift */
@@ -463,28 +530,39 @@ static void drift_errors(long double a[3][3], vec3 axis, long frames, double *or
 
 typedef enum { COMPOSED, REORTHONORMALIZED, FROM_ANGLE } drift_cure;
 
-#define RUN_DRIFT(SUFFIX, T, NAME)                                                            \
-    static void drift_##SUFFIX(drift_cure cure, const char *name)                               \
+enum { DRIFT_REPORTS = 8 }; /* N = 1, 10, ..., 10^7 */
+
+typedef struct {
+    double ortho[DRIFT_REPORTS], angle[DRIFT_REPORTS];
+    long crossed; /* first frame off by more than DRIFT_LIMIT_DEG; 0: none */
+} drift_result;
+
+/* In precision SUFFIX: one frame, the next r from the previous; the errors
+ * of ten million frames; and reps frames timed, from frame 1 again. */
+#define RUN_DRIFT(SUFFIX)                                                                      \
+    static void next_frame_##SUFFIX(drift_cure cure, vec3 axis, const mat3##SUFFIX *step,       \
+                                    mat3##SUFFIX *r, long frame)                               \
+    {                                                                                          \
+        if (cure == FROM_ANGLE)                                                                \
+            *r = of_mat4##SUFFIX(mat4_rotate(axis, fmod(DRIFT_STEP_DEG * frame, 360)));         \
+        else                                                                                   \
+            *r = mul3##SUFFIX(step, r);                                                        \
+        if (cure == REORTHONORMALIZED)                                                         \
+            orthonormalize##SUFFIX(r);                                                         \
+    }                                                                                          \
+    static void measure_drift_##SUFFIX(drift_cure cure, drift_result *out)                     \
     {                                                                                          \
         vec3 axis = vec3_normalize((vec3){1, 2, 3});                                           \
         mat3##SUFFIX step = of_mat4##SUFFIX(mat4_rotate(axis, DRIFT_STEP_DEG)), r = step;       \
         long next_report = 1, crossed = 0;                                                      \
-        double start = now_ns();                                                               \
-        double spent = 0;                                                                      \
+        int reported = 0;                                                                      \
         for (long frame = 1; frame <= DRIFT_FRAMES; frame++) {                                  \
-            if (frame > 1) {                                                                   \
-                if (cure == FROM_ANGLE)                                                        \
-                    r = of_mat4##SUFFIX(mat4_rotate(axis, fmod(DRIFT_STEP_DEG * frame, 360))); \
-                else                                                                           \
-                    r = mul3##SUFFIX(&step, &r);                                               \
-                if (cure == REORTHONORMALIZED)                                                 \
-                    orthonormalize##SUFFIX(&r);                                                \
-            }                                                                                  \
+            if (frame > 1)                                                                     \
+                next_frame_##SUFFIX(cure, axis, &step, &r, frame);                             \
             bool report = frame == next_report;                                                \
             bool probe = crossed == 0 && (frame < 100000 || frame % 97 == 0);                   \
             if (!report && !probe)                                                             \
                 continue;                                                                      \
-            spent += now_ns() - start;                                                         \
             long double a[3][3];                                                               \
             for (int i = 0; i < 3; i++)                                                        \
                 for (int j = 0; j < 3; j++)                                                    \
@@ -494,37 +572,73 @@ typedef enum { COMPOSED, REORTHONORMALIZED, FROM_ANGLE } drift_cure;
             if (crossed == 0 && fmax(ortho, angle) > DRIFT_LIMIT_DEG)                          \
                 crossed = frame;                                                               \
             if (report) {                                                                      \
-                printf("%s,%ld,%.3f,%.6g,orthogonality_deg\n", name, frame, spent / frame,   \
-                       ortho);                                                                 \
-                printf("%s,%ld,%.3f,%.6g,angle_deg\n", name, frame, spent / frame, angle);   \
+                out->ortho[reported] = ortho, out->angle[reported] = angle;                    \
+                reported++;                                                                    \
                 next_report *= 10;                                                             \
             }                                                                                  \
-            start = now_ns();                                                                  \
         }                                                                                      \
-        bench_sink += r.m[0][0];                                                               \
-        printf("%s,all,%.3f,%ld,frames_to_0.01deg\n", name, spent / DRIFT_FRAMES, crossed);    \
+        out->crossed = crossed;                                                                \
+    }                                                                                          \
+    static void run_drift_##SUFFIX(void *ctx, long reps)                                       \
+    {                                                                                          \
+        drift_cure cure = *(const drift_cure *)ctx;                                            \
+        vec3 axis = vec3_normalize((vec3){1, 2, 3});                                           \
+        mat3##SUFFIX step = of_mat4##SUFFIX(mat4_rotate(axis, DRIFT_STEP_DEG)), r = step;       \
+        double sum = 0; /* every frame's matrix is used */                                     \
+        for (long frame = 2; frame <= reps + 1; frame++) {                                      \
+            next_frame_##SUFFIX(cure, axis, &step, &r, frame);                                 \
+            sum += r.m[0][0];                                                                  \
+        }                                                                                      \
+        bench_sink += sum;                                                                     \
     }
 
-RUN_DRIFT(f, float, "float")
-RUN_DRIFT(d2, double, "double")
+RUN_DRIFT(f)
+RUN_DRIFT(d2)
 
+/* The six loops' errors, then their times in the same rounds; then their rows. */
 static void measure_drift(void)
 {
-    const char *how[3] = {"composed", "reorthonormalized", "from-angle"};
-    char name[64];
-    for (int c = 0; c < 3; c++) {
-        snprintf(name, sizeof name, "drift-float-%s", how[c]);
-        drift_f((drift_cure)c, name);
-        snprintf(name, sizeof name, "drift-double-%s", how[c]);
-        drift_d2((drift_cure)c, name);
+    enum { N_DRIFTS = 6 };
+    static const char *how[3] = {"composed", "reorthonormalized", "from-angle"};
+    static char names[N_DRIFTS][64];
+    static drift_cure cures[N_DRIFTS];
+    drift_result results[N_DRIFTS];
+    bench_case cases[N_DRIFTS];
+    bench_timing timing[N_DRIFTS];
+    for (int n = 0; n < N_DRIFTS; n++) {
+        bool is_float = n % 2 == 0;
+        cures[n] = (drift_cure)(n / 2);
+        snprintf(names[n], sizeof names[n], "drift-%s-%s", is_float ? "float" : "double",
+                 how[n / 2]);
+        if (is_float)
+            measure_drift_f(cures[n], &results[n]);
+        else
+            measure_drift_d2(cures[n], &results[n]);
+        cases[n] = (bench_case){names[n], "all", is_float ? run_drift_f : run_drift_d2,
+                                &cures[n], 1};
+    }
+    bench_time_cases(cases, N_DRIFTS, timing); /* the six loops take turns */
+    for (int n = 0; n < N_DRIFTS; n++) {
+        long frames = 1;
+        char param[32];
+        for (int k = 0; k < DRIFT_REPORTS; k++, frames *= 10) {
+            snprintf(param, sizeof param, "%ld", frames);
+            bench_row(names[n], param, &timing[n], "%.6g", results[n].ortho[k],
+                      "orthogonality_deg");
+            bench_row(names[n], param, &timing[n], "%.6g", results[n].angle[k], "angle_deg");
+        }
+        bench_row(names[n], "all", &timing[n], "%.0f", (double)results[n].crossed,
+                  "frames_to_0.01deg");
     }
 }
 
 int main(void)
 {
-    printf("method,param,ns_per_op,error,error_kind\n");
     measure_normals();
     measure_inverses();
+    bench_print_machine();
+    bench_csv_header();
+    time_and_print_speed_accuracy();
     measure_drift();
     return 0;
 }
