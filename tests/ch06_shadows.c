@@ -203,14 +203,27 @@ static void scaled_scene(scene *s, double scale)
     scene_of(s, text);
 }
 
+/* The same scene built at scale 1 and placed by a transform that scales it
+ * by scale: the hit points are computed in object space, then moved. */
+static void placed_scene(scene *s, double scale)
+{
+    char text[1024];
+    snprintf(text, sizeof text,
+             "triangle a -20 -1 1  b 20 -1 1  c -20 -1 40 transform scale %.17g %.17g %.17g\n"
+             "triangle a 20 -1 1  b 20 -1 40  c -20 -1 40 transform scale %.17g %.17g %.17g\n"
+             "sphere center 0 0.5 6 radius 1 transform scale %.17g %.17g %.17g\n",
+             scale, scale, scale, scale, scale, scale, scale, scale, scale);
+    scene_of(s, text);
+}
+
 /* Of the shadow rays from lit points of the floor and the sphere's top,
  * towards a light straight above, how many report a hit, starting as the
  * program does (fixed_epsilon 0) or at the hit point with t > epsilon,
  * the point rounded to float as a float renderer has it. */
-static int self_hits(double scale, double fixed_epsilon)
+static int self_hits_in(void (*build)(scene *, double), double scale, double fixed_epsilon)
 {
     scene s;
-    scaled_scene(&s, scale);
+    build(&s, scale);
     int count = 0;
     vec3 up = {0, 1, 0};
     render_stats stats = {0};
@@ -233,6 +246,22 @@ static int self_hits(double scale, double fixed_epsilon)
     scene_free(&s);
     return count;
 }
+
+static int self_hits(double scale, double fixed_epsilon)
+{
+    return self_hits_in(scaled_scene, scale, fixed_epsilon);
+}
+
+START_TEST(test_placed_objects_have_no_acne)
+{
+    /* The bound travels with the point through the object's matrix: without
+     * it, the object-space bound of a scaled-up floor is far too small. */
+    const double scales[] = {1, 1e2, 1e4, 1e6};
+    for (int k = 0; k < 4; k++)
+        ck_assert_msg(self_hits_in(placed_scene, scales[k], 0) == 0, "self-hits at scale %g",
+                      scales[k]);
+}
+END_TEST
 
 START_TEST(test_fixed_epsilon_shows_acne_at_1e4)
 {
@@ -502,6 +531,7 @@ Suite *ch06_shadows_suite(void)
     TCase *acne = tcase_create("edge cases");
     tcase_add_test(acne, test_fixed_epsilon_shows_acne_at_1e4);
     tcase_add_test(acne, test_program_offset_has_no_acne_at_1e4);
+    tcase_add_test(acne, test_placed_objects_have_no_acne);
     tcase_add_test(acne, test_contact_shadow_is_kept);
     tcase_add_test(acne, test_offset_origin_is_on_the_side_the_ray_leaves_by);
     suite_add_tcase(s, acne);

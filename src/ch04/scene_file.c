@@ -455,6 +455,26 @@ static bool read_mesh_setting(parser *p, mesh_settings *m, bool *known)
     return true;
 }
 
+/* Reads, places and adds to the scene the mesh the settings name; its
+ * index goes to *index. */
+static bool read_mesh(parser *p, scene *s, const mesh_settings *settings,
+                      int *index)
+{
+    mesh m = {0};
+    if (!load_mesh_file(p, settings->file, settings->file_length, &m) ||
+        !place_mesh(p, &m, settings->scale, settings->offset,
+                    settings->smooth)) {
+        mesh_free(&m);
+        return false;
+    }
+    if ((*index = scene_add_mesh(s, m)) < 0) {
+        mesh_free(&m);
+        return parse_fail_at(p, p->line, "more than %d meshes (or out of "
+                                         "memory)", SCENE_MAX_MESHES);
+    }
+    return true;
+}
+
 static bool parse_mesh(parser *p, scene *s)
 {
     object o = {.kind = SHAPE_MESH, .color = {0.8, 0.8, 0.8}};
@@ -474,17 +494,9 @@ static bool parse_mesh(parser *p, scene *s)
     if (settings.file == NULL)
         return parse_expected(p, "expected 'file PATH': a mesh needs an OBJ "
                                  "file");
-    mesh m = {0};
-    if (!load_mesh_file(p, settings.file, settings.file_length, &m) ||
-        !place_mesh(p, &m, settings.scale, settings.offset, settings.smooth)) {
-        mesh_free(&m);
+    o.mesh = -1; /* none yet */
+    if (o.mesh < 0 && !read_mesh(p, s, &settings, &o.mesh))
         return false;
-    }
-    if ((o.mesh = scene_add_mesh(s, m)) < 0) {
-        mesh_free(&m);
-        return parse_fail_at(p, p->line, "more than %d meshes (or out of "
-                                         "memory)", SCENE_MAX_MESHES);
-    }
     if (!scene_add_object(s, o))
         return parse_fail_at(p, p->line, "more than %d objects",
                              SCENE_MAX_OBJECTS);

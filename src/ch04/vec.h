@@ -76,4 +76,5 @@ static inline vec3 ray_at(ray r, double t)
     return vec3_add(r.origin, vec3_scale(r.dir, t));
 }
 
+
 #endif

@@ -1,0 +1,143 @@
+/* scene.h: what to render (chapter 1).
+ *
+ * scene_init fills in the defaults, scene_free releases what the scene
+ * owns. Later chapters add objects, materials, lights, and the queries that
+ * find what a ray hits. The scene does not read files: scene_file.h does. */
+#ifndef SCENE_H
+#define SCENE_H
+
+#include <stdbool.h>
+#include <stddef.h>
+#include "camera.h"
+#include "stats.h"
+/* <<scene includes>> ch02 */
+#include "sphere.h"
+/* <<scene includes>> += ch03 */
+#include "light.h"
+#include "material.h"
+/* <<scene includes>> += ch04 */
+#include "mesh.h"
+
+typedef enum { BACKGROUND_SOLID, BACKGROUND_GRADIENT } background_kind;
+
+typedef struct {
+    background_kind kind;
+    vec3 bottom, top; /* a solid background uses bottom only */
+} background;
+
+/* <<scene types>> ch02 */
+typedef enum {
+    SHAPE_SPHERE,
+    /* <<shape kinds>> ch04 */
+    SHAPE_TRIANGLE,
+    SHAPE_MESH,
+} shape_kind;
+
+/* An object: a shape, and how it looks. Zero means default: a zeroed
+ * object with a shape set is a valid object. */
+typedef struct {
+    shape_kind kind;
+    union {
+        sphere sphere; /* SHAPE_SPHERE */
+        /* <<shapes of an object>> ch04 */
+        vec3 corners[3]; /* SHAPE_TRIANGLE */
+        int mesh;        /* SHAPE_MESH: index into the scene's meshes */
+    };
+    vec3 color;
+    /* <<object members>> ch03 */
+    int material; /* 0: the scene's default material; k: the scene's k-th */
+    /* <<object members>> += ch05 */
+    int transform; /* 0: none, its space is the world; k: the scene's k-th */
+} object;
+/* <<scene types>> += ch05 */
+
+/* Where a mesh came from (chapter 05): its file, resolved against the
+ * scene file's folder, and how its statement changed the vertices. */
+typedef struct {
+    char *path; /* owned by the scene */
+    double scale;
+    vec3 offset;
+    bool smooth;
+    int mesh; /* its index among the scene's meshes */
+} mesh_source;
+
+typedef struct {
+    camera cam;
+    background bg;
+    /* <<scene members>> ch02 */
+    object *objects;
+    int object_count, object_capacity;
+    /* <<scene members>> += ch03 */
+    vec3 ambient; /* I_a */
+    struct {
+        double alpha, beta;
+    } tone;
+    material default_material;
+    material *materials;
+    int material_count, material_capacity;
+    light default_light; /* used only when the scene has no light */
+    light *lights;
+    int light_count, light_capacity;
+    /* <<scene members>> += ch04 */
+    mesh *meshes;
+    int mesh_count, mesh_capacity;
+    /* <<scene members>> += ch05 */
+    transform *transforms;
+    int transform_count, transform_capacity;
+    mesh_source *mesh_sources;
+    int mesh_source_count, mesh_source_capacity;
+} scene;
+
+void scene_init(scene *s);
+void scene_free(scene *s);
+
+/* <<scene functions>> ch02 */
+/* A million: far beyond what a renderer without a tree can draw. */
+#define SCENE_MAX_OBJECTS (1 << 20)
+
+/* Appends o; false when out of memory or SCENE_MAX_OBJECTS is reached. */
+bool scene_add_object(scene *s, object o);
+
+/* The nearest hit along r with t in (t_min, t_max), filled into h. */
+bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
+                     hit *h, render_stats *stats);
+/* <<scene functions>> += ch03 */
+
+#define SCENE_MAX_MATERIALS 4096
+#define SCENE_MAX_LIGHTS 4096 /* every light costs every shaded point */
+
+/* The material with the given index: 0 is the default material. */
+const material *scene_material(const scene *s, int index);
+/* Append a material or a light; false when out of memory or at the limit. */
+bool scene_add_material(scene *s, material m);
+bool scene_add_light(scene *s, light L);
+/* <<scene functions>> += ch04 */
+
+#define SCENE_MAX_MESHES 65536 /* meshes loaded; objects may share them */
+
+/* Takes m over and returns its index in the scene, or -1 (out of memory,
+ * or SCENE_MAX_MESHES reached: m is then the caller's to free). */
+int scene_add_mesh(scene *s, mesh m);
+/* <<scene functions>> += ch05 */
+
+#define SCENE_MAX_TRANSFORMS SCENE_MAX_OBJECTS /* at most one per object */
+
+/* Appends t and returns its index k >= 1, for object.transform; -1 when
+ * out of memory or at the limit. */
+int scene_add_transform(scene *s, transform t);
+/* The transform with index k >= 1. */
+const transform *scene_transform(const scene *s, int k);
+
+/* The index of the mesh read from the source key (key.mesh is ignored),
+ * or -1 when none was. */
+int scene_find_mesh(const scene *s, mesh_source key);
+/* Records that mesh source.mesh came from source (the path is copied);
+ * false when out of memory. */
+bool scene_remember_mesh(scene *s, mesh_source source);
+
+/* The triangles the scene stores (in its meshes and lone triangles) and
+ * the triangles its objects draw (a mesh counts once per object). */
+void scene_count_triangles(const scene *s, long long *stored,
+                           long long *instanced);
+
+#endif
