@@ -13,6 +13,9 @@ camera_view camera_view_of(const camera *cam)
     camera_view view = {.pixel_size = s,
                         .left = -0.5 * cam->width * s, /* = -tan(fov/2) */
                         .top = 0.5 * cam->height * s};
+    /* <<prepare the camera view>> ch05 */
+    view.is_placed = cam->is_placed && mat4_look_at(cam->position, cam->look_at,
+                                                    cam->up, &view.to_world);
     return view;
 }
 
@@ -29,6 +32,10 @@ ray camera_view_ray(const camera_view *view, int i, int j)
     vec3 on_plane = {view->left + (i + 0.5) * s, view->top - (j + 0.5) * s,
                      1.0};
     ray r = {{0.0, 0.0, 0.0}, vec3_normalize(on_plane)};
+    /* <<place the primary ray>> ch05 */
+    if (view->is_placed) /* a rotation: renormalised against rounding only */
+        r = (ray){mat4_mul_point(view->to_world, r.origin),
+                  vec3_normalize(mat4_mul_dir(view->to_world, r.dir))};
     return r;
 }
 

@@ -12,12 +12,20 @@
 typedef struct {
     double fov_deg;    /* horizontal field of view in degrees, in (0, 180) */
     int width, height; /* image size in pixels, both >= 1 */
+    /* <<camera members>> ch05 */
+    bool is_placed; /* false: at the origin, looking down +z (chapter 05) */
+    vec3 position;  /* the eye */
+    vec3 look_at;   /* a point in the middle of the picture */
+    vec3 up;        /* up in the picture; not along the view */
 } camera;
 
 /* What every primary ray of one image shares, computed once per image. */
 typedef struct {
     double pixel_size; /* s */
     double left, top;  /* x of the image's left edge, y of its top edge */
+    /* <<camera view members>> ch05 */
+    bool is_placed;
+    mat4 to_world; /* camera to world, when placed */
 } camera_view;
 
 /* Width (and height) of one pixel on the image plane: 2 tan(fov/2) / width. */

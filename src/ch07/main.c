@@ -11,7 +11,7 @@
 static const char DEFAULT_SCENE[] =
     /* <<default scene>> ch07 */
     "# Chapter 7: glass, water and a mirror over a checkered floor.\n"
-        "camera fov 50\n"
+        "camera fov 50 position 0 1.1 0 look_at 0.4 -0.6 6\n"
         "image 320 240\n"
         "background gradient 0.9 0.9 0.95  0.35 0.5 0.85\n"
         "ambient 0.3 0.3 0.32\n"
@@ -79,6 +79,10 @@ static void usage(FILE *out, const char *program)
         "  --stats      print rays traced and time per phase on stderr\n"
         "  --help       this text\n",
         program);
+    /* <<more help>> ch05 */
+    fprintf(out, "\nObject transforms apply in the order written: 'transform "
+                 "scale 2 1 1\nrotate z 30 translate 0 0 5' scales, then "
+                 "rotates, then moves (T R S).\n");
 }
 
 static bool option_error(const char *program, const char *message,
@@ -188,6 +192,10 @@ static void print_stats(const render_stats *st, double load_s, double render_s,
     /* <<print statistics>> += ch04 */
     fprintf(stderr, "triangle tests     %lld\n", st->triangle_tests);
     fprintf(stderr, "box tests          %lld\n", st->box_tests);
+    /* <<print statistics>> += ch05 */
+    fprintf(stderr, "object-space rays  %lld\n", st->object_space_rays);
+    fprintf(stderr, "triangles          %lld stored, %lld instanced\n",
+            st->triangles_stored, st->triangles_instanced);
     /* <<print statistics>> += ch06 */
     long long facing = st->shadow_rays + st->shadow_skipped_dark +
                        st->shadow_skipped_alone;
@@ -262,6 +270,9 @@ int main(int argc, char **argv)
                 s.cam.width, s.cam.height);
         goto done;
     }
+    /* <<count what the scene holds>> ch05 */
+    scene_count_triangles(&s, &stats.triangles_stored,
+                          &stats.triangles_instanced);
     double loaded = seconds_now();
     render_in_bands(&s, &img, &stats);
     double rendered = seconds_now();

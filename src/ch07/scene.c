@@ -34,6 +34,9 @@ void scene_init(scene *s)
     s->default_light = (light){.kind = LIGHT_DIRECTIONAL,
                                .direction = vec3_normalize((vec3){1, -1, 1}),
                                .intensity = {1, 1, 1}};
+    /* <<scene member defaults>> += ch05 */
+    s->cam.look_at = (vec3){0, 0, 1}; /* where chapter 01's camera looks */
+    s->cam.up = (vec3){0, 1, 0};
     /* <<scene member defaults>> += ch06 */
     s->max_depth = 64; /* a guarantee; the cutoff usually ends first */
     s->cutoff = 0.01;
@@ -50,6 +53,11 @@ void scene_free(scene *s)
     for (int k = 0; k < s->mesh_count; k++)
         mesh_free(&s->meshes[k]);
     free(s->meshes);
+    /* <<free scene members>> += ch05 */
+    free(s->transforms);
+    for (int k = 0; k < s->mesh_source_count; k++)
+        free(s->mesh_sources[k].path);
+    free(s->mesh_sources);
     memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
 }
 
@@ -94,6 +102,47 @@ static const mesh_ray *prepared_ray(scene_search *q)
     if (!q->is_prepared)
         q->prepared = mesh_ray_of(q->r), q->is_prepared = true;
     return &q->prepared;
+}
+/* <<search helpers>> += ch05 */
+
+static void shape_intersect(const scene *s, const object *o,
+                            scene_search *q);
+
+/* r in the object's space: o' = M^-1 o, d' = M^-1 d. d' is not
+ * normalised, so that o' + t d' = M^-1 (o + t d): the same t. */
+static ray ray_to_object(const transform *t, ray r)
+{
+    return (ray){mat4_mul_point(t->inv, r.origin),
+                 mat4_mul_dir(t->inv, r.dir)};
+}
+
+/* Tests the placed object o with q's ray taken into its space; q's best
+ * hit narrows when o is hit nearer. */
+static void search_placed_object(const scene *s, const object *o,
+                                 scene_search *q)
+{
+    scene_search local = *q;
+    local.r = ray_to_object(scene_transform(s, o->transform), q->r);
+    local.is_prepared = false; /* the world ray's shear is not this ray's */
+    q->stats->object_space_rays++;
+    shape_intersect(s, o, &local);
+    q->best = local.best;
+}
+
+/* (M^-1)^T n, normalised: a normal of the object's space in the world. */
+static vec3 normal_to_world(const transform *t, vec3 n)
+{
+    return vec3_normalize(mat4_mul_normal(t->inv, n));
+}
+
+/* h, filled in the object's space, brought into the world for the world
+ * ray r: the point at the same t, the normals by the inverse transpose. */
+static void hit_to_world(const transform *t, ray r, hit *h)
+{
+    h->point = ray_at(r, h->t);
+    h->normal = normal_to_world(t, h->normal);
+    h->geometric_normal = normal_to_world(t, h->geometric_normal);
+    h->inside = vec3_dot(r.dir, h->geometric_normal) > 0;
 }
 /* <<search helpers>> += ch06 */
 
@@ -167,6 +216,25 @@ static void refine_hit_point(const scene *s, const nearest_hit *best, hit *h)
     }
 }
 
+/* The refined object-space point p, with error e, taken to the world by
+ * t: its image M p and the bound of that image. */
+static void place_hit_point(const transform *t, vec3 p, vec3 e, hit *h)
+{
+    const double(*m)[4] = t->m.m;
+    const double pc[3] = {p.x, p.y, p.z}, ec[3] = {e.x, e.y, e.z};
+    double bound[3];
+    for (int i = 0; i < 3; i++) {
+        double carried = 0, product = fabs(m[i][3]);
+        for (int j = 0; j < 3; j++) {
+            carried += fabs(m[i][j]) * ec[j];
+            product += fabs(m[i][j] * pc[j]);
+        }
+        bound[i] = (1 + gamma_bound(3)) * carried + gamma_bound(3) * product;
+    }
+    h->point = mat4_mul_point(t->m, p);
+    h->error = (vec3){bound[0], bound[1], bound[2]};
+}
+
 /* Narrows q->best when q->r, the ray in o's own space, hits o's shape
  * nearer than q->best.t. */
 static void shape_intersect(const scene *s, const object *o, scene_search *q)
@@ -202,7 +270,12 @@ static void shape_intersect(const scene *s, const object *o, scene_search *q)
 
 static void object_intersect(const scene *s, const object *o, scene_search *q)
 {
-    /* <<search an object in its own space>> ch06 */
+    /* <<search an object in its own space>> ch05 */
+    if (o->transform != 0) {
+        search_placed_object(s, o, q);
+        return;
+    }
+    /* <<search an object in its own space>> += ch06 */
     if (q->any_hit && q->best.object != NULL)
         return; /* an occluder is found: no other object can change that */
     shape_intersect(s, o, q);
@@ -237,9 +310,21 @@ static void object_fill_hit(const scene *s, const nearest_hit *best, ray r,
 {
     const object *o = best->object;
     ray local = r; /* the ray in o's own space: the same until chapter 5 */
+    /* <<take the ray into the object's space>> ch05 */
+    const transform *placed =
+        o->transform != 0 ? scene_transform(s, o->transform) : NULL;
+    if (placed != NULL)
+        local = ray_to_object(placed, r);
     shape_fill_hit(s, best, local, h);
     /* <<bound the rounding of the hit point>> ch06 */
     refine_hit_point(s, best, h);
+    vec3 object_point = h->point, object_error = h->error;
+    /* <<bring the hit back into the world>> ch05 */
+    if (placed != NULL)
+        hit_to_world(placed, r, h);
+    /* <<bring the hit back into the world>> += ch06 */
+    if (placed != NULL)
+        place_hit_point(placed, object_point, object_error, h);
     h->color = o->color;
     /* <<fill the object's part of the hit>> ch03 */
     h->material = o->material;
@@ -306,6 +391,63 @@ int scene_add_mesh(scene *s, mesh m)
     s->meshes = grown;
     s->meshes[s->mesh_count] = m;
     return s->mesh_count++;
+}
+/* <<scene contents>> += ch05 */
+
+int scene_add_transform(scene *s, transform t)
+{
+    transform *grown =
+        array_grow(s->transforms, s->transform_count, &s->transform_capacity,
+                   SCENE_MAX_TRANSFORMS, sizeof t);
+    if (grown == NULL)
+        return -1;
+    s->transforms = grown;
+    s->transforms[s->transform_count++] = t;
+    return s->transform_count;
+}
+
+const transform *scene_transform(const scene *s, int k)
+{
+    return &s->transforms[k - 1];
+}
+
+int scene_find_mesh(const scene *s, mesh_source key)
+{
+    for (int k = 0; k < s->mesh_source_count; k++) {
+        const mesh_source *m = &s->mesh_sources[k];
+        if (strcmp(m->path, key.path) == 0 && m->scale == key.scale &&
+            m->offset.x == key.offset.x && m->offset.y == key.offset.y &&
+            m->offset.z == key.offset.z && m->smooth == key.smooth)
+            return m->mesh;
+    }
+    return -1;
+}
+
+bool scene_remember_mesh(scene *s, mesh_source source)
+{
+    mesh_source *grown = array_grow(s->mesh_sources, s->mesh_source_count,
+                                    &s->mesh_source_capacity,
+                                    SCENE_MAX_MESHES, sizeof source);
+    if (grown == NULL || (source.path = strdup(source.path)) == NULL)
+        return false;
+    s->mesh_sources = grown;
+    s->mesh_sources[s->mesh_source_count++] = source;
+    return true;
+}
+
+void scene_count_triangles(const scene *s, long long *stored,
+                           long long *instanced)
+{
+    *stored = *instanced = 0;
+    for (int k = 0; k < s->mesh_count; k++)
+        *stored += s->meshes[k].triangle_count;
+    for (int k = 0; k < s->object_count; k++) {
+        const object *o = &s->objects[k];
+        if (o->kind == SHAPE_MESH)
+            *instanced += s->meshes[o->mesh].triangle_count;
+        if (o->kind == SHAPE_TRIANGLE)
+            ++*stored, ++*instanced;
+    }
 }
 /* <<scene contents>> += ch06 */
 

@@ -51,11 +51,24 @@ typedef struct {
     vec3 color;
     /* <<object members>> ch03 */
     int material; /* 0: the scene's default material; k: the scene's k-th */
+    /* <<object members>> += ch05 */
+    int transform; /* 0: none, its space is the world; k: the scene's k-th */
     /* <<object members>> += ch07 */
     bool checkered; /* color and checker alternate in cubes of side tile */
     vec3 checker;
     double tile; /* > 0; 0 means 1 */
 } object;
+/* <<scene types>> += ch05 */
+
+/* Where a mesh came from (chapter 05): its file, resolved against the
+ * scene file's folder, and how its statement changed the vertices. */
+typedef struct {
+    char *path; /* owned by the scene */
+    double scale;
+    vec3 offset;
+    bool smooth;
+    int mesh; /* its index among the scene's meshes */
+} mesh_source;
 
 typedef struct {
     camera cam;
@@ -77,6 +90,11 @@ typedef struct {
     /* <<scene members>> += ch04 */
     mesh *meshes;
     int mesh_count, mesh_capacity;
+    /* <<scene members>> += ch05 */
+    transform *transforms;
+    int transform_count, transform_capacity;
+    mesh_source *mesh_sources;
+    int mesh_source_count, mesh_source_capacity;
     /* <<scene members>> += ch06 */
     int max_depth; /* reflections deeper than this are not traced */
     double cutoff; /* nor those whose weight would fall below this */
@@ -112,6 +130,27 @@ bool scene_add_light(scene *s, light L);
 /* Takes m over and returns its index in the scene, or -1 (out of memory,
  * or SCENE_MAX_MESHES reached: m is then the caller's to free). */
 int scene_add_mesh(scene *s, mesh m);
+/* <<scene functions>> += ch05 */
+
+#define SCENE_MAX_TRANSFORMS SCENE_MAX_OBJECTS /* at most one per object */
+
+/* Appends t and returns its index k >= 1, for object.transform; -1 when
+ * out of memory or at the limit. */
+int scene_add_transform(scene *s, transform t);
+/* The transform with index k >= 1. */
+const transform *scene_transform(const scene *s, int k);
+
+/* The index of the mesh read from the source key (key.mesh is ignored),
+ * or -1 when none was. */
+int scene_find_mesh(const scene *s, mesh_source key);
+/* Records that mesh source.mesh came from source (the path is copied);
+ * false when out of memory. */
+bool scene_remember_mesh(scene *s, mesh_source source);
+
+/* The triangles the scene stores (in its meshes and lone triangles) and
+ * the triangles its objects draw (a mesh counts once per object). */
+void scene_count_triangles(const scene *s, long long *stored,
+                           long long *instanced);
 /* <<scene functions>> += ch06 */
 
 /* Is there any hit along r with t in (t_min, t_max)? Stops at the first. */

@@ -29,6 +29,166 @@ static bool read_material_name(parser *p, const scene *s, int *material)
 }
 /* <<statement helpers>> += ch04 */
 #include "obj.h"
+/* <<statement helpers>> += ch05 */
+
+/* The camera's position, look_at and up make a frame; else the error is
+ * reported at the start of the statement, which may have set any of them. */
+static bool check_camera_frame(parser *p, const camera *cam)
+{
+    mat4 frame;
+    vec3 view = vec3_sub(cam->look_at, cam->position);
+    if (!(vec3_length(view) > 0))
+        return parse_fail_at(p, p->line, "the camera's look_at point is its "
+                                         "position: no direction to look in");
+    if (!mat4_look_at(cam->position, cam->look_at, cam->up, &frame))
+        return parse_fail_at(p, p->line, "the camera's up is (nearly) along "
+                                         "its view: up cannot be told");
+    return true;
+}
+
+static const char transform_step_names[] =
+    "translate, scale, rotate, shear, matrix";
+
+static bool read_rotation(parser *p, transform *step)
+{
+    vec3 axis;
+    const char *rest = p->next;
+    bool named = parse_next_token(p);
+    if (named && parse_token_is(p, "x"))
+        axis = (vec3){1, 0, 0};
+    else if (named && parse_token_is(p, "y"))
+        axis = (vec3){0, 1, 0};
+    else if (named && parse_token_is(p, "z"))
+        axis = (vec3){0, 0, 1};
+    else {
+        p->next = rest; /* not x, y or z: the axis as three numbers */
+        if (!parse_direction(p, "a rotation axis (x, y, z or 3 numbers)",
+                             &axis))
+            return false;
+    }
+    double deg;
+    if (!parse_number(p, "an angle in degrees", &deg))
+        return false;
+    *step = transform_rotate(axis, deg);
+    return true;
+}
+
+static bool read_shear(parser *p, transform *step)
+{
+    bool named = parse_next_token(p);
+    bool yz = named && parse_token_is(p, "yz"),
+         xz = named && parse_token_is(p, "xz"),
+         xy = named && parse_token_is(p, "xy");
+    if (!yz && !xz && !xy)
+        return parse_expected(p, "expected the plane of a shear: yz, xz or "
+                                 "xy");
+    double a, b;
+    if (!parse_number(p, "a shear factor", &a) ||
+        !parse_number(p, "a shear factor", &b))
+        return false;
+    *step = transform_shear(yz   ? mat4_shear_yz(a, b)
+                            : xz ? mat4_shear_xz(a, b)
+                                 : mat4_shear_xy(a, b));
+    return true;
+}
+
+static bool read_matrix(parser *p, const char *at, transform *step)
+{
+    mat4 m = mat4_identity();
+    for (int i = 0; i < 3; i++)
+        for (int j = 0; j < 4; j++)
+            if (!parse_number(p, "a matrix entry (3 rows of 4 numbers)",
+                              &m.m[i][j]))
+                return false;
+    if (!transform_of_matrix(m, step))
+        return parse_fail_at(p, at, "the matrix is singular: its "
+                                    "determinant is 0 or not finite");
+    return true;
+}
+
+/* The step the token just read names, into *step; *known is false when it
+ * names none. */
+static bool read_step(parser *p, const char *at, transform *step,
+                      bool *known)
+{
+    vec3 v;
+    *known = true;
+    if (parse_token_is(p, "translate") || parse_token_is(p, "scale")) {
+        bool moves = parse_token_is(p, "translate");
+        if (!parse_point(p, moves ? "a translation" : "a scale factor", &v))
+            return false;
+        *step = moves ? transform_translate(v) : transform_scale(v);
+        return true;
+    }
+    if (parse_token_is(p, "rotate"))
+        return read_rotation(p, step);
+    if (parse_token_is(p, "shear"))
+        return read_shear(p, step);
+    if (parse_token_is(p, "matrix"))
+        return read_matrix(p, at, step);
+    *known = false;
+    return true;
+}
+
+/* Why the scene cannot use t, or NULL when it can. */
+static const char *transform_problem(const transform *t)
+{
+    if (!mat4_is_finite(t->m) || !(mat4_norm3(t->m) <= SCENE_MAX_STRETCH))
+        return "this step makes the transform stretch some direction by "
+               "more than 1e12";
+    if (!mat4_is_finite(t->inv) ||
+        !(mat4_norm3(t->inv) <= SCENE_MAX_STRETCH))
+        return "this step makes the transform singular or nearly so: it "
+               "shrinks some direction by more than 1e12";
+    for (int i = 0; i < 3; i++)
+        if (!(fabs(t->m.m[i][3]) <= PARSE_MAX_COORDINATE))
+            return "this step moves the object's origin beyond 1e50";
+    return NULL;
+}
+
+/* Stores t as the object's transform: a new one, or its own, replaced. */
+static bool store_transform(parser *p, scene *s, object *o, transform t)
+{
+    if (o->transform != 0) {
+        s->transforms[o->transform - 1] = t;
+        return true;
+    }
+    if ((o->transform = scene_add_transform(s, t)) < 0)
+        return parse_fail_at(p, p->line, "more than %d transforms (or out "
+                                         "of memory)", SCENE_MAX_TRANSFORMS);
+    return true;
+}
+
+/* 'transform STEP...': the steps, in the order written, after the
+ * object's transform so far. */
+static bool read_transform(parser *p, scene *s, object *o)
+{
+    transform t = o->transform != 0 ? *scene_transform(s, o->transform)
+                                    : transform_identity();
+    int steps = 0;
+    for (;; steps++) {
+        const char *rest = p->next;
+        if (!parse_next_token(p))
+            break;
+        const char *at = p->token;
+        transform step;
+        bool known;
+        if (!read_step(p, at, &step, &known))
+            return false;
+        if (!known) {
+            p->next = rest; /* not a step: the statement's next setting */
+            break;
+        }
+        t = transform_then(t, step);
+        const char *problem = transform_problem(&t);
+        if (problem != NULL)
+            return parse_fail_at(p, at, "%s", problem);
+    }
+    if (steps == 0)
+        return parse_expected(p, "expected a transform step (%s)",
+                              transform_step_names);
+    return store_transform(p, s, o, t);
+}
 /* <<statement helpers>> += ch06 */
 
 #define AREA_LIGHT_MAX_SAMPLES 1024 /* shadow rays per point and light */
@@ -135,10 +295,29 @@ static bool parse_camera(parser *p, scene *s)
                                          "0 and 180 degrees");
             s->cam.fov_deg = fov;
         }
+        /* <<camera settings>> ch05 */
+        else if (parse_token_is(p, "position")) {
+            if (!parse_point(p, "a camera position coordinate", &s->cam.position))
+                return false;
+            s->cam.is_placed = true;
+        }
+        else if (parse_token_is(p, "look_at")) {
+            if (!parse_point(p, "a look_at coordinate", &s->cam.look_at))
+                return false;
+            s->cam.is_placed = true;
+        }
+        else if (parse_token_is(p, "up")) {
+            if (!parse_direction(p, "an up direction", &s->cam.up))
+                return false;
+            s->cam.is_placed = true;
+        }
         else
             return parse_expected(p, "expected a camera setting such as "
                                      "'fov'");
     } while (parse_next_token(p));
+    /* <<check the camera statement>> ch05 */
+    if (s->cam.is_placed && !check_camera_frame(p, &s->cam))
+        return false;
     return true;
 }
 
@@ -190,6 +369,8 @@ static const char object_setting_names[] =
     "color"
     /* <<names of object settings>> ch03 */
     ", material"
+    /* <<names of object settings>> += ch05 */
+    ", transform"
     /* <<names of object settings>> += ch07 */
     ", checker, tile"
     ;
@@ -205,6 +386,9 @@ static bool parse_object_setting(parser *p, scene *s, object *o, bool *known)
     /* <<object settings>> ch03 */
     if (parse_token_is(p, "material"))
         return read_material_name(p, s, &o->material);
+    /* <<object settings>> += ch05 */
+    if (parse_token_is(p, "transform"))
+        return read_transform(p, s, o);
     /* <<object settings>> += ch07 */
     if (parse_token_is(p, "checker")) {
         o->checkered = true;
@@ -576,6 +760,34 @@ static bool read_mesh_setting(parser *p, mesh_settings *m, bool *known)
     return true;
 }
 
+/* Reads, places and adds to the scene the mesh the settings name; its
+ * index goes to *index. */
+static bool read_mesh(parser *p, scene *s, const mesh_settings *settings,
+                      int *index)
+{
+    mesh m = {0};
+    if (!load_mesh_file(p, settings->file, settings->file_length, &m) ||
+        !place_mesh(p, &m, settings->scale, settings->offset,
+                    settings->smooth)) {
+        mesh_free(&m);
+        return false;
+    }
+    if ((*index = scene_add_mesh(s, m)) < 0) {
+        mesh_free(&m);
+        return parse_fail_at(p, p->line, "more than %d meshes (or out of "
+                                         "memory)", SCENE_MAX_MESHES);
+    }
+    /* <<remember where the mesh came from>> ch05 */
+    char key[4096];
+    if (resolve_path(p, settings->file, settings->file_length, key,
+                     sizeof key) &&
+        !scene_remember_mesh(s, (mesh_source){key, settings->scale,
+                                              settings->offset,
+                                              settings->smooth, *index}))
+        return parse_fail_at(p, p->line, "out of memory for the mesh's source");
+    return true;
+}
+
 static bool parse_mesh(parser *p, scene *s)
 {
     object o = {.kind = SHAPE_MESH, .color = {0.8, 0.8, 0.8}};
@@ -595,17 +807,15 @@ static bool parse_mesh(parser *p, scene *s)
     if (settings.file == NULL)
         return parse_expected(p, "expected 'file PATH': a mesh needs an OBJ "
                                  "file");
-    mesh m = {0};
-    if (!load_mesh_file(p, settings.file, settings.file_length, &m) ||
-        !place_mesh(p, &m, settings.scale, settings.offset, settings.smooth)) {
-        mesh_free(&m);
+    o.mesh = -1; /* none yet */
+    /* <<find the mesh among those read before>> ch05 */
+    char key[4096];
+    if (resolve_path(p, settings.file, settings.file_length, key, sizeof key))
+        o.mesh = scene_find_mesh(s, (mesh_source){key, settings.scale,
+                                                  settings.offset,
+                                                  settings.smooth, -1});
+    if (o.mesh < 0 && !read_mesh(p, s, &settings, &o.mesh))
         return false;
-    }
-    if ((o.mesh = scene_add_mesh(s, m)) < 0) {
-        mesh_free(&m);
-        return parse_fail_at(p, p->line, "more than %d meshes (or out of "
-                                         "memory)", SCENE_MAX_MESHES);
-    }
     if (!scene_add_object(s, o))
         return parse_fail_at(p, p->line, "more than %d objects",
                              SCENE_MAX_OBJECTS);

@@ -12,6 +12,9 @@ typedef struct {
     /* <<statistics counters>> += ch04 */
     long long triangle_tests;
     long long box_tests;
+    /* <<statistics counters>> += ch05 */
+    long long object_space_rays;
+    long long triangles_stored, triangles_instanced; /* of the scene */
     /* <<statistics counters>> += ch06 */
     long long light_tests;          /* a point and a light: a possible ray */
     long long shadow_rays;          /* cast */
