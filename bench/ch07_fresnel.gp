@@ -3,20 +3,21 @@
 #   gnuplot -e "csv='figures/ch07-fresnel.csv'; stem='figures/ch07-fresnel'" bench/ch07_fresnel.gp
 # Top: time per evaluation against the largest error over all angles, for
 #   water, glass and diamond (marks), light from outside (filled) and from
-#   inside (open).
+#   inside (open). Middle: the same against the rms error over all angles.
 # Bottom: the reflectance of glass against the angle of incidence, from
 #   outside and from inside, by each method.
 load "bench/chart.gp"
-set terminal svg size 760,880 font "Helvetica,13" background "white"
+set terminal svg size 760,1240 font "Helvetica,13" background "white"
 set output stem.'-speed-accuracy.svg'
-set multiplot layout 2,1 title "Chapter 07: Fresnel reflectance, speed against accuracy"
+set multiplot layout 3,1 title "Chapter 07: Fresnel reflectance, speed against accuracy"
 names = "exact schlick schlick-tir"
 labels = "'exact (used)' 'Schlick' 'Schlick with TIR'"
 colors = "#1b9e77 #d95f02 #7570b3"
 media = "1.33 1.5 2.42"
 mnames = "'water 1.33' 'glass 1.5' 'diamond 2.42'"
 points = "5 7 9"  # square, circle, triangle: filled; the open one is one less
-is(m, p) = strcol(1) eq m && strcol(2) eq p && strcol(5) eq "max_abs"
+is(m, p) = strcol(1) eq m && strcol(2) eq p && strcol(5) eq kind
+kind = "max_abs"
 
 set logscale y
 set format y "10^{%L}"
@@ -35,7 +36,21 @@ plot for [m=1:3] csv using (is(word(names,m), word(media,2).":outside") ? $3 : N
        with points pt (word(points,k)+0) ps 1.6 lc rgb word(colors,m) notitle, \
      for [m=1:3] for [k=1:3] csv using (is(word(names,m), word(media,k).":inside") ? $3 : NaN):(positive($4)) \
        with points pt (word(points,k)-1) ps 1.8 lc rgb word(colors,m) notitle, \
-     csv using (strcol(5) eq "max_abs" ? $6 : NaN):(positive($4)):($7 - $6):(0) @quartile_bars
+     csv using (strcol(5) eq kind ? $6 : NaN):(positive($4)):($7 - $6):(0) @quartile_bars
+
+
+kind = "rms"
+set ylabel "rms error over all angles"
+set key off
+plot for [m=1:3] csv using (is(word(names,m), word(media,2).":outside") ? $3 : NaN):(positive($4)) \
+       with points pt 7 ps 1.6 lc rgb word(colors,m) title word(labels,m), \
+     for [k=1:3] csv using (NaN):(NaN) with points pt (word(points,k)+0) ps 1.4 lc rgb "#555555" \
+       title word(mnames,k), \
+     for [m=1:3] for [k=1:3] csv using (is(word(names,m), word(media,k).":outside") ? $3 : NaN):(positive($4)) \
+       with points pt (word(points,k)+0) ps 1.6 lc rgb word(colors,m) notitle, \
+     for [m=1:3] for [k=1:3] csv using (is(word(names,m), word(media,k).":inside") ? $3 : NaN):(positive($4)) \
+       with points pt (word(points,k)-1) ps 1.8 lc rgb word(colors,m) notitle, \
+     csv using (strcol(5) eq kind ? $6 : NaN):(positive($4)):($7 - $6):(0) @quartile_bars
 
 unset logscale y
 set format y "%g"
