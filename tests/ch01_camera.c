@@ -273,10 +273,14 @@ START_TEST(test_failed_write_leaves_no_file_behind)
     image img;
     ck_assert(image_init(&img, 2, 2));
     char path[128], why[256] = "";
-    /* The target is a directory: the rename must fail after the PNG was written. */
+    /* A folder takes the target's place while the output is open: the
+     * rename must fail after the PNG was written. */
     snprintf(path, sizeof path, "%s/occupied", tmpdir);
+    png_output out;
+    ck_assert_msg(png_output_open(&out, path, why, sizeof why), "%s", why);
     ck_assert_int_eq(mkdir(path, 0755), 0);
-    ck_assert(!image_write_png(&img, path, why, sizeof why));
+    ck_assert(!png_output_finish(&out, &img, why, sizeof why));
+    png_output_free(&out);
     ck_assert(strstr(why, "rename") != NULL);
     ck_assert_int_eq(count_entries(tmpdir), 1); /* the temporary is gone */
     snprintf(path, sizeof path, "%s/no/such/dir.png", tmpdir);

@@ -1,15 +1,24 @@
-/* ch01_robustness.c: degenerate scenes and failed writes, for every chapter.
+/* ch01_robustness.c: degenerate scenes, failed writes, hostile paths and
+ * files, for every chapter.
  *
  * Part of chapter 01's suites, so it runs against the program of every
  * chapter. A scene may use statements that an early chapter does not know:
  * that chapter must then reject it cleanly (status 1, a located error, no
  * output file). A chapter that accepts it must render it with every pixel
- * finite; image_set asserts that, so a NaN would abort the binary. */
+ * finite; image_set asserts that, so a NaN would abort the binary.
+ *
+ * Tests that could harm the machine if the program misbehaved (writing to
+ * /dev/null or /dev/stdout) run the binary as nobody when they run as root,
+ * so that a program that tried to replace a device could not. */
 #include <check.h>
+#include <dirent.h>
 #include <errno.h>
+#include <fcntl.h>
 #include <math.h>
 #include <png.h>
+#include <signal.h>
 #include <string.h>
+#include <time.h>
 
 #include "image.h"
 #include "render.h"
@@ -146,29 +155,37 @@ static void copy_file(const char *from, const char *to)
     ck_assert_int_eq(fclose(out), 0);
 }
 
-START_TEST(test_an_unwritable_folder_keeps_the_old_picture)
+/* Runs the binary as nobody when the tests run as root (root ignores
+ * permissions). Nobody may not reach the build folder, so a copy of the
+ * binary in the (world-readable) test folder is run. */
+static int run_as_nobody(const char *const *args, char *errors, size_t size, run_limits limits)
 {
-    static char bytes[65536];
-    char path[192], errors[1024];
-    size_t n = first_picture(path, sizeof path, bytes, sizeof bytes);
-    /* Root ignores permissions, so as root the binary runs as nobody, who
-     * may read but not write the folder; otherwise the folder is made read
-     * only. Nobody may not reach the build folder, so a copy of the binary
-     * in the (world-readable) test folder is run. */
     ck_assert_int_eq(chmod(tmpdir, 0755), 0);
-    if (geteuid() != 0)
-        ck_assert_int_eq(chmod(tmp_path("keep"), 0555), 0);
     char *original = strdup(getenv("CHAPTER_BIN"));
     char copy[192];
     snprintf(copy, sizeof copy, "%s", tmp_path("chapter-bin"));
     copy_file(original, copy);
     ck_assert_int_eq(chmod(copy, 0755), 0);
     setenv("CHAPTER_BIN", copy, 1);
-    const char *args[] = {"-o", path, "--size", "160x120", NULL};
-    int status = run_bin_limited(args, errors, sizeof errors, (run_limits){.as_nobody = true});
+    limits.as_nobody = true;
+    int status = run_bin_limited(args, errors, size, limits);
     setenv("CHAPTER_BIN", original, 1); /* for the tests after this one */
     free(original);
     unlink(copy);
+    return status;
+}
+
+START_TEST(test_an_unwritable_folder_keeps_the_old_picture)
+{
+    static char bytes[65536];
+    char path[192], errors[1024];
+    size_t n = first_picture(path, sizeof path, bytes, sizeof bytes);
+    /* Nobody may read but not write the folder; a user other than root
+     * makes it read only. */
+    if (geteuid() != 0)
+        ck_assert_int_eq(chmod(tmp_path("keep"), 0555), 0);
+    const char *args[] = {"-o", path, "--size", "160x120", NULL};
+    int status = run_as_nobody(args, errors, sizeof errors, (run_limits){0});
     ck_assert_int_eq(status, 1);
     ck_assert_msg(strstr(errors, "error: cannot create") != NULL, "stderr: %s", errors);
     chmod(tmp_path("keep"), 0755);
@@ -206,6 +223,292 @@ START_TEST(test_writing_to_dev_full_is_reported)
 }
 END_TEST
 
+
+/* ------------------------------------------------------------ where the output goes */
+
+static bool is_png(const char *path)
+{
+    char head[8];
+    return read_bytes(path, head, sizeof head) == 8 && memcmp(head, "\x89PNG\r\n\x1a\n", 8) == 0;
+}
+
+START_TEST(test_a_fifo_is_written_in_place)
+{
+    char fifo[192], errors[1024];
+    snprintf(fifo, sizeof fifo, "%s", tmp_path("pipe"));
+    ck_assert_int_eq(mkfifo(fifo, 0644), 0);
+    const char *args[] = {"-o", fifo, "--size", "16x12", NULL};
+    run_limits no_hang = {.alarm_seconds = 30};
+    /* No program reads from the FIFO: an error, not a wait. */
+    ck_assert_int_eq(run_bin_limited(args, errors, sizeof errors, no_hang), 1);
+    ck_assert_msg(strstr(errors, "no program reads from it") != NULL, "stderr: %s", errors);
+    int reader = open(fifo, O_RDONLY | O_NONBLOCK);
+    ck_assert_int_ge(reader, 0);
+    ck_assert_int_eq(run_bin_limited(args, errors, sizeof errors, no_hang), 0);
+    unsigned char head[8] = {0};
+    ck_assert_int_eq(read(reader, head, sizeof head), 8);
+    close(reader);
+    ck_assert(memcmp(head, "\x89PNG", 4) == 0);
+    struct stat st;
+    ck_assert_int_eq(lstat(fifo, &st), 0);
+    ck_assert(S_ISFIFO(st.st_mode)); /* not replaced by a regular file */
+}
+END_TEST
+
+START_TEST(test_a_device_is_written_in_place)
+{
+    char errors[1024];
+    const char *args[] = {"-o", "/dev/null", "--size", "16x12", NULL};
+    int status = run_as_nobody(args, errors, sizeof errors, (run_limits){0});
+    ck_assert_msg(status == 0, "status %d, stderr: %s", status, errors);
+    struct stat st;
+    ck_assert_int_eq(lstat("/dev/null", &st), 0);
+    ck_assert(S_ISCHR(st.st_mode));
+}
+END_TEST
+
+START_TEST(test_dash_is_standard_output)
+{
+    char out[192], errors[1024];
+    snprintf(out, sizeof out, "%s", tmp_path("stdout.png"));
+    const char *args[] = {"-o", "-", "--size", "16x12", NULL};
+    int status = run_bin_limited(args, errors, sizeof errors, (run_limits){.stdout_path = out});
+    bool wrote_a_file = unlink("-") == 0; /* where "-" would go as a file name */
+    ck_assert_msg(status == 0, "stderr: %s", errors);
+    ck_assert(!wrote_a_file);
+    ck_assert(is_png(out));
+}
+END_TEST
+
+START_TEST(test_dev_stdout_is_written_through_its_link)
+{
+    char folder[192], out[192], errors[1024];
+    snprintf(folder, sizeof folder, "%s", tmp_path("open"));
+    ck_assert_int_eq(mkdir(folder, 0777), 0);
+    ck_assert_int_eq(chmod(folder, 0777), 0); /* nobody may write in it */
+    snprintf(out, sizeof out, "%s/open/stdout.png", tmpdir);
+    write_bytes("open/stdout.png", "", 0);
+    ck_assert_int_eq(chmod(out, 0666), 0);
+    const char *args[] = {"-o", "/dev/stdout", "--size", "16x12", NULL};
+    int status = run_as_nobody(args, errors, sizeof errors, (run_limits){.stdout_path = out});
+    ck_assert_msg(status == 0, "stderr: %s", errors);
+    ck_assert(is_png(out));
+    struct stat st;
+    ck_assert_int_eq(lstat("/dev/stdout", &st), 0);
+    ck_assert(S_ISLNK(st.st_mode)); /* the link is still a link */
+}
+END_TEST
+
+START_TEST(test_output_errors_come_before_the_render)
+{
+    char missing[192], errors[1024];
+    snprintf(missing, sizeof missing, "%s", tmp_path("no/such/folder.png"));
+    const char *cases[][2] = {
+        {missing, "cannot create"}, {"", "-o expects a file name"}, {tmpdir, "Is a directory"}};
+    for (int k = 0; k < 3; k++) {
+        /* A 4096 x 4096 render costs seconds of CPU; failing first costs none. */
+        const char *args[] = {"-o", cases[k][0], "--size", "4096x4096", NULL};
+        ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+        ck_assert_msg(strstr(errors, cases[k][1]) != NULL, "stderr: %s", errors);
+        ck_assert_msg(last_run_cpu_seconds < 0.3, "'%s': %.2f s of CPU before the error",
+                      cases[k][0], last_run_cpu_seconds);
+    }
+}
+END_TEST
+
+START_TEST(test_a_replaced_file_keeps_its_mode)
+{
+    static char bytes[65536], now[65536];
+    char path[192], errors[1024];
+    size_t n = first_picture(path, sizeof path, bytes, sizeof bytes);
+    ck_assert_int_eq(chmod(path, 0640), 0);
+    umask(022); /* a new file would get 0644 */
+    const char *args[] = {"-o", path, "--size", "80x60", NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
+    struct stat st;
+    ck_assert_int_eq(stat(path, &st), 0);
+    ck_assert_int_eq(st.st_mode & 0777, 0640);
+    ck_assert_uint_ne(read_bytes(path, now, sizeof now), n); /* a new, smaller picture */
+}
+END_TEST
+
+START_TEST(test_a_read_only_file_is_not_replaced)
+{
+    static char bytes[65536];
+    char path[192], errors[1024];
+    size_t n = first_picture(path, sizeof path, bytes, sizeof bytes);
+    ck_assert_int_eq(chmod(tmp_path("keep"), 0777), 0); /* anyone may write the folder */
+    ck_assert_int_eq(chmod(path, 0444), 0);
+    const char *args[] = {"-o", path, "--size", "80x60", NULL};
+    ck_assert_int_eq(run_as_nobody(args, errors, sizeof errors, (run_limits){0}), 1);
+    ck_assert_msg(strstr(errors, "read-only") != NULL, "stderr: %s", errors);
+    expect_picture_kept(path, bytes, n);
+    if (geteuid() == 0) { /* root may write it, as cp may: replaced, still read only */
+        ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
+        struct stat st;
+        ck_assert_int_eq(stat(path, &st), 0);
+        ck_assert_int_eq(st.st_mode & 0777, 0444);
+    }
+}
+END_TEST
+
+/* Does the folder hold an entry whose name starts with prefix? */
+static bool has_entry_starting(const char *folder, const char *prefix)
+{
+    DIR *d = opendir(folder);
+    ck_assert_ptr_nonnull(d);
+    bool found = false;
+    for (struct dirent *e; !found && (e = readdir(d)) != NULL;)
+        found = strncmp(e->d_name, prefix, strlen(prefix)) == 0;
+    closedir(d);
+    return found;
+}
+
+START_TEST(test_a_signal_leaves_no_temporary_file)
+{
+    const int stops[] = {SIGINT, SIGTERM};
+    for (int k = 0; k < 2; k++) {
+        char folder[192], out[192], errors[1024];
+        snprintf(folder, sizeof folder, "%s/stop%d", tmpdir, k);
+        ck_assert_int_eq(mkdir(folder, 0755), 0);
+        snprintf(out, sizeof out, "%s/stop%d/out.png", tmpdir, k);
+        const char *args[] = {"-o", out, "--size", "4096x4096", NULL};
+        pid_t pid = start_bin(args, (run_limits){.alarm_seconds = 120});
+        /* The temporary file appears when the output is being made. */
+        struct timespec ms = {0, 1000000};
+        int waited = 0;
+        while (!has_entry_starting(folder, "out.png.tmp-") && waited++ < 60000)
+            nanosleep(&ms, NULL);
+        ck_assert_int_eq(kill(pid, stops[k]), 0);
+        ck_assert_int_eq(finish_bin(pid, errors, sizeof errors), 128 + stops[k]);
+        ck_assert_msg(waited < 60000, "no temporary file appeared");
+        ck_assert_int_eq(count_entries(folder), 0);
+    }
+}
+END_TEST
+
+/* ------------------------------------------------------------ hostile input files */
+
+START_TEST(test_a_scene_must_be_a_regular_file)
+{
+    char fifo[192], out[192], errors[1024];
+    snprintf(fifo, sizeof fifo, "%s", tmp_path("scene-pipe"));
+    snprintf(out, sizeof out, "%s", tmp_path("out.png"));
+    ck_assert_int_eq(mkfifo(fifo, 0644), 0);
+    const char *paths[] = {fifo, "/dev/zero"};
+    for (int k = 0; k < 2; k++) {
+        const char *args[] = {paths[k], "-o", out, NULL};
+        ck_assert_int_eq(run_bin_limited(args, errors, sizeof errors,
+                                         (run_limits){.alarm_seconds = 30}),
+                         1);
+        ck_assert_msg(strstr(errors, "not a regular file") != NULL, "stderr: %s", errors);
+        ck_assert(!file_exists(out));
+    }
+    /* A file under /proc says it is empty but holds text: it is read whole. */
+    const char *proc[] = {"/proc/self/status", "-o", out, NULL};
+    ck_assert_int_eq(run_bin(proc, errors, sizeof errors), 1);
+    ck_assert_msg(strstr(errors, "status:1:1: error: expected a statement keyword, found 'Name:'"),
+                  "stderr: %s", errors);
+}
+END_TEST
+
+START_TEST(test_a_byte_order_mark_is_skipped)
+{
+    scene s;
+    scene_error err;
+    ck_assert_msg(parse_text(&s, "\xEF\xBB\xBF" "image 8 6\n", &err), "%s", err.message);
+    ck_assert_int_eq(s.cam.width, 8);
+    scene_free(&s);
+    /* Columns count from after the mark, as an editor shows them. */
+    expect_parse_error("\xEF\xBB\xBF" "camera fov x\n", 1, 12, "found 'x'");
+    /* Only at the start of the file. */
+    expect_parse_error("image 8 6\n\xEF\xBB\xBF" "image 8 6\n", 2, 1, "statement keyword");
+}
+END_TEST
+
+START_TEST(test_numbers_may_have_any_number_of_digits)
+{
+    char text[1024];
+    int n = snprintf(text, sizeof text, "camera fov ");
+    memset(text + n, '0', 300); /* 000...0060.000...0 */
+    memcpy(text + n + 300, "60.", 3);
+    memset(text + n + 303, '0', 300);
+    strcpy(text + n + 603, "\n");
+    scene s;
+    scene_error err;
+    ck_assert_msg(parse_text(&s, text, &err), "%d:%d %s", err.line, err.col, err.message);
+    ck_assert(s.cam.fov_deg == 60);
+    scene_free(&s);
+}
+END_TEST
+
+/* Runs the binary on args; stderr must hold want and no byte of avoid. */
+static void expect_stderr(const char *const *args, const char *want, const char *avoid)
+{
+    char errors[2048];
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+    ck_assert_msg(strstr(errors, want) != NULL, "stderr '%s' lacks '%s'", errors, want);
+    ck_assert_msg(strpbrk(errors, avoid) == NULL, "stderr '%s' holds a raw control byte", errors);
+}
+
+START_TEST(test_errors_escape_what_a_terminal_would_obey)
+{
+    char scene_path[192], out[192], name[192];
+    snprintf(out, sizeof out, "%s", tmp_path("out.png"));
+    /* A token that would retitle the terminal. */
+    snprintf(scene_path, sizeof scene_path, "%s",
+             write_file("title.scene", "camera fov \x1b]0;owned\x07\n"));
+    const char *token[] = {scene_path, "-o", out, NULL};
+    expect_stderr(token, ":1:12: error: expected a field of view in degrees, found "
+                         "'\\x1b]0;owned\\x07'", "\x1b\x07");
+    /* A file name that would clear the screen, and one with a C1 control. */
+    snprintf(name, sizeof name, "%s", tmp_path("x\x1b[2J\xc2\x9b.scene"));
+    const char *path[] = {name, "-o", out, NULL};
+    expect_stderr(path, "x\\x1b[2J\\xc2\\x9b.scene: error: No such file", "\x1b");
+    /* An option's value. */
+    const char *size[] = {"--size", "\x1b[2J", "-o", out, NULL};
+    expect_stderr(size, "found '\\x1b[2J'", "\x1b");
+    /* Letters beyond ASCII are shown as they are. */
+    snprintf(name, sizeof name, "%s", tmp_path("caf\xc3\xa9.scene"));
+    const char *letters[] = {name, "-o", out, NULL};
+    expect_stderr(letters, "caf\xc3\xa9.scene: error: No such file", "\x1b");
+}
+END_TEST
+
+START_TEST(test_long_file_names_are_named_in_full)
+{
+    /* Two folders of 200 bytes each: the scene's path is over 400 bytes. */
+    char path[1024], out[192], errors[2048], expected[1100];
+    int n = snprintf(path, sizeof path, "%s/", tmpdir);
+    for (int folder = 0; folder < 2; folder++) {
+        memset(path + n, 'a' + folder, 200);
+        path[n + 200] = '\0';
+        ck_assert_int_eq(mkdir(path, 0755), 0);
+        path[n + 200] = '/';
+        n += 201;
+    }
+    strcpy(path + n, "bad.scene");
+    FILE *f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs("camera fov 400\n", f);
+    fclose(f);
+    snprintf(out, sizeof out, "%s", tmp_path("out.png"));
+    const char *args[] = {path, "-o", out, NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+    snprintf(expected, sizeof expected, "%s:1:12: error:", path);
+    ck_assert_msg(strstr(errors, expected) != NULL, "stderr: %s", errors);
+    /* A name longer than any path the system takes ends in "...". */
+    static char longer[PARSE_MAX_NAME + 1000];
+    memset(longer, 'n', sizeof longer - 1);
+    scene s;
+    scene_error err;
+    ck_assert(!parse_named(&s, "camera fov 400\n", 15, longer, &err));
+    ck_assert_uint_eq(strlen(err.file), PARSE_MAX_NAME - 1);
+    ck_assert_str_eq(err.file + PARSE_MAX_NAME - 4, "...");
+    scene_free(&s);
+}
+END_TEST
+
 Suite *ch01_robustness_suite(void)
 {
     Suite *s = suite_create("ch01 robustness");
@@ -223,5 +526,27 @@ Suite *ch01_robustness_suite(void)
     tcase_add_test(output, test_a_full_disk_keeps_the_old_picture);
     tcase_add_test(output, test_writing_to_dev_full_is_reported);
     suite_add_tcase(s, output);
+
+    TCase *where = tcase_create("where the output goes");
+    tcase_add_checked_fixture(where, make_tmpdir, remove_tmpdir);
+    tcase_set_timeout(where, 180);
+    tcase_add_test(where, test_a_fifo_is_written_in_place);
+    tcase_add_test(where, test_a_device_is_written_in_place);
+    tcase_add_test(where, test_dash_is_standard_output);
+    tcase_add_test(where, test_dev_stdout_is_written_through_its_link);
+    tcase_add_test(where, test_output_errors_come_before_the_render);
+    tcase_add_test(where, test_a_replaced_file_keeps_its_mode);
+    tcase_add_test(where, test_a_read_only_file_is_not_replaced);
+    tcase_add_test(where, test_a_signal_leaves_no_temporary_file);
+    suite_add_tcase(s, where);
+
+    TCase *input = tcase_create("hostile input files");
+    tcase_add_checked_fixture(input, make_tmpdir, remove_tmpdir);
+    tcase_add_test(input, test_a_scene_must_be_a_regular_file);
+    tcase_add_test(input, test_a_byte_order_mark_is_skipped);
+    tcase_add_test(input, test_numbers_may_have_any_number_of_digits);
+    tcase_add_test(input, test_errors_escape_what_a_terminal_would_obey);
+    tcase_add_test(input, test_long_file_names_are_named_in_full);
+    suite_add_tcase(s, input);
     return s;
 }

@@ -456,6 +456,188 @@ START_TEST(test_cli_reports_obj_errors_and_writes_nothing)
 }
 END_TEST
 
+/* The OBJ file at path is rejected at line:col with part in the message. */
+static void expect_error_at_file(const char *path, int line, int col, const char *part)
+{
+    mesh m = {0};
+    scene_error err;
+    ck_assert_msg(!mesh_load_obj(&m, path, &err), "accepted: %s", path);
+    expect_error_at(&err, path, line, col, part, path);
+    mesh_free(&m);
+}
+
+START_TEST(test_obj_corners_end_after_their_last_index)
+{
+    const char *square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvn 0 0 1\n";
+    char text[256];
+    snprintf(text, sizeof text, "%sf 1/1/1/1 2 3\n", square);
+    expect_obj_error(text, 6, 8, "expected the end of the face corner");
+    snprintf(text, sizeof text, "%sf 1//1/junk 2 3\n", square);
+    expect_obj_error(text, 6, 7, "expected the end of the face corner");
+    snprintf(text, sizeof text, "%sf 1#a 2 3\n", square);
+    expect_obj_error(text, 6, 3, "expected a vertex index");
+    /* Found by fuzz/obj_fuzz's check of the corner grammar: "f 1# 2 3" was
+     * read as the face 1, 2, 3, the '#' and what followed it ignored. */
+    expect_error_at_file("tests/data/fuzz-obj-hash-in-corner.obj", 4, 3, "expected a vertex index");
+    snprintf(text, sizeof text, "%sf 1/1#a 2 3\n", square);
+    expect_obj_error(text, 6, 5, "expected a texture coordinate index");
+    /* A '#' outside a token still starts a comment. */
+    snprintf(text, sizeof text, "%sf 1/1/1 2 3 # the end\n", square);
+    mesh m = {0};
+    scene_error err;
+    ck_assert_msg(mesh_load_obj(&m, write_file("ok.obj", text), &err), "%s", err.message);
+    ck_assert_int_eq(m.triangle_count, 1);
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_obj_skips_a_byte_order_mark)
+{
+    mesh m = {0};
+    scene_error err;
+    const char *path = write_file("bom.obj", "\xEF\xBB\xBF" "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    ck_assert_msg(mesh_load_obj(&m, path, &err), "%d:%d %s", err.line, err.col, err.message);
+    ck_assert_int_eq(m.vertex_count, 3);
+    ck_assert_int_eq(m.triangle_count, 1);
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_a_mesh_must_be_a_regular_file)
+{
+    char fifo[192];
+    snprintf(fifo, sizeof fifo, "%s", tmp_path("mesh-pipe"));
+    ck_assert_int_eq(mkfifo(fifo, 0644), 0);
+    alarm(30); /* a reader that waits for a writer fails instead of hanging */
+    expect_scene_error("mesh file mesh-pipe", 1, 11, "not a regular file");
+    expect_scene_error("mesh file /dev/zero", 1, 11, "not a regular file");
+    alarm(0);
+}
+END_TEST
+
+START_TEST(test_a_mesh_too_large_is_refused_before_it_is_read)
+{
+    char path[192], scene_path[192], out[192], errors[2048];
+    snprintf(path, sizeof path, "%s", tmp_path("huge.obj"));
+    FILE *f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    ck_assert_int_eq(fseek(f, OBJ_MAX_BYTES, SEEK_SET), 0); /* sparse: 512 MiB + 1 */
+    fputc('\n', f);
+    fclose(f);
+    snprintf(scene_path, sizeof scene_path, "%s", write_file("huge.scene", "mesh file huge.obj\n"));
+    snprintf(out, sizeof out, "%s", tmp_path("out.png"));
+    const char *args[] = {scene_path, "-o", out, "--size", "8x6", NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+    ck_assert_msg(strstr(errors, ":1:11: error: cannot read mesh file") != NULL &&
+                      strstr(errors, "more than 536870912 bytes") != NULL,
+                  "stderr: %s", errors);
+    /* Reading half a gigabyte first would cost far more. */
+    ck_assert_msg(last_run_cpu_seconds < 0.1, "%.2f s of CPU", last_run_cpu_seconds);
+}
+END_TEST
+
+START_TEST(test_a_mesh_named_twice_is_read_once)
+{
+    write_file("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    char scene_path[160];
+    snprintf(scene_path, sizeof scene_path, "%s/twice.scene", tmpdir);
+    const char *text = "mesh file tri.obj offset 0 0 5\n"
+                       "mesh file tri.obj offset 0 0 5 color 1 0 0\n" /* the same mesh */
+                       "mesh file tri.obj offset 0 0 6\n";            /* placed elsewhere */
+    scene s;
+    scene_error err;
+    ck_assert_msg(parse_named(&s, text, strlen(text), scene_path, &err), "%s", err.message);
+    ck_assert_int_eq(s.object_count, 3);
+    ck_assert_int_eq(s.mesh_count, 2);
+    ck_assert_int_eq(s.objects[0].mesh, s.objects[1].mesh);
+    ck_assert_int_ne(s.objects[0].mesh, s.objects[2].mesh);
+    ck_assert(s.objects[1].color.x == 1 && s.objects[1].color.y == 0);
+    ck_assert_int_eq(s.triangle_total, 2); /* the shared mesh counts once */
+    scene_free(&s);
+    /* Many meshes (the scene's index grows and is rebuilt), then an early one again. */
+    static char many[100 * 40];
+    int n = 0;
+    for (int k = 0; k <= 100; k++)
+        n += snprintf(many + n, sizeof many - (size_t)n, "mesh file tri.obj offset 0 0 %d\n",
+                      k < 100 ? k : 7);
+    ck_assert_msg(parse_named(&s, many, (size_t)n, scene_path, &err), "%s", err.message);
+    ck_assert_int_eq(s.mesh_count, 100);
+    ck_assert_int_eq(s.objects[100].mesh, s.objects[7].mesh);
+    scene_free(&s);
+}
+END_TEST
+
+/* Parses text as tmpdir/budget.scene with the scene's budgets lowered to
+ * triangles and bytes; it must fail at line:col with part in the message. */
+static void expect_over_budget(const char *text, long long triangles, long long bytes, int line,
+                               int col, const char *part)
+{
+    char scene_path[160];
+    snprintf(scene_path, sizeof scene_path, "%s/budget.scene", tmpdir);
+    scene s;
+    scene_error err;
+    scene_init(&s);
+    s.triangle_budget = triangles, s.geometry_budget = bytes;
+    ck_assert_msg(!scene_parse(&s, text, strlen(text), scene_path, &err), "accepted: %s", text);
+    expect_error_at(&err, scene_path, line, col, part, text);
+    ck_assert_int_eq(err.kind, PARSE_OVER_BUDGET);
+    ck_assert(s.triangle_total <= triangles && s.geometry_total <= bytes);
+    scene_free(&s);
+}
+
+START_TEST(test_the_scene_budget_is_kept)
+{
+    /* A quad: 2 triangles, and 384 bytes of arrays as they grow (8 vertices
+     * of 24 bytes, 8 triangles and 8 corners' normals of 12 bytes). */
+    write_file("quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
+    const char *three = "mesh file quad.obj\nmesh file quad.obj\nmesh file quad.obj offset 0 0 1\n";
+    expect_over_budget(three, 3, SCENE_MAX_GEOMETRY_BYTES, 3, 11,
+                       "would pass the scene's budget of 3 triangles");
+    expect_over_budget("mesh file quad.obj\n", SCENE_MAX_TRIANGLES, 200, 1, 11,
+                       "at its line 5, triangles past the");
+    /* Room for the mesh, not for its smooth normals beside it. */
+    expect_over_budget("mesh file quad.obj smooth\n", SCENE_MAX_TRIANGLES, 400, 1, 1,
+                       "smooth normals would pass the scene's budget of 400 bytes");
+    scene s;
+    scene_error err;
+    char scene_path[160];
+    snprintf(scene_path, sizeof scene_path, "%s/budget.scene", tmpdir);
+    ck_assert(parse_named(&s, three, strlen(three), scene_path, &err));
+    ck_assert_int_eq(s.triangle_total, 4);
+    ck_assert_int_eq(s.geometry_total, 2 * 384);
+    scene_free(&s);
+}
+END_TEST
+
+START_TEST(test_running_out_of_memory_is_reported_as_such)
+{
+#if defined(__SANITIZE_ADDRESS__)
+    return; /* AddressSanitizer reserves terabytes of address space: no limit fits */
+#endif
+    /* 2 million vertices (16 MB of text, 48 MB of vec3) in 48 MiB of memory. */
+    char path[192], scene_path[192], out[192], errors[2048];
+    snprintf(path, sizeof path, "%s", tmp_path("big.obj"));
+    FILE *f = fopen(path, "w");
+    ck_assert_ptr_nonnull(f);
+    static char block[8 * 65536];
+    for (size_t k = 0; k < sizeof block; k += 8)
+        memcpy(block + k, "v 0 0 0\n", 8);
+    for (int written = 0; written < 2000000; written += 65536)
+        ck_assert_int_eq(fwrite(block, 1, sizeof block, f), sizeof block);
+    fclose(f);
+    snprintf(scene_path, sizeof scene_path, "%s", write_file("big.scene", "mesh file big.obj\n"));
+    snprintf(out, sizeof out, "%s", tmp_path("out.png"));
+    const char *args[] = {scene_path, "-o", out, "--size", "8x6", NULL};
+    ck_assert_int_eq(
+        run_bin_limited(args, errors, sizeof errors, (run_limits){.max_memory_bytes = 48L << 20}),
+        1);
+    /* At the scene line that asked for the mesh, and never as a mistake in it. */
+    ck_assert_msg(strstr(errors, "big.scene:1:11: error: mesh file") != NULL &&
+                      strstr(errors, "big.obj': out of memory") != NULL,
+                  "stderr: %s", errors);
+}
+END_TEST
+
 START_TEST(test_fuzz_collinear_triangle_is_not_hit)
 {
     /* Found by fuzz/obj_fuzz: a ray aimed exactly at a zero-area triangle made
@@ -526,6 +708,13 @@ Suite *ch04_triangles_suite(void)
     tcase_add_test(bad, test_triangle_and_mesh_statements);
     tcase_add_test(bad, test_triangle_and_mesh_statements_reject_bad_input);
     tcase_add_test(bad, test_cli_reports_obj_errors_and_writes_nothing);
+    tcase_add_test(bad, test_obj_corners_end_after_their_last_index);
+    tcase_add_test(bad, test_obj_skips_a_byte_order_mark);
+    tcase_add_test(bad, test_a_mesh_must_be_a_regular_file);
+    tcase_add_test(bad, test_a_mesh_too_large_is_refused_before_it_is_read);
+    tcase_add_test(bad, test_a_mesh_named_twice_is_read_once);
+    tcase_add_test(bad, test_the_scene_budget_is_kept);
+    tcase_add_test(bad, test_running_out_of_memory_is_reported_as_such);
     suite_add_tcase(s, bad);
     return s;
 }

@@ -83,8 +83,11 @@ static inline int count_entries(const char *dir)
 
 /* How run_bin_limited restricts the child before it runs the binary. */
 typedef struct {
-    bool as_nobody;      /* when run as root: drop to uid/gid 65534 */
-    long max_file_bytes; /* > 0: RLIMIT_FSIZE, a disk that is full past this */
+    bool as_nobody;          /* when run as root: drop to uid/gid 65534 */
+    long max_file_bytes;     /* > 0: RLIMIT_FSIZE, a disk that is full past this */
+    long max_memory_bytes;   /* > 0: RLIMIT_AS, a machine with that little memory */
+    unsigned alarm_seconds;  /* > 0: SIGALRM ends a binary that hangs */
+    const char *stdout_path; /* where its stdout goes; NULL: /dev/null */
 } run_limits;
 
 static inline void apply_limits(run_limits limits)
@@ -95,8 +98,69 @@ static inline void apply_limits(run_limits limits)
         if (setrlimit(RLIMIT_FSIZE, &r) != 0)
             _exit(126);
     }
+    if (limits.max_memory_bytes > 0) {
+        struct rlimit r = {(rlim_t)limits.max_memory_bytes, (rlim_t)limits.max_memory_bytes};
+        if (setrlimit(RLIMIT_AS, &r) != 0)
+            _exit(126);
+    }
     if (limits.as_nobody && geteuid() == 0 && (setgid(65534) != 0 || setuid(65534) != 0))
         _exit(126);
+    signal(SIGINT, SIG_DFL); /* a background shell may have ignored them */
+    signal(SIGTERM, SIG_DFL);
+    alarm(limits.alarm_seconds); /* kept across execv */
+}
+
+/* Starts $CHAPTER_BIN with the NULL-ended args under the limits, its stderr
+ * going to tmpdir/stderr.txt; returns its process id. */
+static inline pid_t start_bin(const char *const *args, run_limits limits)
+{
+    const char *bin = getenv("CHAPTER_BIN");
+    ck_assert_msg(bin != NULL, "set CHAPTER_BIN to the chapter's binary");
+    char err_path[128];
+    snprintf(err_path, sizeof err_path, "%s/stderr.txt", tmpdir);
+    const char *out_path = limits.stdout_path ? limits.stdout_path : "/dev/null";
+    pid_t pid = fork();
+    ck_assert(pid >= 0);
+    if (pid == 0) {
+        const char *argv[16] = {bin};
+        for (int k = 0; args[k] != NULL && k < 14; k++)
+            argv[k + 1] = args[k];
+        if (freopen(err_path, "w", stderr) == NULL || freopen(out_path, "w", stdout) == NULL)
+            _exit(127);
+        apply_limits(limits);
+        execv(bin, (char *const *)argv);
+        _exit(127);
+    }
+    return pid;
+}
+
+/* The CPU time, user and system, of the last binary finish_bin waited for. */
+static double last_run_cpu_seconds;
+
+static inline double children_cpu_seconds(void)
+{
+    struct rusage u;
+    ck_assert_int_eq(getrusage(RUSAGE_CHILDREN, &u), 0);
+    return (double)(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
+           1e-6 * (double)(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+/* Waits for the binary started as pid; returns its exit status (128 + the
+ * signal that ended it) and puts what it wrote on stderr into errors[size]. */
+static inline int finish_bin(pid_t pid, char *errors, size_t size)
+{
+    int status;
+    double before = children_cpu_seconds();
+    ck_assert_int_eq(waitpid(pid, &status, 0), pid);
+    last_run_cpu_seconds = children_cpu_seconds() - before;
+    char err_path[128];
+    snprintf(err_path, sizeof err_path, "%s/stderr.txt", tmpdir);
+    FILE *f = fopen(err_path, "r");
+    size_t n = f ? fread(errors, 1, size - 1, f) : 0;
+    errors[n] = '\0';
+    if (f)
+        fclose(f);
+    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
 /* Runs $CHAPTER_BIN with the NULL-ended args under the limits; returns its
@@ -104,30 +168,7 @@ static inline void apply_limits(run_limits limits)
 static inline int run_bin_limited(const char *const *args, char *errors, size_t size,
                                   run_limits limits)
 {
-    const char *bin = getenv("CHAPTER_BIN");
-    ck_assert_msg(bin != NULL, "set CHAPTER_BIN to the chapter's binary");
-    char err_path[128];
-    snprintf(err_path, sizeof err_path, "%s/stderr.txt", tmpdir);
-    pid_t pid = fork();
-    ck_assert(pid >= 0);
-    if (pid == 0) {
-        const char *argv[16] = {bin};
-        for (int k = 0; args[k] != NULL && k < 14; k++)
-            argv[k + 1] = args[k];
-        if (freopen(err_path, "w", stderr) == NULL || freopen("/dev/null", "w", stdout) == NULL)
-            _exit(127);
-        apply_limits(limits);
-        execv(bin, (char *const *)argv);
-        _exit(127);
-    }
-    int status;
-    waitpid(pid, &status, 0);
-    FILE *f = fopen(err_path, "r");
-    size_t n = f ? fread(errors, 1, size - 1, f) : 0;
-    errors[n] = '\0';
-    if (f)
-        fclose(f);
-    return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return finish_bin(start_bin(args, limits), errors, size);
 }
 
 static inline int run_bin(const char *const *args, char *errors, size_t size)

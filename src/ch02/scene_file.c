@@ -118,8 +118,8 @@ static bool parse_sphere(parser *p, scene *s)
             return false;
     }
     if (!scene_add_object(s, o))
-        return parse_fail_at(p, p->line, "more than %d objects",
-                             SCENE_MAX_OBJECTS);
+        return parse_no_room(p, p->line, s->object_count, SCENE_MAX_OBJECTS,
+                             "objects");
     return true;
 }
 

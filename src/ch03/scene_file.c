@@ -144,8 +144,8 @@ static bool parse_sphere(parser *p, scene *s)
             return false;
     }
     if (!scene_add_object(s, o))
-        return parse_fail_at(p, p->line, "more than %d objects",
-                             SCENE_MAX_OBJECTS);
+        return parse_no_room(p, p->line, s->object_count, SCENE_MAX_OBJECTS,
+                             "objects");
     return true;
 }
 /* <<statements>> += ch03 */
@@ -211,8 +211,8 @@ static bool parse_material(parser *p, scene *s)
     if (redefining_default)
         s->default_material = m;
     else if (!scene_add_material(s, m))
-        return parse_fail_at(p, p->line, "more than %d materials",
-                             SCENE_MAX_MATERIALS);
+        return parse_no_room(p, p->line, s->material_count,
+                             SCENE_MAX_MATERIALS, "materials");
     return true;
 }
 
@@ -312,8 +312,8 @@ static bool parse_light(parser *p, scene *s)
         if (!read_light_setting(p, &L))
             return false;
     if (!scene_add_light(s, L))
-        return parse_fail_at(p, p->line, "more than %d lights",
-                             SCENE_MAX_LIGHTS);
+        return parse_no_room(p, p->line, s->light_count, SCENE_MAX_LIGHTS,
+                             "lights");
     return true;
 }
 

@@ -68,6 +68,10 @@ typedef struct {
     /* <<scene members>> += ch04 */
     mesh *meshes;
     int mesh_count, mesh_capacity;
+    long long triangle_budget, geometry_budget; /* for all meshes together */
+    long long triangle_total, geometry_total;   /* what the meshes take now */
+    int *mesh_index; /* slots of 1 + a mesh's index by source; 0: empty */
+    int mesh_index_size; /* a power of two, more than twice mesh_count */
 } scene;
 
 void scene_init(scene *s);
@@ -96,9 +100,16 @@ bool scene_add_light(scene *s, light L);
 /* <<scene functions>> += ch04 */
 
 #define SCENE_MAX_MESHES 65536 /* meshes loaded; objects may share them */
+#define SCENE_MAX_TRIANGLES (1LL << 24)       /* of all meshes together */
+#define SCENE_MAX_GEOMETRY_BYTES (1LL << 30) /* 1 GiB of mesh arrays */
 
 /* Takes m over and returns its index in the scene, or -1 (out of memory,
- * or SCENE_MAX_MESHES reached: m is then the caller's to free). */
+ * or SCENE_MAX_MESHES reached: m is then the caller's to free). Adds what
+ * m takes to the scene's totals; keeping to the budget is the caller's
+ * part. */
 int scene_add_mesh(scene *s, mesh m);
+
+/* The index of a mesh with that source, or -1. */
+int scene_find_mesh(const scene *s, const mesh_source *source);
 
 #endif
