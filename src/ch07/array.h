@@ -4,6 +4,14 @@
 
 #include <stdlib.h>
 
+/* The capacity a full array of capacity grows to: twice as much (at least
+ * 8), but never more than max. */
+static inline int array_next_capacity(int capacity, int max)
+{
+    int wanted = capacity ? 2 * capacity : 8;
+    return wanted < max ? wanted : max;
+}
+
 /* Room for one more element: returns items (moved if it had to grow), or
  * NULL, leaving items as they were, at max or when memory runs out. */
 static inline void *array_grow(void *items, int count, int *capacity, int max,
@@ -13,8 +21,7 @@ static inline void *array_grow(void *items, int count, int *capacity, int max,
         return items;
     if (*capacity >= max)
         return NULL;
-    int wanted = *capacity ? 2 * *capacity : 8;
-    wanted = wanted < max ? wanted : max;
+    int wanted = array_next_capacity(*capacity, max);
     void *grown = realloc(items, (size_t)wanted * size);
     if (grown != NULL)
         *capacity = wanted;

@@ -1,8 +1,11 @@
 /* image.c: image buffer, sRGB encoding and PNG output (chapter 1). */
+#define _XOPEN_SOURCE 700 /* realpath: X/Open's part of POSIX */
 #include "image.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <png.h>
+#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -111,44 +114,154 @@ bool image_write_png_stream(const image *img, FILE *out, char *why,
     return ok;
 }
 
-/* <<write a file by renaming a temporary>> ch01 */
+/* Puts the formatted reason in why; returns false. */
+static bool explain(char *why, size_t why_size, const char *format, ...)
+{
+    va_list args;
+    va_start(args, format);
+    vsnprintf(why, why_size, format, args);
+    va_end(args);
+    return false;
+}
+
+/* <<open the output>> ch01 */
+static bool open_temporary(png_output *o, const char *target, mode_t mode,
+                           char *why, size_t why_size)
+{
+    o->target = strdup(target);
+    o->temporary = malloc(strlen(target) + sizeof ".tmp-XXXXXX");
+    if (o->target == NULL || o->temporary == NULL)
+        return explain(why, why_size, "out of memory");
+    sprintf(o->temporary, "%s.tmp-XXXXXX", target);
+    int fd = mkstemp(o->temporary);
+    if (fd < 0) {
+        explain(why, why_size, "cannot create %s: %s", o->temporary,
+                strerror(errno));
+        free(o->temporary), o->temporary = NULL; /* nothing to remove */
+        return false;
+    }
+    o->owns_out = true;
+    if (fchmod(fd, mode) != 0 || (o->out = fdopen(fd, "wb")) == NULL) {
+        int error = errno;
+        close(fd);
+        return explain(why, why_size, "cannot write %s: %s", o->temporary,
+                       strerror(error));
+    }
+    return true;
+}
+
+static mode_t new_file_mode(void)
+{
+    mode_t mask = umask(0); /* reading the umask means setting it */
+    umask(mask);
+    return 0666 & ~mask;
+}
+
+/* path names nothing (stat failed with error): a new file, unless it is a
+ * link that leads nowhere. */
+static bool open_new(png_output *o, const char *path, int error, char *why,
+                     size_t why_size)
+{
+    struct stat st;
+    if (error != ENOENT)
+        return explain(why, why_size, "cannot write %s: %s", path,
+                       strerror(error));
+    if (lstat(path, &st) == 0)
+        return explain(why, why_size, "cannot write %s: a link that leads "
+                                      "nowhere", path);
+    return open_temporary(o, path, new_file_mode(), why, why_size);
+}
+
+/* path leads to a regular file: the file is replaced, keeping its
+ * permissions, unless the user may not write it. */
+static bool open_replacement(png_output *o, const char *path, mode_t mode,
+                             char *why, size_t why_size)
+{
+    char *target = realpath(path, NULL); /* through links: they stay */
+    if (target == NULL)
+        return explain(why, why_size, "cannot write %s: %s", path,
+                       strerror(errno));
+    bool ok = open_temporary(o, target, mode & 0777, why, why_size);
+    if (ok && faccessat(AT_FDCWD, target, W_OK, AT_EACCESS) != 0)
+        ok = explain(why, why_size, "will not replace %s: it is read-only",
+                     target);
+    free(target);
+    return ok;
+}
+
+static bool open_in_place(png_output *o, const char *path, char *why,
+                          size_t why_size)
+{
+    int fd = open(path, O_WRONLY | O_NOCTTY | O_NONBLOCK);
+    if (fd < 0 && errno == ENXIO)
+        return explain(why, why_size, "cannot write %s: no program reads "
+                                      "from it", path);
+    int flags = fd < 0 ? -1 : fcntl(fd, F_GETFL);
+    if (flags < 0 || fcntl(fd, F_SETFL, flags & ~O_NONBLOCK) != 0 ||
+        (o->out = fdopen(fd, "wb")) == NULL) {
+        int error = errno;
+        if (fd >= 0)
+            close(fd);
+        return explain(why, why_size, "cannot write %s: %s", path,
+                       strerror(error));
+    }
+    o->owns_out = true;
+    return true;
+}
+
+bool png_output_open(png_output *o, const char *path, char *why,
+                     size_t why_size)
+{
+    struct stat st;
+    *o = (png_output){0};
+    if (strcmp(path, "-") == 0)
+        o->out = stdout;
+    else if (stat(path, &st) != 0)
+        return open_new(o, path, errno, why, why_size);
+    else if (S_ISDIR(st.st_mode))
+        return explain(why, why_size, "cannot write %s: %s", path,
+                       strerror(EISDIR));
+    else if (S_ISREG(st.st_mode))
+        return open_replacement(o, path, st.st_mode, why, why_size);
+    else if (!open_in_place(o, path, why, why_size))
+        return false;
+    return !isatty(fileno(o->out)) ||
+           explain(why, why_size, "will not write a PNG to a terminal");
+}
+
+/* <<finish the output>> ch01 */
+bool png_output_finish(png_output *o, const image *img, char *why,
+                       size_t why_size)
+{
+    bool ok = image_write_png_stream(img, o->out, why, why_size);
+    if (o->owns_out && fclose(o->out) != 0 && ok) /* a full disk, say */
+        ok = explain(why, why_size, "cannot write: %s", strerror(errno));
+    o->out = NULL;
+    if (ok && o->temporary != NULL && rename(o->temporary, o->target) != 0)
+        ok = explain(why, why_size, "cannot rename to %s: %s", o->target,
+                     strerror(errno));
+    if (ok)
+        free(o->temporary), o->temporary = NULL; /* it is the target now */
+    return ok;
+}
+
+void png_output_free(png_output *o)
+{
+    if (o->out != NULL && o->owns_out)
+        fclose(o->out);
+    if (o->temporary != NULL)
+        unlink(o->temporary);
+    free(o->temporary);
+    free(o->target);
+    *o = (png_output){0};
+}
+
 bool image_write_png(const image *img, const char *path, char *why,
                      size_t why_size)
 {
-    unsigned char *bytes = encode_rows(img);
-    char *tmp = malloc(strlen(path) + sizeof ".tmp-XXXXXX");
-    int fd = -1;
-    FILE *out = NULL;
-    bool ok = false;
-    if (bytes == NULL || tmp == NULL) {
-        snprintf(why, why_size, "out of memory");
-        goto done;
-    }
-    sprintf(tmp, "%s.tmp-XXXXXX", path);
-    if ((fd = mkstemp(tmp)) < 0 || (out = fdopen(fd, "wb")) == NULL) {
-        snprintf(why, why_size, "cannot create %s: %s", tmp, strerror(errno));
-        goto done;
-    }
-    /* <<give the new file ordinary permissions>> ch01 */
-    mode_t mask = umask(0);
-    umask(mask);
-    fchmod(fd, 0666 & ~mask);
-    ok = write_png_stream(out, img, bytes, why, why_size);
-    if (fclose(out) != 0 && ok) /* a full disk may only show here */
-        ok = (snprintf(why, why_size, "cannot write %s: %s", path,
-                       strerror(errno)),
-              false);
-    out = NULL;
-    if (ok && rename(tmp, path) != 0)
-        ok = (snprintf(why, why_size, "cannot rename to %s: %s", path,
-                       strerror(errno)),
-              false);
-done:
-    if (out == NULL && fd >= 0 && !ok)
-        unlink(tmp); /* the temporary never replaces the target */
-    else if (out != NULL)
-        fclose(out), unlink(tmp);
-    free(tmp);
-    free(bytes);
+    png_output o;
+    bool ok = png_output_open(&o, path, why, why_size) &&
+              png_output_finish(&o, img, why, why_size);
+    png_output_free(&o);
     return ok;
 }

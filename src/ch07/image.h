@@ -45,9 +45,9 @@ unsigned char srgb_to_byte(double linear);
 /* The sheet's model, linear^(1/gamma), clamped like srgb_encode. */
 double gamma_encode(double linear, double gamma);
 
-/* Writes img as an 8-bit sRGB PNG. The file appears whole or not at all: it
- * is written under a temporary name and renamed. On failure returns false
- * and puts the reason in why[why_size]. */
+/* Writes img as an 8-bit sRGB PNG to path, which png_output_open (below)
+ * opens: a file appears whole or not at all. On failure returns false and
+ * puts the reason in why[why_size]. */
 bool image_write_png(const image *img, const char *path, char *why,
                      size_t why_size);
 
@@ -55,5 +55,28 @@ bool image_write_png(const image *img, const char *path, char *why,
  * the reason, when encoding or writing fails (a full disk, say). */
 bool image_write_png_stream(const image *img, FILE *out, char *why,
                             size_t why_size);
+/* <<PNG output declarations>> ch01 */
+
+/* Where a PNG goes: opened before the render, finished after it. */
+typedef struct {
+    FILE *out;
+    bool owns_out;   /* false for standard output, which stays open */
+    char *temporary; /* NULL when the target is written in place */
+    char *target;    /* the file that the temporary replaces */
+} png_output;
+
+/* Opens path for a PNG as the table above says ("-": standard output);
+ * false with the reason in why. Free o with png_output_free either way. */
+bool png_output_open(png_output *o, const char *path, char *why,
+                     size_t why_size);
+
+/* Writes img to o and, for a file, renames the temporary over the target;
+ * false with the reason in why. */
+bool png_output_finish(png_output *o, const image *img, char *why,
+                       size_t why_size);
+
+/* Closes o and removes its temporary file if it is still there (the PNG
+ * was not finished). */
+void png_output_free(png_output *o);
 
 #endif

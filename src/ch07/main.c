@@ -1,4 +1,5 @@
 /* main.c: the command line of the renderer (chapter 1). */
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -59,6 +60,49 @@ static const char DEFAULT_SCENE[] =
         "light directional direction 1 -1.5 0.8 intensity 0.3 0.3 0.35\n"
     ;
 
+/* <<printing errors>> ch01 */
+/* The length of the UTF-8 sequence at s if it encodes a printable
+ * character beyond ASCII (U+00A0 and up), else 0. */
+static int printable_utf8(const unsigned char *s)
+{
+    static const unsigned long least[] = {0, 0, 0xA0, 0x800, 0x10000};
+    int n = s[0] >= 0xF0 ? 4 : s[0] >= 0xE0 ? 3 : s[0] >= 0xC2 ? 2 : 0;
+    if (n == 0 || s[0] > 0xF4)
+        return 0;
+    unsigned long c = s[0] & (0x7Fu >> n);
+    for (int k = 1; k < n; k++) {
+        if ((s[k] & 0xC0) != 0x80) /* also stops at the NUL */
+            return 0;
+        c = c << 6 | (s[k] & 0x3Fu);
+    }
+    bool surrogate = c >= 0xD800 && c <= 0xDFFF;
+    return c >= least[n] && c <= 0x10FFFF && !surrogate ? n : 0;
+}
+
+/* text on stderr, with every byte a terminal could obey shown as \xHH. */
+static void print_escaped(const char *text)
+{
+    for (const unsigned char *c = (const unsigned char *)text; *c != '\0';) {
+        int n = *c >= 0x20 && *c < 0x7F ? 1 : printable_utf8(c);
+        if (n == 0)
+            fprintf(stderr, "\\x%02x", *c++);
+        else
+            fwrite(c, 1, (size_t)n, stderr), c += n;
+    }
+}
+
+/* "NAME: error: MESSAGE", or with ":LINE:COL" after NAME when line > 0. */
+static void print_error(const char *name, int line, int col,
+                        const char *message)
+{
+    print_escaped(name);
+    if (line > 0)
+        fprintf(stderr, ":%d:%d", line, col);
+    fputs(": error: ", stderr);
+    print_escaped(message);
+    fputc('\n', stderr);
+}
+
 /* <<command-line options>> ch01 */
 typedef struct {
     const char *scene_path; /* NULL: the built-in scene */
@@ -74,7 +118,7 @@ static void usage(FILE *out, const char *program)
         "usage: %s [SCENE] [-o OUT.png] [--size WxH] [--stats] [--help]\n"
         "Renders SCENE (default: this chapter's built-in scene) to OUT.png\n"
         "(default: out.png) as 8-bit sRGB.\n"
-        "  -o FILE      where to write the PNG\n"
+        "  -o FILE      where to write the PNG; - for standard output\n"
         "  --size WxH   image size in pixels, overriding the scene's\n"
         "  --stats      print rays traced and time per phase on stderr\n"
         "  --help       this text\n",
@@ -88,9 +132,13 @@ static void usage(FILE *out, const char *program)
 static bool option_error(const char *program, const char *message,
                          const char *found)
 {
-    fprintf(stderr, "%s: error: %s%s%s%s\n", program, message,
-            found ? ", found '" : "", found ? found : "", found ? "'" : "");
-    fprintf(stderr, "Try '%s --help'.\n", program);
+    char text[512];
+    snprintf(text, sizeof text, "%s%s%.400s%s", message,
+             found ? ", found '" : "", found ? found : "", found ? "'" : "");
+    print_error(program, 0, 0, text);
+    fputs("Try '", stderr);
+    print_escaped(program);
+    fputs(" --help'.\n", stderr);
     return false;
 }
 
@@ -124,6 +172,9 @@ static bool parse_options(int argc, char **argv, options *opt)
             if (k + 1 == argc)
                 return option_error(argv[0], "this option needs a value", arg);
             const char *value = argv[++k];
+            if (strcmp(arg, "-o") == 0 && value[0] == '\0')
+                return option_error(argv[0], "-o expects a file name, or - "
+                                             "for standard output", NULL);
             if (strcmp(arg, "-o") == 0)
                 opt->output = value;
             else if (!parse_size(value, &opt->width, &opt->height))
@@ -145,15 +196,6 @@ static bool parse_options(int argc, char **argv, options *opt)
 }
 
 /* <<loading the scene>> ch01 */
-static void print_scene_error(const scene_error *err)
-{
-    if (err->line > 0)
-        fprintf(stderr, "%s:%d:%d: error: %s\n", err->file, err->line, err->col,
-                err->message);
-    else
-        fprintf(stderr, "%s: error: %s\n", err->file, err->message);
-}
-
 /* The scene file (or the built-in scene) with --size applied; on bad input
  * prints the located error and returns false. */
 static bool load_scene(const options *opt, scene *s)
@@ -165,7 +207,7 @@ static bool load_scene(const options *opt, scene *s)
                   : scene_parse(s, DEFAULT_SCENE, sizeof DEFAULT_SCENE - 1,
                                 "(built-in scene)", &err);
     if (!ok) {
-        print_scene_error(&err);
+        print_error(err.file, err.line, err.col, err.message);
         return false;
     }
     if (opt->width > 0) {
@@ -173,6 +215,59 @@ static bool load_scene(const options *opt, scene *s)
         s->cam.height = opt->height;
     }
     return true;
+}
+
+/* <<the output file>> ch01 */
+/* The output's temporary file, while there is one. */
+static char temporary[PARSE_MAX_NAME + 16];
+static volatile sig_atomic_t has_temporary;
+
+static void remove_temporary_and_stop(int sig)
+{
+    if (has_temporary)
+        unlink(temporary);
+    raise(sig); /* SA_RESETHAND restored the default action: it stops */
+}
+
+static const int stop_signals[] = {SIGINT, SIGTERM, SIGHUP};
+enum { STOP_SIGNALS = sizeof stop_signals / sizeof stop_signals[0] };
+
+static void catch_stop_signals(void)
+{
+    struct sigaction action = {.sa_handler = remove_temporary_and_stop,
+                               .sa_flags = SA_RESETHAND},
+                     before;
+    sigemptyset(&action.sa_mask);
+    for (int k = 0; k < STOP_SIGNALS; k++)
+        if (sigaction(stop_signals[k], NULL, &before) == 0 &&
+            before.sa_handler != SIG_IGN) /* nohup's choice stands */
+            sigaction(stop_signals[k], &action, NULL);
+}
+
+/* png_output_open with the stop signals held, so that the handler knows
+ * of a temporary file as soon as it exists. */
+static bool open_output(const char *path, png_output *out, char *why,
+                        size_t why_size)
+{
+    sigset_t stops, before;
+    sigemptyset(&stops);
+    for (int k = 0; k < STOP_SIGNALS; k++)
+        sigaddset(&stops, stop_signals[k]);
+    sigprocmask(SIG_BLOCK, &stops, &before);
+    bool ok = png_output_open(out, path, why, why_size);
+    if (out->temporary && strlen(out->temporary) < sizeof temporary) {
+        strcpy(temporary, out->temporary);
+        has_temporary = 1;
+    }
+    sigprocmask(SIG_SETMASK, &before, NULL);
+    return ok;
+}
+
+/* Removes an unfinished temporary, then tells the handler it is gone. */
+static void close_output(png_output *out)
+{
+    png_output_free(out);
+    has_temporary = 0;
 }
 
 /* <<timing>> ch01 */
@@ -257,17 +352,24 @@ int main(int argc, char **argv)
         usage(stdout, argv[0]);
         return 0;
     }
+    catch_stop_signals();
     double start = seconds_now();
     scene s;
     image img = {0};
+    png_output out = {0};
     render_stats stats = {0};
-    char why[512];
+    char why[PARSE_MAX_NAME + 256], size[64];
     int status = 1;
     if (!load_scene(&opt, &s))
         goto done;
+    if (!open_output(opt.output, &out, why, sizeof why)) {
+        print_error(opt.output, 0, 0, why);
+        goto done;
+    }
     if (!image_init(&img, s.cam.width, s.cam.height)) {
-        fprintf(stderr, "%s: error: no memory for a %dx%d image\n", argv[0],
-                s.cam.width, s.cam.height);
+        snprintf(size, sizeof size, "no memory for a %dx%d image",
+                 s.cam.width, s.cam.height);
+        print_error(argv[0], 0, 0, size);
         goto done;
     }
     /* <<count what the scene holds>> ch05 */
@@ -276,8 +378,8 @@ int main(int argc, char **argv)
     double loaded = seconds_now();
     render_in_bands(&s, &img, &stats);
     double rendered = seconds_now();
-    if (!image_write_png(&img, opt.output, why, sizeof why)) {
-        fprintf(stderr, "%s: error: %s\n", opt.output, why);
+    if (!png_output_finish(&out, &img, why, sizeof why)) {
+        print_error(opt.output, 0, 0, why);
         goto done;
     }
     if (opt.stats)
@@ -285,6 +387,7 @@ int main(int argc, char **argv)
                     seconds_now() - rendered);
     status = 0;
 done:
+    close_output(&out);
     image_free(&img);
     scene_free(&s);
     return status;

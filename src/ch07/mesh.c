@@ -2,6 +2,7 @@
 #include "mesh.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 /* <<mesh storage>> ch04 */
 void mesh_free(mesh *m)
@@ -10,7 +11,25 @@ void mesh_free(mesh *m)
     free(m->normals);
     free(m->triangles);
     free(m->triangle_normals);
+    free(m->source.path);
     *m = (mesh){0};
+}
+
+long long mesh_bytes(const mesh *m)
+{
+    long long points = (long long)m->vertex_capacity + m->normal_capacity;
+    long long corners =
+        (long long)m->triangle_capacity + m->triangle_normals_capacity;
+    return points * (long long)sizeof(vec3) +
+           corners * (long long)sizeof(mesh_triangle);
+}
+
+bool mesh_source_equal(const mesh_source *a, const mesh_source *b)
+{
+    return a->scale == b->scale && a->offset.x == b->offset.x &&
+           a->offset.y == b->offset.y && a->offset.z == b->offset.z &&
+           a->smooth == b->smooth && a->path != NULL && b->path != NULL &&
+           strcmp(a->path, b->path) == 0;
 }
 
 void mesh_compute_bounds(mesh *m)

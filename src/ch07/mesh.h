@@ -14,6 +14,15 @@
 #define MESH_MAX_VERTICES (1 << 22)  /* 4.2 million: 100 MB of vertices */
 #define MESH_MAX_TRIANGLES (1 << 23) /* 8.4 million */
 
+/* Where a mesh was read from and how it was placed: two meshes that agree
+ * on all of it are the same mesh. path is NULL for a mesh made in code. */
+typedef struct {
+    char *path; /* owned by the mesh */
+    double scale;
+    vec3 offset;
+    bool smooth;
+} mesh_source;
+
 typedef struct {
     vec3 *vertices;
     int vertex_count, vertex_capacity;
@@ -25,10 +34,17 @@ typedef struct {
     int triangle_normals_capacity;
     int texcoord_count; /* only counted: OBJ indices must refer to them */
     box bounds;         /* of the vertices */
+    mesh_source source;
 } mesh;
 
 void mesh_free(mesh *m);
 void mesh_compute_bounds(mesh *m);
+
+/* The bytes that m's arrays take, as allocated. */
+long long mesh_bytes(const mesh *m);
+
+/* Do a and b name the same file, placed the same way? */
+bool mesh_source_equal(const mesh_source *a, const mesh_source *b);
 
 /* Gives every vertex the area-weighted sum of its triangles' normals and
  * makes every triangle use them; false when out of memory. */

@@ -12,10 +12,20 @@
 #include <stddef.h>
 #include "vec.h"
 
+#define PARSE_MAX_NAME 4096 /* bytes of a path and its NUL: PATH_MAX on Linux */
+
+typedef enum {
+    PARSE_BAD_INPUT,   /* the text is wrong at line:col */
+    PARSE_CANNOT_READ, /* line 0: the file cannot be read, or is too large */
+    PARSE_OVER_BUDGET, /* valid input that asks for more than is allowed */
+    PARSE_NO_MEMORY,   /* the machine ran out of memory, not the input */
+} parse_error_kind;
+
 typedef struct {
-    char file[256];
+    char file[PARSE_MAX_NAME]; /* ends in "..." if the name was longer */
     int line, col; /* 1-based; line 0: the problem is the file as a whole */
-    char message[256];
+    parse_error_kind kind;
+    char message[PARSE_MAX_NAME + 256]; /* room to name a file in full */
 } parse_error;
 
 typedef struct {
@@ -32,8 +42,20 @@ typedef struct {
 /* Fills p->err at the column of at, formatted like printf; returns false. */
 bool parse_fail_at(parser *p, const char *at, const char *format, ...);
 
+/* The same, for an error of another kind than PARSE_BAD_INPUT. */
+bool parse_fail_with(parser *p, parse_error_kind kind, const char *at,
+                     const char *format, ...);
+
 /* "EXPECTATION, found 'TOKEN'", located at the token just read; false. */
 bool parse_expected(parser *p, const char *format, ...);
+
+/* An array of count items that could not grow, located at at: "more than
+ * MAX PLURAL" once count has reached max, else out of memory; false. */
+bool parse_no_room(parser *p, const char *at, int count, int max,
+                   const char *plural);
+
+/* Copies name into to[size], ending it in "..." when it does not fit. */
+void parse_copy_name(char *to, size_t size, const char *name);
 
 bool parse_is_blank(char c);
 
@@ -61,8 +83,9 @@ typedef bool (*line_parser)(parser *p, void *target);
 bool parse_lines(const char *text, size_t length, const char *name,
                  parse_error *err, line_parser parse_line, void *target);
 
-/* The whole file at path, at most max_bytes, in a malloc'ed *text that is
- * NUL-terminated; false with err filled (line 0) when it cannot be read. */
+/* The whole regular file at path, at most max_bytes, in a malloc'ed *text
+ * that is NUL-terminated; false with err filled (line 0) when it cannot be
+ * read, is not a regular file, or is too large. */
 bool parse_read_file(const char *path, long max_bytes, char **text,
                      size_t *length, parse_error *err);
 /* <<parser declarations>> += ch02 */

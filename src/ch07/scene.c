@@ -34,6 +34,9 @@ void scene_init(scene *s)
     s->default_light = (light){.kind = LIGHT_DIRECTIONAL,
                                .direction = vec3_normalize((vec3){1, -1, 1}),
                                .intensity = {1, 1, 1}};
+    /* <<scene member defaults>> += ch04 */
+    s->triangle_budget = SCENE_MAX_TRIANGLES;
+    s->geometry_budget = SCENE_MAX_GEOMETRY_BYTES;
     /* <<scene member defaults>> += ch05 */
     s->cam.look_at = (vec3){0, 0, 1}; /* where chapter 01's camera looks */
     s->cam.up = (vec3){0, 1, 0};
@@ -53,11 +56,9 @@ void scene_free(scene *s)
     for (int k = 0; k < s->mesh_count; k++)
         mesh_free(&s->meshes[k]);
     free(s->meshes);
+    free(s->mesh_index);
     /* <<free scene members>> += ch05 */
     free(s->transforms);
-    for (int k = 0; k < s->mesh_source_count; k++)
-        free(s->mesh_sources[k].path);
-    free(s->mesh_sources);
     memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
 }
 
@@ -382,6 +383,59 @@ bool scene_add_light(scene *s, light L)
 }
 /* <<scene contents>> += ch04 */
 
+/* FNV-1a over n bytes, continuing from h. */
+static unsigned long long fnv1a(unsigned long long h, const void *bytes,
+                                size_t n)
+{
+    const unsigned char *b = bytes;
+    for (size_t k = 0; k < n; k++)
+        h = (h ^ b[k]) * 1099511628211ULL;
+    return h;
+}
+
+/* Where the index starts looking for source. */
+static size_t first_slot(const mesh_source *source, int size)
+{
+    const mesh_source *c = source; /* + 0.0: -0.0 hashes as 0.0, its equal */
+    double numbers[4] = {c->scale + 0.0, c->offset.x + 0.0,
+                         c->offset.y + 0.0, c->offset.z + 0.0};
+    unsigned long long h = fnv1a(14695981039346656037ULL, c->path,
+                                 strlen(c->path));
+    h = fnv1a(h, numbers, sizeof numbers);
+    h = fnv1a(h, &c->smooth, sizeof c->smooth);
+    return (size_t)(h & (unsigned long long)(size - 1));
+}
+
+static size_t next_slot(const scene *s, size_t slot)
+{
+    return (slot + 1) & (size_t)(s->mesh_index_size - 1);
+}
+
+static void index_mesh(scene *s, int k)
+{
+    size_t slot = first_slot(&s->meshes[k].source, s->mesh_index_size);
+    while (s->mesh_index[slot] != 0)
+        slot = next_slot(s, slot);
+    s->mesh_index[slot] = k + 1;
+}
+
+/* Room in the index for one more mesh; false when out of memory. */
+static bool grow_index(scene *s)
+{
+    if (2 * (s->mesh_count + 1) < s->mesh_index_size)
+        return true;
+    int size = s->mesh_index_size ? 2 * s->mesh_index_size : 64;
+    int *index = calloc((size_t)size, sizeof *index);
+    if (index == NULL)
+        return false;
+    free(s->mesh_index);
+    s->mesh_index = index, s->mesh_index_size = size;
+    for (int k = 0; k < s->mesh_count; k++)
+        if (s->meshes[k].source.path != NULL)
+            index_mesh(s, k);
+    return true;
+}
+
 int scene_add_mesh(scene *s, mesh m)
 {
     mesh *grown = array_grow(s->meshes, s->mesh_count, &s->mesh_capacity,
@@ -389,8 +443,27 @@ int scene_add_mesh(scene *s, mesh m)
     if (grown == NULL)
         return -1;
     s->meshes = grown;
+    if (!grow_index(s))
+        return -1;
     s->meshes[s->mesh_count] = m;
+    if (m.source.path != NULL)
+        index_mesh(s, s->mesh_count);
+    s->triangle_total += m.triangle_count;
+    s->geometry_total += mesh_bytes(&m);
     return s->mesh_count++;
+}
+
+int scene_find_mesh(const scene *s, const mesh_source *source)
+{
+    if (s->mesh_index_size == 0 || source->path == NULL)
+        return -1;
+    size_t slot = first_slot(source, s->mesh_index_size);
+    for (; s->mesh_index[slot] != 0; slot = next_slot(s, slot)) {
+        int k = s->mesh_index[slot] - 1;
+        if (mesh_source_equal(&s->meshes[k].source, source))
+            return k;
+    }
+    return -1;
 }
 /* <<scene contents>> += ch05 */
 
@@ -409,30 +482,6 @@ int scene_add_transform(scene *s, transform t)
 const transform *scene_transform(const scene *s, int k)
 {
     return &s->transforms[k - 1];
-}
-
-int scene_find_mesh(const scene *s, mesh_source key)
-{
-    for (int k = 0; k < s->mesh_source_count; k++) {
-        const mesh_source *m = &s->mesh_sources[k];
-        if (strcmp(m->path, key.path) == 0 && m->scale == key.scale &&
-            m->offset.x == key.offset.x && m->offset.y == key.offset.y &&
-            m->offset.z == key.offset.z && m->smooth == key.smooth)
-            return m->mesh;
-    }
-    return -1;
-}
-
-bool scene_remember_mesh(scene *s, mesh_source source)
-{
-    mesh_source *grown = array_grow(s->mesh_sources, s->mesh_source_count,
-                                    &s->mesh_source_capacity,
-                                    SCENE_MAX_MESHES, sizeof source);
-    if (grown == NULL || (source.path = strdup(source.path)) == NULL)
-        return false;
-    s->mesh_sources = grown;
-    s->mesh_sources[s->mesh_source_count++] = source;
-    return true;
 }
 
 void scene_count_triangles(const scene *s, long long *stored,

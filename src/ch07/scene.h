@@ -58,17 +58,6 @@ typedef struct {
     vec3 checker;
     double tile; /* > 0; 0 means 1 */
 } object;
-/* <<scene types>> += ch05 */
-
-/* Where a mesh came from (chapter 05): its file, resolved against the
- * scene file's folder, and how its statement changed the vertices. */
-typedef struct {
-    char *path; /* owned by the scene */
-    double scale;
-    vec3 offset;
-    bool smooth;
-    int mesh; /* its index among the scene's meshes */
-} mesh_source;
 
 typedef struct {
     camera cam;
@@ -90,11 +79,13 @@ typedef struct {
     /* <<scene members>> += ch04 */
     mesh *meshes;
     int mesh_count, mesh_capacity;
+    long long triangle_budget, geometry_budget; /* for all meshes together */
+    long long triangle_total, geometry_total;   /* what the meshes take now */
+    int *mesh_index; /* slots of 1 + a mesh's index by source; 0: empty */
+    int mesh_index_size; /* a power of two, more than twice mesh_count */
     /* <<scene members>> += ch05 */
     transform *transforms;
     int transform_count, transform_capacity;
-    mesh_source *mesh_sources;
-    int mesh_source_count, mesh_source_capacity;
     /* <<scene members>> += ch06 */
     int max_depth; /* reflections deeper than this are not traced */
     double cutoff; /* nor those whose weight would fall below this */
@@ -126,10 +117,17 @@ bool scene_add_light(scene *s, light L);
 /* <<scene functions>> += ch04 */
 
 #define SCENE_MAX_MESHES 65536 /* meshes loaded; objects may share them */
+#define SCENE_MAX_TRIANGLES (1LL << 24)       /* of all meshes together */
+#define SCENE_MAX_GEOMETRY_BYTES (1LL << 30) /* 1 GiB of mesh arrays */
 
 /* Takes m over and returns its index in the scene, or -1 (out of memory,
- * or SCENE_MAX_MESHES reached: m is then the caller's to free). */
+ * or SCENE_MAX_MESHES reached: m is then the caller's to free). Adds what
+ * m takes to the scene's totals; keeping to the budget is the caller's
+ * part. */
 int scene_add_mesh(scene *s, mesh m);
+
+/* The index of a mesh with that source, or -1. */
+int scene_find_mesh(const scene *s, const mesh_source *source);
 /* <<scene functions>> += ch05 */
 
 #define SCENE_MAX_TRANSFORMS SCENE_MAX_OBJECTS /* at most one per object */
@@ -139,13 +137,6 @@ int scene_add_mesh(scene *s, mesh m);
 int scene_add_transform(scene *s, transform t);
 /* The transform with index k >= 1. */
 const transform *scene_transform(const scene *s, int k);
-
-/* The index of the mesh read from the source key (key.mesh is ignored),
- * or -1 when none was. */
-int scene_find_mesh(const scene *s, mesh_source key);
-/* Records that mesh source.mesh came from source (the path is copied);
- * false when out of memory. */
-bool scene_remember_mesh(scene *s, mesh_source source);
 
 /* The triangles the scene stores (in its meshes and lone triangles) and
  * the triangles its objects draw (a mesh counts once per object). */

@@ -429,8 +429,8 @@ static bool parse_sphere(parser *p, scene *s)
             return false;
     }
     if (!scene_add_object(s, o))
-        return parse_fail_at(p, p->line, "more than %d objects",
-                             SCENE_MAX_OBJECTS);
+        return parse_no_room(p, p->line, s->object_count, SCENE_MAX_OBJECTS,
+                             "objects");
     return true;
 }
 /* <<statements>> += ch03 */
@@ -510,8 +510,8 @@ static bool parse_material(parser *p, scene *s)
     if (redefining_default)
         s->default_material = m;
     else if (!scene_add_material(s, m))
-        return parse_fail_at(p, p->line, "more than %d materials",
-                             SCENE_MAX_MATERIALS);
+        return parse_no_room(p, p->line, s->material_count,
+                             SCENE_MAX_MATERIALS, "materials");
     return true;
 }
 
@@ -619,8 +619,8 @@ static bool parse_light(parser *p, scene *s)
         if (!read_light_setting(p, &L))
             return false;
     if (!scene_add_light(s, L))
-        return parse_fail_at(p, p->line, "more than %d lights",
-                             SCENE_MAX_LIGHTS);
+        return parse_no_room(p, p->line, s->light_count, SCENE_MAX_LIGHTS,
+                             "lights");
     return true;
 }
 
@@ -671,8 +671,8 @@ static bool parse_triangle(parser *p, scene *s)
             return false;
     }
     if (!scene_add_object(s, o))
-        return parse_fail_at(p, p->line, "more than %d objects",
-                             SCENE_MAX_OBJECTS);
+        return parse_no_room(p, p->line, s->object_count, SCENE_MAX_OBJECTS,
+                             "objects");
     return true;
 }
 
@@ -688,20 +688,51 @@ static bool resolve_path(const parser *p, const char *token, int length,
            (int)size;
 }
 
-static bool load_mesh_file(parser *p, const char *file, int length, mesh *m)
+/* What the scene's budget leaves for one more mesh. */
+static mesh_budget budget_left(const scene *s)
 {
-    char path[4096];
-    if (!resolve_path(p, file, length, path, sizeof path))
-        return parse_fail_at(p, file, "the mesh file's path is too long");
-    if (mesh_load_obj(m, path, p->err))
+    long long triangles = s->triangle_budget - s->triangle_total;
+    long long bytes = s->geometry_budget - s->geometry_total;
+    triangles = triangles < MESH_MAX_TRIANGLES ? triangles
+                                               : MESH_MAX_TRIANGLES;
+    return (mesh_budget){triangles > 0 ? (long)triangles : 0,
+                         bytes > 0 ? bytes : 0};
+}
+
+/* Moves an error that is not the OBJ text's fault to the scene line that
+ * named the file (at file); false. */
+static bool mesh_file_error(parser *p, const scene *s, const char *file,
+                            const char *path)
+{
+    parse_error *err = p->err;
+    char why[sizeof err->message];
+    snprintf(why, sizeof why, "%s", err->message);
+    int line = err->line;
+    if (err->kind == PARSE_CANNOT_READ)
+        return parse_fail_with(p, err->kind, file,
+                               "cannot read mesh file '%s': %s", path, why);
+    if (err->kind == PARSE_OVER_BUDGET)
+        return parse_fail_with(
+            p, err->kind, file,
+            "mesh file '%s' would pass the scene's budget of %lld triangles "
+            "and %lld bytes of geometry: at its line %d, %s",
+            path, s->triangle_budget, s->geometry_budget, line, why);
+    if (line == 0)
+        return parse_fail_with(p, PARSE_NO_MEMORY, file, "mesh file '%s': %s",
+                               path, why);
+    return parse_fail_with(p, PARSE_NO_MEMORY, file,
+                           "mesh file '%s': %s (at its line %d)", path, why,
+                           line);
+}
+
+static bool load_mesh_file(parser *p, const scene *s, const char *file,
+                           const char *path, mesh *m)
+{
+    if (mesh_load_obj_within(m, path, budget_left(s), p->err))
         return true;
-    if (p->err->line == 0) { /* unreadable: say which scene line asked for it */
-        char why[sizeof p->err->message];
-        snprintf(why, sizeof why, "%s", p->err->message);
-        return parse_fail_at(p, file, "cannot read mesh file '%s': %s", path,
-                             why);
-    }
-    return false; /* the OBJ file's own line and column */
+    if (p->err->kind == PARSE_BAD_INPUT)
+        return false; /* the OBJ file's own line and column */
+    return mesh_file_error(p, s, file, path);
 }
 
 /* <<placing a mesh>> ch04 */
@@ -713,11 +744,27 @@ static bool read_scale(parser *p, double *scale)
            parse_expected(p, "expected a scale between 1e-100 and 1e100");
 }
 
-static bool place_mesh(parser *p, mesh *m, double scale, vec3 offset,
-                       bool smooth)
+static bool smooth_within_budget(parser *p, const scene *s, mesh *m)
+{
+    long long normals = ((long long)m->vertex_count + 1) * sizeof(vec3);
+    long long corners =
+        ((long long)m->triangle_count + 1) * sizeof(mesh_triangle);
+    if (mesh_bytes(m) + normals + corners > budget_left(s).bytes)
+        return parse_fail_with(p, PARSE_OVER_BUDGET, p->line,
+                               "the mesh's smooth normals would pass the "
+                               "scene's budget of %lld bytes of geometry",
+                               s->geometry_budget);
+    return mesh_smooth_normals(m) ||
+           parse_fail_with(p, PARSE_NO_MEMORY, p->line,
+                           "out of memory for the mesh's normals");
+}
+
+static bool place_mesh(parser *p, const scene *s, mesh *m,
+                       const mesh_source *source)
 {
     for (int k = 0; k < m->vertex_count; k++) {
-        vec3 v = vec3_add(vec3_scale(m->vertices[k], scale), offset);
+        vec3 v = vec3_add(vec3_scale(m->vertices[k], source->scale),
+                          source->offset);
         double largest = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
         if (!(largest <= PARSE_MAX_COORDINATE))
             return parse_fail_at(
@@ -725,11 +772,32 @@ static bool place_mesh(parser *p, mesh *m, double scale, vec3 offset,
                 "vertex %d of the mesh lies beyond 1e50 once placed", k + 1);
         m->vertices[k] = v;
     }
-    if (smooth && m->normal_count == 0 && !mesh_smooth_normals(m))
-        return parse_fail_at(p, p->line,
-                             "out of memory for the mesh's normals");
+    if (source->smooth && m->normal_count == 0 &&
+        !smooth_within_budget(p, s, m))
+        return false;
     mesh_compute_bounds(m);
     return true;
+}
+
+/* Reads, places and adds the mesh of source, named by the token at file:
+ * its index in the scene, or -1 with the error filled. */
+static int add_mesh_file(parser *p, scene *s, const char *file,
+                         const mesh_source *source)
+{
+    mesh m = {0};
+    int k = -1;
+    if (load_mesh_file(p, s, file, source->path, &m) &&
+        place_mesh(p, s, &m, source)) {
+        m.source = *source;
+        if ((m.source.path = strdup(source->path)) == NULL)
+            parse_fail_with(p, PARSE_NO_MEMORY, p->line, "out of memory");
+        else if ((k = scene_add_mesh(s, m)) < 0)
+            parse_no_room(p, p->line, s->mesh_count, SCENE_MAX_MESHES,
+                          "meshes");
+    }
+    if (k < 0)
+        mesh_free(&m);
+    return k;
 }
 
 /* The settings of a mesh statement that are not every object's. */
@@ -760,43 +828,14 @@ static bool read_mesh_setting(parser *p, mesh_settings *m, bool *known)
     return true;
 }
 
-/* Reads, places and adds to the scene the mesh the settings name; its
- * index goes to *index. */
-static bool read_mesh(parser *p, scene *s, const mesh_settings *settings,
-                      int *index)
+static bool read_mesh_settings(parser *p, scene *s, mesh_settings *m,
+                               object *o)
 {
-    mesh m = {0};
-    if (!load_mesh_file(p, settings->file, settings->file_length, &m) ||
-        !place_mesh(p, &m, settings->scale, settings->offset,
-                    settings->smooth)) {
-        mesh_free(&m);
-        return false;
-    }
-    if ((*index = scene_add_mesh(s, m)) < 0) {
-        mesh_free(&m);
-        return parse_fail_at(p, p->line, "more than %d meshes (or out of "
-                                         "memory)", SCENE_MAX_MESHES);
-    }
-    /* <<remember where the mesh came from>> ch05 */
-    char key[4096];
-    if (resolve_path(p, settings->file, settings->file_length, key,
-                     sizeof key) &&
-        !scene_remember_mesh(s, (mesh_source){key, settings->scale,
-                                              settings->offset,
-                                              settings->smooth, *index}))
-        return parse_fail_at(p, p->line, "out of memory for the mesh's source");
-    return true;
-}
-
-static bool parse_mesh(parser *p, scene *s)
-{
-    object o = {.kind = SHAPE_MESH, .color = {0.8, 0.8, 0.8}};
-    mesh_settings settings = {.scale = 1};
     while (parse_next_token(p)) {
         bool known;
-        bool ok = read_mesh_setting(p, &settings, &known);
+        bool ok = read_mesh_setting(p, m, &known);
         if (!known)
-            ok = parse_object_setting(p, s, &o, &known);
+            ok = parse_object_setting(p, s, o, &known);
         if (!known)
             return parse_expected(p, "expected a mesh setting (file, scale, "
                                      "offset, smooth, %s)",
@@ -804,21 +843,27 @@ static bool parse_mesh(parser *p, scene *s)
         if (!ok)
             return false;
     }
-    if (settings.file == NULL)
-        return parse_expected(p, "expected 'file PATH': a mesh needs an OBJ "
-                                 "file");
-    o.mesh = -1; /* none yet */
-    /* <<find the mesh among those read before>> ch05 */
-    char key[4096];
-    if (resolve_path(p, settings.file, settings.file_length, key, sizeof key))
-        o.mesh = scene_find_mesh(s, (mesh_source){key, settings.scale,
-                                                  settings.offset,
-                                                  settings.smooth, -1});
-    if (o.mesh < 0 && !read_mesh(p, s, &settings, &o.mesh))
+    return m->file != NULL ||
+           parse_expected(p, "expected 'file PATH': a mesh needs an OBJ "
+                             "file");
+}
+
+static bool parse_mesh(parser *p, scene *s)
+{
+    object o = {.kind = SHAPE_MESH, .color = {0.8, 0.8, 0.8}};
+    mesh_settings m = {.scale = 1};
+    char path[PARSE_MAX_NAME];
+    if (!read_mesh_settings(p, s, &m, &o))
+        return false;
+    if (!resolve_path(p, m.file, m.file_length, path, sizeof path))
+        return parse_fail_at(p, m.file, "the mesh file's path is too long");
+    mesh_source source = {path, m.scale, m.offset, m.smooth};
+    o.mesh = scene_find_mesh(s, &source); /* the file, read already? */
+    if (o.mesh < 0 && (o.mesh = add_mesh_file(p, s, m.file, &source)) < 0)
         return false;
     if (!scene_add_object(s, o))
-        return parse_fail_at(p, p->line, "more than %d objects",
-                             SCENE_MAX_OBJECTS);
+        return parse_no_room(p, p->line, s->object_count, SCENE_MAX_OBJECTS,
+                             "objects");
     return true;
 }
 /* <<statements>> += ch06 */
