@@ -15,7 +15,7 @@ eval zero_axis_y
 set key bottom left box opaque font ",11"
 set xlabel "time per channel (ns, log scale; bars: interquartile range)"
 set ylabel "inputs with a wrong 8-bit code (%, log scale)"
-set title "Chapter 01: encoding sRGB, speed against accuracy"
+set title "Chapter 1: encoding sRGB, speed against accuracy"
 eval machine_label
 pct(f) = at_zero(100 * f)
 is(m) = strcol(1) eq m && strcol(5) eq "wrong_code_fraction"

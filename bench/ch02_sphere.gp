@@ -18,7 +18,7 @@ is(m, kind) = strcol(1) eq m && strcol(5) eq kind
 set terminal svg size 760,520 font "Helvetica,13" background "white"
 set output stem.'-speed-accuracy.svg'
 set bmargin 5
-set title "Chapter 02: ray-sphere forms, unit sphere at distance 10^{4}: speed against accuracy"
+set title "Chapter 2: ray-sphere forms, unit sphere at distance 10^{4}: speed against accuracy"
 set logscale y
 set format y "10^{%L}"
 set xrange [0:*]
@@ -35,7 +35,7 @@ plot for [k=1:6] csv using (is(word(names,k),"t_rel_median") && $2 == 10000 ? $3
 set output stem.'-distance.svg'
 set terminal svg size 760,800 font "Helvetica,13" background "white"
 unset label 100 # the machine line goes under the bottom panel only
-set multiplot layout 2,1 title "Chapter 02: where each ray-sphere form fails"
+set multiplot layout 2,1 title "Chapter 2: where each ray-sphere form fails"
 unset title
 set bmargin
 set logscale xy

@@ -10,7 +10,7 @@
 load "bench/chart.gp"
 set terminal svg size 760,840 font "Helvetica,13" background "white"
 set output stem.'-speed-accuracy.svg'
-set multiplot layout 2,1 title "Chapter 03: highlights, speed against accuracy"
+set multiplot layout 2,1 title "Chapter 3: highlights, speed against accuracy"
 names = "phong-pow phong-squaring phong-schlick blinn-4k blinn-fitted"
 labels = "'Phong, pow (used)' 'Phong, repeated squaring' 'Phong, Schlick rational' 'Blinn-Phong, exponent 4k' 'Blinn-Phong, fitted exponent'"
 colors = "#1b9e77 #66a61e #e7298a #d95f02 #7570b3"

@@ -10,7 +10,7 @@ load "bench/chart.gp"
 set terminal svg size 760,520 font "Helvetica,13" background "white"
 set output stem.'-speed-accuracy.svg'
 set bmargin 5
-set title "Chapter 04: ray-triangle tests, speed against leaks through shared edges"
+set title "Chapter 4: ray-triangle tests, speed against leaks through shared edges"
 names = "sheet-double moller-trumbore-double watertight-double sheet-float moller-trumbore-float watertight-float"
 labels = "'sheet (areas), double' 'Moller-Trumbore, double' 'watertight (used), double' 'sheet (areas), float' 'Moller-Trumbore, float' 'watertight, float'"
 colors = "#d95f02 #7570b3 #1b9e77 #d95f02 #7570b3 #1b9e77"
@@ -33,7 +33,7 @@ plot for [k=1:6] csv using (is(word(names,k),"origin") ? $3 : NaN):(pct($4)) \
      csv using (strcol(5) eq "leak_rate" ? $6 : NaN):(pct($4)):($7 - $6):(0) @quartile_bars
 
 set output stem.'-brute-force.svg'
-set title "Chapter 04: brute force, the Stanford bunny's first N triangles"
+set title "Chapter 4: brute force, the Stanford bunny's first N triangles"
 unset arrow 90
 set logscale xy
 set offsets 0, 0, 0, 0

@@ -12,7 +12,7 @@
 load "bench/chart.gp"
 set terminal svg size 900,580 font "Helvetica,12" background "white"
 set output stem.'-speed-accuracy.svg'
-set multiplot layout 1,2 title "Chapter 05: transforms, speed against accuracy"
+set multiplot layout 1,2 title "Chapter 5: transforms, speed against accuracy"
 set bmargin 10
 
 nm = "sheet-Mn inverse-transpose cofactor inverse-each-time"
@@ -54,7 +54,7 @@ unset multiplot
 
 set terminal svg size 760,520 font "Helvetica,13" background "white"
 set output stem.'-condition.svg'
-set title "Chapter 05: inverses against the condition number of M = T R S R" font ",13"
+set title "Chapter 5: inverses against the condition number of M = T R S R" font ",13"
 set bmargin 5
 set xtics auto
 set xrange [0.5:2e12]
@@ -75,7 +75,7 @@ plot for [k=1:3] rows(word(im,k), "forward") using (10**kappa(strcol(2))):(posit
 
 set terminal svg size 820,680 font "Helvetica,13" background "white"
 set output stem.'-drift.svg'
-set title "Chapter 05: a 0.7-degree rotation composed with itself N times"
+set title "Chapter 5: a 0.7-degree rotation composed with itself N times"
 set xrange [0.8:2e7]
 set format x "10^{%L}"
 set xlabel "compositions N (frames, log scale)"

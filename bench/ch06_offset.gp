@@ -17,7 +17,7 @@ pct(f) = at_zero(100 * f)
 # the rows of one series: METHOD-PRECISION and one error kind
 rows(m, kind) = sprintf("< awk -F, '$1 == \"%s\" && $5 == \"%s\"' %s", m, kind, csv)
 eval machine_label
-set multiplot layout 1,3 title "Chapter 06: starting a shadow ray on its surface, as the scene grows" margins 0.06,0.98,0.14,0.88 spacing 0.07
+set multiplot layout 1,3 title "Chapter 6: starting a shadow ray on its surface, as the scene grows" margins 0.06,0.98,0.14,0.88 spacing 0.07
 set grid
 eval zero_axis_y
 set logscale x

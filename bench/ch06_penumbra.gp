@@ -5,7 +5,7 @@
 load "bench/chart.gp"
 set terminal svg size 760,520 font "Helvetica,13" background "white"
 set output stem.'-speed-accuracy.svg'
-set title "Chapter 06: a soft shadow, N = 1 ... 256 shadow rays per point"
+set title "Chapter 6: a soft shadow, N = 1 ... 256 shadow rays per point"
 set grid
 set logscale xy
 set format x "10^{%L}"

@@ -5,7 +5,7 @@
 load "bench/chart.gp"
 set terminal svg size 760,520 font "Helvetica,13" background "white"
 set output stem.'.svg'
-set title "Chapter 06: ending the recursion between facing mirrors"
+set title "Chapter 6: ending the recursion between facing mirrors"
 set grid
 set logscale y
 set format y "10^{%L}"

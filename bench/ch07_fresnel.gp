@@ -9,7 +9,7 @@
 load "bench/chart.gp"
 set terminal svg size 760,1240 font "Helvetica,13" background "white"
 set output stem.'-speed-accuracy.svg'
-set multiplot layout 3,1 title "Chapter 07: Fresnel reflectance, speed against accuracy"
+set multiplot layout 3,1 title "Chapter 7: Fresnel reflectance, speed against accuracy"
 names = "exact schlick schlick-tir"
 labels = "'exact (used)' 'Schlick' 'Schlick with TIR'"
 colors = "#1b9e77 #d95f02 #7570b3"

@@ -6,7 +6,7 @@
 load "bench/chart.gp"
 set terminal svg size 760,520 font "Helvetica,13" background "white"
 set output stem.'.svg'
-set title "Chapter 07: ending the tree of rays that glass makes"
+set title "Chapter 7: ending the tree of rays that glass makes"
 set grid
 set logscale xy
 set format x "%g"

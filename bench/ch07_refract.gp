@@ -9,7 +9,7 @@
 load "bench/chart.gp"
 set terminal svg size 760,480 font "Helvetica,13" background "white"
 set output stem.'-speed-accuracy.svg'
-set title "Chapter 07: the refracted direction, speed against accuracy"
+set title "Chapter 7: the refracted direction, speed against accuracy"
 is(m, p, kind) = strcol(1) eq m && strcol(2) eq p && strcol(5) eq kind
 set logscale y
 set format y "10^{%L}"
@@ -34,7 +34,7 @@ set terminal svg size 760,1180 font "Helvetica,13" background "white"
 unset title
 unset label 100
 set bmargin
-set multiplot layout 3,1 title "Chapter 07: the refracted direction near grazing and near the critical angle"
+set multiplot layout 3,1 title "Chapter 7: the refracted direction near grazing and near the critical angle"
 sweep(m, prefix, kind) = strcol(1) eq m && strcol(2)[1:strlen(prefix)] eq prefix && strcol(5) eq kind
 # param "prefix:L" holds log10 of the x value; "axis:zero" is drawn at 1e-308
 x(prefix) = 10**real(strcol(2)[strlen(prefix)+1:])
