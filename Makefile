@@ -23,7 +23,14 @@ CC      ?= cc
 CSTD    := -std=c11 -D_POSIX_C_SOURCE=200809L
 WARN    := -Wall -Wextra $(if $(WERROR),-Werror)
 SANFLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
-OPT     := $(if $(SAN),$(SANFLAGS),-O2 -g)
+# Link-time optimization inlines across files: a ray's setup (mesh.c), its
+# box test (box.c) and its triangle tests (triangle_methods.c) become one
+# piece of code; chapter 08 measures what that is worth. Inlined across
+# files, GCC's maybe-uninitialized analysis warns of values that are always
+# set before use; that warning keeps its per-file check at compile time.
+LTO     := $(if $(SAN),,-flto=auto)
+LTO_LINK := $(if $(LTO),-Wno-maybe-uninitialized)
+OPT     := $(if $(SAN),$(SANFLAGS),-O2 -g $(LTO))
 CFLAGS  ?=
 LDFLAGS ?=
 ALL_CFLAGS = $(CSTD) $(WARN) $(OPT) $(CFLAGS) -MMD -MP
@@ -104,7 +111,7 @@ $$(O$(1))/%.o: $$(T$(1))/%.c | deps
 
 $(BIN)/ch$(1): $$(OBJ$(1))
 	@mkdir -p $$(@D)
-	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
+	$$(CC) $$(ALL_CFLAGS) $$(LTO_LINK) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
 
 ch$(1): deps $(BIN)/ch$(1)
 
@@ -120,7 +127,7 @@ $$(O$(1))/tests/runner.o: tests/runner.c $$(SUITES$(1)) | deps
 
 $(B)/test/ch$(1): $$(O$(1))/tests/runner.o $$(patsubst tests/%.c,$$(O$(1))/tests/%.o,$$(SUITES$(1))) $$(LIB$(1))
 	@mkdir -p $$(@D)
-	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
+	$$(CC) $$(ALL_CFLAGS) $$(LTO_LINK) -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
 
 test-ch$(1): deps $(B)/test/ch$(1) $(BIN)/ch$(1)
 	@echo "== suites 01..$(1) against the program of chapter $(1)"
@@ -167,7 +174,7 @@ $$(O$(1))/bench/%.o: bench/%.c $$(T$(1))/.stamp | deps
 
 $(B)/bench/ch$(1)_%: $$(O$(1))/bench/ch$(1)_%.o $$(LIB$(1))
 	@mkdir -p $$(@D)
-	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
+	$$(CC) $$(ALL_CFLAGS) $$(LTO_LINK) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) $$(BENCH_LIBS) -lm
 
 -include $$(wildcard $$(O$(1))/*.d $$(O$(1))/tests/*.d $$(O$(1))/bench/*.d)
 endef

@@ -1,0 +1,24 @@
+/* array.h: arrays that grow by doubling, within a limit (chapter 02). */
+#ifndef ARRAY_H
+#define ARRAY_H
+
+#include <stdlib.h>
+
+/* Room for one more element: returns items (moved if it had to grow), or
+ * NULL, leaving items as they were, at max or when memory runs out. */
+static inline void *array_grow(void *items, int count, int *capacity, int max,
+                               size_t size)
+{
+    if (count < *capacity)
+        return items;
+    if (*capacity >= max)
+        return NULL;
+    int wanted = *capacity ? 2 * *capacity : 8;
+    wanted = wanted < max ? wanted : max;
+    void *grown = realloc(items, (size_t)wanted * size);
+    if (grown != NULL)
+        *capacity = wanted;
+    return grown;
+}
+
+#endif

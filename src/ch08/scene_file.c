@@ -1,0 +1,616 @@
+/* scene_file.c: the statements of a scene file (chapter 01). */
+#include "scene_file.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include "image.h"
+
+
+/* The index of the material named by the token just read: 0 for "default",
+ * k for the scene's k-th material, -1 if there is none of that name. */
+static int find_material(const scene *s, const parser *p)
+{
+    if (parse_token_is(p, "default"))
+        return 0;
+    for (int k = 0; k < s->material_count; k++)
+        if (parse_token_is(p, s->materials[k].name))
+            return k + 1;
+    return -1;
+}
+
+static bool read_material_name(parser *p, const scene *s, int *material)
+{
+    if (!parse_next_token(p) || (*material = find_material(s, p)) < 0)
+        return parse_expected(p, "expected the name of a material defined "
+                                 "above");
+    return true;
+}
+#include "obj.h"
+
+static bool parse_camera(parser *p, scene *s)
+{
+    if (!parse_next_token(p))
+        return parse_expected(p, "expected a camera setting such as 'fov'");
+    do {
+        if (parse_token_is(p, "fov")) {
+            double fov;
+            if (!parse_number(p, "a field of view in degrees", &fov))
+                return false;
+            if (!(fov > 0 && fov < 180))
+                return parse_expected(p, "expected a field of view between "
+                                         "0 and 180 degrees");
+            s->cam.fov_deg = fov;
+        }
+        else
+            return parse_expected(p, "expected a camera setting such as "
+                                     "'fov'");
+    } while (parse_next_token(p));
+    return true;
+}
+
+static bool read_side(parser *p, const char *what, int *out)
+{
+    long n = 0;
+    if (!parse_int(p, what, &n))
+        return false;
+    if (n < 1 || n > IMAGE_MAX_SIDE)
+        return parse_expected(p, "expected %s from 1 to %d pixels", what,
+                              IMAGE_MAX_SIDE);
+    *out = (int)n;
+    return true;
+}
+
+static bool parse_image(parser *p, scene *s)
+{
+    int w = 0, h = 0; /* set by read_side before any use */
+    if (!read_side(p, "an image width", &w) ||
+        !read_side(p, "an image height", &h))
+        return false;
+    if ((long)w * h > IMAGE_MAX_PIXELS)
+        return parse_expected(p, "expected at most %ld pixels in all "
+                                 "(%dx%d is %ld)",
+                              IMAGE_MAX_PIXELS, w, h, (long)w * h);
+    s->cam.width = w;
+    s->cam.height = h;
+    return true;
+}
+
+static bool parse_background(parser *p, scene *s)
+{
+    const char *rest = p->next;
+    if (parse_next_token(p) && parse_token_is(p, "gradient")) {
+        s->bg.kind = BACKGROUND_GRADIENT;
+        return parse_color(p, "a bottom colour component", &s->bg.bottom) &&
+               parse_color(p, "a top colour component", &s->bg.top);
+    }
+    p->next = rest; /* not "gradient": read that token again as a number */
+    s->bg.kind = BACKGROUND_SOLID;
+    return parse_color(p, "a colour component", &s->bg.bottom);
+}
+
+/* The settings every object statement accepts, for error messages. */
+static const char object_setting_names[] =
+    "color"
+    ", material"
+    ;
+
+/* Reads the setting the token just read names, if every object has it:
+ * *known says whether it was one; false on bad input. */
+static bool parse_object_setting(parser *p, scene *s, object *o, bool *known)
+{
+    (void)s; /* chapter 03 looks materials up in the scene */
+    *known = true;
+    if (parse_token_is(p, "color"))
+        return parse_color(p, "a colour component", &o->color);
+    if (parse_token_is(p, "material"))
+        return read_material_name(p, s, &o->material);
+    *known = false;
+    return true;
+}
+
+static bool read_radius(parser *p, double *radius)
+{
+    if (!parse_number(p, "a radius", radius))
+        return false;
+    if (!(*radius >= 1e-50 && *radius <= 1e50))
+        return parse_expected(p, "expected a radius between 1e-50 and 1e50");
+    return true;
+}
+
+static bool parse_sphere(parser *p, scene *s)
+{
+    object o = {.kind = SHAPE_SPHERE, .sphere = {{0, 0, 5}, 1},
+                .color = {0.8, 0.8, 0.8}};
+    while (parse_next_token(p)) {
+        bool ok, known = true;
+        if (parse_token_is(p, "center"))
+            ok = parse_point(p, "a centre coordinate", &o.sphere.center);
+        else if (parse_token_is(p, "radius"))
+            ok = read_radius(p, &o.sphere.radius);
+        else
+            ok = parse_object_setting(p, s, &o, &known);
+        if (!known)
+            return parse_expected(p, "expected a sphere setting "
+                                     "(center, radius, %s)",
+                                  object_setting_names);
+        if (!ok)
+            return false;
+    }
+    if (!scene_add_object(s, o))
+        return parse_fail_at(p, p->line, "more than %d objects",
+                             SCENE_MAX_OBJECTS);
+    return true;
+}
+
+static const char material_setting_names[] =
+    "emission, ambient, diffuse, specular, shininess, highlight"
+    ;
+
+static bool read_highlight_model(parser *p, material *m)
+{
+    bool named = parse_next_token(p);
+    if (named && parse_token_is(p, "phong"))
+        m->highlight = HIGHLIGHT_PHONG;
+    else if (named && parse_token_is(p, "blinn"))
+        m->highlight = HIGHLIGHT_BLINN;
+    else
+        return parse_expected(p, "expected 'phong' or 'blinn'");
+    return true;
+}
+
+static bool read_material_setting(parser *p, material *m)
+{
+    if (parse_token_is(p, "emission"))
+        return parse_color(p, "an emitted intensity", &m->emission);
+    if (parse_token_is(p, "ambient"))
+        return parse_coefficient(p, "an ambient coefficient", &m->ambient);
+    if (parse_token_is(p, "diffuse"))
+        return parse_coefficient(p, "a diffuse coefficient", &m->diffuse);
+    if (parse_token_is(p, "specular"))
+        return parse_coefficient(p, "a specular coefficient", &m->specular);
+    if (parse_token_is(p, "shininess")) {
+        if (!parse_number(p, "a shininess", &m->shininess))
+            return false;
+        return m->shininess >= 1 ||
+               parse_expected(p, "expected a shininess of at least 1");
+    }
+    if (parse_token_is(p, "highlight"))
+        return read_highlight_model(p, m);
+    return parse_expected(p, "expected a material setting (%s)",
+                          material_setting_names);
+}
+
+static bool parse_material(parser *p, scene *s)
+{
+    material m = material_default();
+    if (!parse_next_token(p) || p->token_length >= (int)sizeof m.name)
+        return parse_expected(p,
+                              "expected a material name of 1 to %d characters",
+                              (int)sizeof m.name - 1);
+    int existing = find_material(s, p);
+    bool redefining_default = existing == 0 && s->default_material.line == 0;
+    if (existing >= 0 && !redefining_default)
+        return parse_expected(
+            p, "expected a new material name (defined on line %d)",
+            scene_material(s, existing)->line);
+    memcpy(m.name, p->token, (size_t)p->token_length);
+    m.name[p->token_length] = '\0';
+    m.line = p->line_number;
+    while (parse_next_token(p))
+        if (!read_material_setting(p, &m))
+            return false;
+    if (redefining_default)
+        s->default_material = m;
+    else if (!scene_add_material(s, m))
+        return parse_fail_at(p, p->line, "more than %d materials",
+                             SCENE_MAX_MATERIALS);
+    return true;
+}
+
+static bool read_attenuation(parser *p, double a[3])
+{
+    const char *where[3];
+    int length[3];
+    for (int k = 0; k < 3; k++) {
+        if (!parse_number(p, "an attenuation coefficient", &a[k]))
+            return false;
+        where[k] = p->token, length[k] = p->token_length;
+    }
+    const char *problem = NULL;
+    int bad = 0;
+    if (!(a[0] >= 1e-6 && a[0] <= 1e6))
+        bad = 0,
+        problem =
+            "a1 from 1e-6 to 1e6, so that the light is finite at its position";
+    else if (!(a[1] >= 0 && a[1] <= 1e6))
+        bad = 1,
+        problem = "a2 from 0 to 1e6, so that the denominator stays at least a1";
+    else if (!(a[2] >= 0 && a[2] <= 1e6))
+        bad = 2,
+        problem = "a3 from 0 to 1e6, so that the denominator stays at least a1";
+    if (problem == NULL)
+        return true;
+    p->token = where[bad], p->token_length = length[bad];
+    return parse_expected(p, "expected %s", problem);
+}
+
+static bool read_spot_setting(parser *p, light *L)
+{
+    double value;
+    if (parse_token_is(p, "angle")) {
+        if (!parse_number(p, "a cone angle", &value))
+            return false;
+        if (!(value > 0 && value < 180))
+            return parse_expected(
+                p, "expected a cone angle between 0 and 180 degrees");
+        L->cos_cutoff = cos(value * (M_PI / 180.0));
+        return true;
+    }
+    if (!parse_number(p, "a spot exponent", &L->exponent))
+        return false;
+    return L->exponent >= 0 ||
+           parse_expected(p, "expected a spot exponent of at least 0");
+}
+
+static bool read_light_setting(parser *p, light *L)
+{
+    static const char *const settings[] = {
+        [LIGHT_POINT] = "position, intensity, attenuation",
+        [LIGHT_DIRECTIONAL] = "direction, intensity",
+        [LIGHT_SPOT] = "position, direction, angle, exponent, intensity, "
+                       "attenuation",
+    };
+    bool placed = L->kind != LIGHT_DIRECTIONAL, aimed = L->kind != LIGHT_POINT;
+    if (parse_token_is(p, "intensity"))
+        return parse_color(p, "a light intensity", &L->intensity);
+    if (placed && parse_token_is(p, "position"))
+        return parse_point(p, "a light position", &L->position);
+    if (aimed && parse_token_is(p, "direction"))
+        return parse_direction(p, "a light direction", &L->direction);
+    if (placed && parse_token_is(p, "attenuation"))
+        return read_attenuation(p, L->attenuation);
+    if (L->kind == LIGHT_SPOT &&
+        (parse_token_is(p, "angle") || parse_token_is(p, "exponent")))
+        return read_spot_setting(p, L);
+    return parse_expected(p, "expected a setting of this light (%s)",
+                          settings[L->kind]);
+}
+
+static const char other_light_kinds[] = ""
+    ;
+
+static bool parse_light(parser *p, scene *s)
+{
+    light L = {.position = {0, 0, 0},
+               .direction = {0, -1, 0},
+               .intensity = {1, 1, 1},
+               .attenuation = {1, 0, 0},
+               .cos_cutoff = cos(30 * (M_PI / 180.0)),
+               .exponent = 2};
+    bool named = parse_next_token(p);
+    if (named && parse_token_is(p, "point"))
+        L.kind = LIGHT_POINT;
+    else if (named && parse_token_is(p, "directional"))
+        L.kind = LIGHT_DIRECTIONAL;
+    else if (named && parse_token_is(p, "spot"))
+        L.kind = LIGHT_SPOT;
+    else
+        return parse_expected(p, "expected a kind of light (point, "
+                                 "directional, spot%s)", other_light_kinds);
+    while (parse_next_token(p))
+        if (!read_light_setting(p, &L))
+            return false;
+    if (!scene_add_light(s, L))
+        return parse_fail_at(p, p->line, "more than %d lights",
+                             SCENE_MAX_LIGHTS);
+    return true;
+}
+
+static bool parse_ambient(parser *p, scene *s)
+{
+    return parse_color(p, "an ambient intensity", &s->ambient);
+}
+
+static bool parse_tonemap(parser *p, scene *s)
+{
+    if (!parse_next_token(p))
+        return parse_expected(p, "expected 'alpha' or 'beta'");
+    do {
+        if (parse_token_is(p, "alpha")) {
+            if (!parse_positive(p, "an exposure alpha", &s->tone.alpha))
+                return false;
+        } else if (parse_token_is(p, "beta")) {
+            if (!parse_positive(p, "a compression beta", &s->tone.beta))
+                return false;
+        } else {
+            return parse_expected(p, "expected 'alpha' or 'beta'");
+        }
+    } while (parse_next_token(p));
+    return true;
+}
+
+static bool parse_triangle(parser *p, scene *s)
+{
+    object o = {.kind = SHAPE_TRIANGLE, .color = {0.8, 0.8, 0.8},
+                .corners = {{0, 0, 5}, {1, 0, 5}, {0, 1, 5}}};
+    while (parse_next_token(p)) {
+        int k = parse_token_is(p, "a")   ? 0
+                : parse_token_is(p, "b") ? 1
+                : parse_token_is(p, "c") ? 2
+                                         : -1;
+        bool ok, known = true;
+        if (k >= 0)
+            ok = parse_point(p, "a corner coordinate", &o.corners[k]);
+        else
+            ok = parse_object_setting(p, s, &o, &known);
+        if (!known)
+            return parse_expected(p, "expected a triangle setting "
+                                     "(a, b, c, %s)", object_setting_names);
+        if (!ok)
+            return false;
+    }
+    if (!scene_add_object(s, o))
+        return parse_fail_at(p, p->line, "more than %d objects",
+                             SCENE_MAX_OBJECTS);
+    return true;
+}
+
+/* PATH of the token, relative to the folder of the file being parsed. */
+static bool resolve_path(const parser *p, const char *token, int length,
+                         char *out, size_t size)
+{
+    const char *slash = strrchr(p->name, '/');
+    int folder =
+        token[0] == '/' || slash == NULL ? 0 : (int)(slash - p->name) + 1;
+    return snprintf(out, size, "%.*s%.*s", folder, p->name, length, token) <
+           (int)size;
+}
+
+static bool load_mesh_file(parser *p, const char *file, int length, mesh *m)
+{
+    char path[4096];
+    if (!resolve_path(p, file, length, path, sizeof path))
+        return parse_fail_at(p, file, "the mesh file's path is too long");
+    if (mesh_load_obj(m, path, p->err))
+        return true;
+    if (p->err->line == 0) { /* unreadable: say which scene line asked for it */
+        char why[sizeof p->err->message];
+        snprintf(why, sizeof why, "%s", p->err->message);
+        return parse_fail_at(p, file, "cannot read mesh file '%s': %s", path,
+                             why);
+    }
+    return false; /* the OBJ file's own line and column */
+}
+
+static bool read_scale(parser *p, double *scale)
+{
+    if (!parse_number(p, "a scale", scale))
+        return false;
+    return (*scale >= 1e-100 && *scale <= 1e100) ||
+           parse_expected(p, "expected a scale between 1e-100 and 1e100");
+}
+
+static bool place_mesh(parser *p, mesh *m, double scale, vec3 offset,
+                       bool smooth)
+{
+    for (int k = 0; k < m->vertex_count; k++) {
+        vec3 v = vec3_add(vec3_scale(m->vertices[k], scale), offset);
+        double largest = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
+        if (!(largest <= PARSE_MAX_COORDINATE))
+            return parse_fail_at(
+                p, p->line,
+                "vertex %d of the mesh lies beyond 1e50 once placed", k + 1);
+        m->vertices[k] = v;
+    }
+    if (smooth && m->normal_count == 0 && !mesh_smooth_normals(m))
+        return parse_fail_at(p, p->line,
+                             "out of memory for the mesh's normals");
+    mesh_compute_bounds(m);
+    return true;
+}
+
+/* The settings of a mesh statement that are not every object's. */
+typedef struct {
+    const char *file; /* the token naming the file; NULL: none yet */
+    int file_length;
+    double scale;
+    vec3 offset;
+    bool smooth;
+} mesh_settings;
+
+static bool read_mesh_setting(parser *p, mesh_settings *m, bool *known)
+{
+    *known = true;
+    if (parse_token_is(p, "file")) {
+        if (!parse_next_token(p))
+            return parse_expected(p, "expected the name of an OBJ file");
+        m->file = p->token, m->file_length = p->token_length;
+        return true;
+    }
+    if (parse_token_is(p, "scale"))
+        return read_scale(p, &m->scale);
+    if (parse_token_is(p, "offset"))
+        return parse_point(p, "an offset coordinate", &m->offset);
+    if (parse_token_is(p, "smooth"))
+        return m->smooth = true;
+    *known = false;
+    return true;
+}
+
+static bool parse_mesh(parser *p, scene *s)
+{
+    object o = {.kind = SHAPE_MESH, .color = {0.8, 0.8, 0.8}};
+    mesh_settings settings = {.scale = 1};
+    while (parse_next_token(p)) {
+        bool known;
+        bool ok = read_mesh_setting(p, &settings, &known);
+        if (!known)
+            ok = parse_object_setting(p, s, &o, &known);
+        if (!known)
+            return parse_expected(p, "expected a mesh setting (file, scale, "
+                                     "offset, smooth, %s)",
+                                  object_setting_names);
+        if (!ok)
+            return false;
+    }
+    if (settings.file == NULL)
+        return parse_expected(p, "expected 'file PATH': a mesh needs an OBJ "
+                                 "file");
+    mesh m = {0};
+    if (!load_mesh_file(p, settings.file, settings.file_length, &m) ||
+        !place_mesh(p, &m, settings.scale, settings.offset, settings.smooth)) {
+        mesh_free(&m);
+        return false;
+    }
+    if ((o.mesh = scene_add_mesh(s, m)) < 0) {
+        mesh_free(&m);
+        return parse_fail_at(p, p->line, "more than %d meshes (or out of "
+                                         "memory)", SCENE_MAX_MESHES);
+    }
+    if (!scene_add_object(s, o))
+        return parse_fail_at(p, p->line, "more than %d objects",
+                             SCENE_MAX_OBJECTS);
+    return true;
+}
+
+static bool read_build_method(parser *p, kdtree_method *method)
+{
+    /* in the order of kdtree_method */
+    static const char *names[] = {"sah", "sorting", "median", "none"};
+    if (parse_next_token(p))
+        for (int k = 0; k < 4; k++)
+            if (parse_token_is(p, names[k]))
+                return *method = (kdtree_method)k, true;
+    return parse_expected(p, "expected a build method (sah, sorting, "
+                             "median, none)");
+}
+
+/* A number in [lo, hi] (in [lo, hi) when open_hi) into *out. */
+static bool read_in_range(parser *p, const char *what, double lo, double hi,
+                          bool open_hi, double *out)
+{
+    double x;
+    if (!parse_number(p, what, &x))
+        return false;
+    if (!(x >= lo && (open_hi ? x < hi : x <= hi)))
+        return parse_expected(p, "expected %s from %g to %g%s", what, lo, hi,
+                              open_hi ? " (not included)" : "");
+    *out = x;
+    return true;
+}
+
+static bool read_whole_in_range(parser *p, const char *what, long lo,
+                                long hi, int *out)
+{
+    long n;
+    if (!parse_int(p, what, &n))
+        return false;
+    if (n < lo || n > hi)
+        return parse_expected(p, "expected %s from %ld to %ld", what, lo, hi);
+    *out = (int)n;
+    return true;
+}
+
+static bool read_kdtree_setting(parser *p, scene *s, bool *known)
+{
+    kdtree_params *k = &s->tree_params;
+    *known = true;
+    if (parse_token_is(p, "build"))
+        return read_build_method(p, &k->method);
+    if (parse_token_is(p, "traversal_cost")) /* a cost is relative: > 0 */
+        return read_in_range(p, "a traversal cost", 1e-6, 1e6, false,
+                             &k->traversal_cost);
+    if (parse_token_is(p, "intersection_cost"))
+        return read_in_range(p, "an intersection cost", 1e-6, 1e6, false,
+                             &k->intersection_cost);
+    if (parse_token_is(p, "empty_bonus"))
+        return read_in_range(p, "an empty bonus", 0, 1, true,
+                             &k->empty_bonus);
+    if (parse_token_is(p, "max_depth"))
+        return read_whole_in_range(p, "a maximum depth", 1,
+                                   KDTREE_MAX_DEPTH, &k->max_depth);
+    if (parse_token_is(p, "heatmap"))
+        return read_whole_in_range(p, "a number of nodes", 1, 1000000,
+                                   &s->heatmap);
+    *known = false;
+    return true;
+}
+
+static bool parse_kdtree(parser *p, scene *s)
+{
+    bool known = false;
+    while (parse_next_token(p)) {
+        if (!read_kdtree_setting(p, s, &known))
+            return false;
+        if (!known)
+            break;
+    }
+    if (known)
+        return true;
+    return parse_expected(p, "expected a kd-tree setting (build, "
+                             "traversal_cost, intersection_cost, "
+                             "empty_bonus, max_depth, heatmap)");
+}
+
+typedef bool (*statement_parser)(parser *p, scene *s);
+
+static const struct {
+    const char *keyword;
+    statement_parser parse;
+} statements[] = {
+    {"camera", parse_camera},
+    {"image", parse_image},
+    {"background", parse_background},
+    {"sphere", parse_sphere},
+    {"ambient", parse_ambient},
+    {"tonemap", parse_tonemap},
+    {"material", parse_material},
+    {"light", parse_light},
+    {"triangle", parse_triangle},
+    {"mesh", parse_mesh},
+    {"kdtree", parse_kdtree},
+};
+
+static bool parse_statement(parser *p, void *target)
+{
+    scene *s = target;
+    if (!parse_next_token(p))
+        return true; /* a blank line or a comment */
+    for (size_t k = 0; k < sizeof statements / sizeof statements[0]; k++) {
+        if (parse_token_is(p, statements[k].keyword)) {
+            if (!statements[k].parse(p, s))
+                return false;
+            return parse_next_token(p) ? parse_expected(p, "expected end of "
+                                                           "line")
+                                       : true;
+        }
+    }
+    return parse_expected(p, "expected a statement keyword");
+}
+
+bool scene_parse(scene *s, const char *text, size_t length, const char *name,
+                 scene_error *err)
+{
+    if (!parse_lines(text, length, name, err, parse_statement, s))
+        return false;
+    if (!scene_build_trees(s)) {
+        snprintf(err->file, sizeof err->file, "%s", name);
+        err->line = err->col = 0;
+        snprintf(err->message, sizeof err->message,
+                 "out of memory for the kd-trees");
+        return false;
+    }
+    return true;
+}
+
+bool scene_load(scene *s, const char *path, scene_error *err)
+{
+    char *text;
+    size_t length;
+    if (!parse_read_file(path, SCENE_MAX_BYTES, &text, &length, err))
+        return false;
+    bool ok = scene_parse(s, text, length, path, err);
+    free(text);
+    return ok;
+}
