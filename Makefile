@@ -187,6 +187,16 @@ $(foreach n,$(NUMS),$(eval $(call chapter_rules,$(n))))
 ALL_FIGS := $(foreach n,$(NUMS),$(FIGS$(n)))
 BENCHES  := $(patsubst bench/%.c,$(B)/bench/%,$(wildcard bench/ch[0-9][0-9]_*.c))
 
+# Chapter 08 compares its kd-tree with Intel Embree 3 where it is installed
+# (Debian: libembree-dev); without it that benchmark is not built, and
+# `make charts` draws its chart from this program's rates alone.
+HAVE_EMBREE := $(shell printf '\043include <embree3/rtcore.h>\n' | \
+                 $(CC) -E -x c - >/dev/null 2>&1 && echo yes)
+ifneq ($(HAVE_EMBREE),yes)
+BENCHES  := $(filter-out %_embree,$(BENCHES))
+endif
+$(B)/bench/ch08_embree: BENCH_LIBS := -lembree3
+
 src: $(foreach n,$(NUMS),src-ch$(n))
 figures: $(ALL_FIGS)
 benches: $(BENCHES)

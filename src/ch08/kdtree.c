@@ -48,7 +48,8 @@ static bool add_leaf(kdtree *t, const int *items, int count, int depth)
     }
     kdtree_node leaf = {.first = (uint32_t)t->item_count,
                         .bits = (uint32_t)count << 2 | 3};
-    memcpy(t->items + t->item_count, items, (size_t)count * sizeof *items);
+    if (count > 0) /* an empty leaf may come before any storage */
+        memcpy(t->items + t->item_count, items, (size_t)count * sizeof *items);
     t->item_count += count;
     t->leaf_count++;
     t->depth = depth > t->depth ? depth : t->depth;
@@ -426,53 +427,46 @@ static bool cut_events(builder *b, const int *items, int n, const box *cell,
     return true;
 }
 
-/* The first index in e[0..n) whose event comes after x. */
-static int after(const event *e, int n, const event *x)
+/* Copies to out[*n] the events of cut[*j..] that come before e (all of them
+ * when e is NULL); the position of the next one that does not, or
+ * infinity: a cheap test of whether to call again. */
+static double flush_before(const event *e, const event_lists *cut, int k,
+                           int *j, event *out, int *n)
 {
-    int lo = 0, hi = n;
-    while (lo < hi) {
-        int mid = lo + (hi - lo) / 2;
-        if (compare_events(&e[mid], x) > 0)
-            hi = mid;
-        else
-            lo = mid + 1;
-    }
-    return lo;
+    while (*j < cut->n[k] &&
+           (e == NULL || compare_events(&cut->e[k][*j], e) < 0))
+        out[(*n)++] = cut->e[k][(*j)++];
+    return *j < cut->n[k] ? cut->e[k][*j].position : INFINITY;
 }
 
-/* Merges the sorted cut[0..n_cut) into the sorted e[0..n), which has room
- * for both, from the back: each new event finds its place by bisection,
- * and the events after it move up in one block. The new length. */
-static int merge_events(event *e, int n, const event *cut, int n_cut)
-{
-    int total = n + n_cut;
-    for (int j = n_cut - 1; j >= 0; j--) {
-        int at = after(e, n, &cut[j]);
-        memmove(e + at + j + 1, e + at, (size_t)(n - at) * sizeof *e);
-        e[at + j] = cut[j];
-        n = at; /* the rest of cut comes before at */
-    }
-    return total;
-}
-
-/* The events of l's items that lie on one side only, to that side, in
- * order (the counts advance without a branch: the sides are random). */
+/* The events of l's items on one side only go to that side, in order, with
+ * the sorted events cut[0] (below) and cut[1] (above) merged in. */
 static void keep_sides(const builder *b, const event_lists *l,
-                       event_lists *below, event_lists *above)
+                       const event_lists cut[2], event_lists *below,
+                       event_lists *above)
 {
     for (int k = 0; k < 3; k++) {
-        int nb = 0, na = 0;
+        int nb = 0, na = 0, jb = 0, ja = 0;
+        double next_b = cut[0].n[k] ? cut[0].e[k][0].position : INFINITY;
+        double next_a = cut[1].n[k] ? cut[1].e[k][0].position : INFINITY;
         for (int i = 0; i < l->n[k]; i++) {
             event e = l->e[k][i];
             int side = b->side[event_item(e)];
-            below->e[k][nb] = e, above->e[k][na] = e;
-            nb += side == SIDE_BELOW, na += side == SIDE_ABOVE;
-            if (k == 0 && event_type(e) != EVENT_END) /* once an item */
+            if (next_b <= e.position)
+                next_b = flush_before(&e, &cut[0], k, &jb, below->e[k], &nb);
+            if (next_a <= e.position)
+                next_a = flush_before(&e, &cut[1], k, &ja, above->e[k], &na);
+            below->e[k][nb] = e, above->e[k][na] = e; /* no branch: the */
+            nb += side == SIDE_BELOW, na += side == SIDE_ABOVE; /* sides */
+            if (k == 0 && event_type(e) != EVENT_END)  /* are random */
                 below->count += side == SIDE_BELOW,
-                    above->count += side == SIDE_ABOVE;
+                    above->count += side == SIDE_ABOVE; /* once an item */
         }
+        flush_before(NULL, &cut[0], k, &jb, below->e[k], &nb);
+        flush_before(NULL, &cut[1], k, &ja, above->e[k], &na);
         below->n[k] = nb, above->n[k] = na;
     }
+    below->count += cut[0].count, above->count += cut[1].count;
 }
 
 static bool split_events(builder *b, const event_lists *l, const box *cell,
@@ -488,18 +482,10 @@ static bool split_events(builder *b, const event_lists *l, const box *cell,
         box c = child_cell(cell, s.axis, s.position, side);
         ok = cut_events(b, both, n, &c, &cut[side]);
     }
-    if (ok) {
-        keep_sides(b, l, below, above);
-        for (int k = 0; k < 3; k++) {
-            below->n[k] = merge_events(below->e[k], below->n[k],
-                                       cut[0].e[k], cut[0].n[k]);
-            above->n[k] = merge_events(above->e[k], above->n[k],
-                                       cut[1].e[k], cut[1].n[k]);
-        }
-        below->count += cut[0].count, above->count += cut[1].count;
-    } else {
+    if (ok)
+        keep_sides(b, l, cut, below, above);
+    else
         free_events(below), free_events(above);
-    }
     free(both), free_events(&cut[0]), free_events(&cut[1]);
     return ok;
 }

@@ -173,12 +173,20 @@ static bool clip_triangle(const void *context, int item, const box *cell,
 {
     const mesh *m = context;
     const int *v = m->triangles[item].v;
-    vec3 poly[10] = {m->vertices[v[0]], m->vertices[v[1]],
-                     m->vertices[v[2]]}, cut[10];
+    vec3 corners[2][10] = {{m->vertices[v[0]], m->vertices[v[1]],
+                            m->vertices[v[2]]}};
+    vec3 *poly = corners[0], *spare = corners[1], *swap;
+    box b = {vec3_min(poly[0], vec3_min(poly[1], poly[2])),
+             vec3_max(poly[0], vec3_max(poly[1], poly[2]))};
     int n = 3;
     for (int k = 0; k < 3 && n > 0; k++) {
-        n = clip_polygon(poly, n, k, vec3_axis(cell->lo, k), 1, cut);
-        n = clip_polygon(cut, n, k, vec3_axis(cell->hi, k), -1, poly);
+        double lo = vec3_axis(cell->lo, k), hi = vec3_axis(cell->hi, k);
+        if (vec3_axis(b.lo, k) < lo) /* only the planes that cut it */
+            n = clip_polygon(poly, n, k, lo, 1, spare),
+            swap = poly, poly = spare, spare = swap;
+        if (vec3_axis(b.hi, k) > hi)
+            n = clip_polygon(poly, n, k, hi, -1, spare),
+            swap = poly, poly = spare, spare = swap;
     }
     if (n == 0)
         return false;
