@@ -203,6 +203,18 @@ benches: $(BENCHES)
 check-src: $(foreach n,$(NUMS),check-src-ch$(n))
 check-figures: $(foreach n,$(NUMS),check-figures-ch$(n))
 
+# ---------------------------------------------------------------- diagrams
+# Explanatory diagrams, computed by programs in tools/diagrams/ and written
+# to figures/chNN-diagram-*.svg (committed, like the charts): make diagrams.
+.PHONY: diagrams diagrams-ch08
+$(B)/tools/diagrams/%: tools/diagrams/%.c | deps
+	@mkdir -p $(@D)
+	$(CC) $(ALL_CFLAGS) -o $@ $< $(LDFLAGS) -lm
+
+diagrams: diagrams-ch08
+diagrams-ch08: $(B)/tools/diagrams/ch08_kdtree
+	$< figures
+
 # ---------------------------------------------------------------- charts
 # bench/chNN_x.c writes figures/chNN-x.csv; bench/chNN_x.gp draws figures/chNN-x*.svg
 # from it (gnuplot gets csv= the CSV and stem= figures/chNN-x).
@@ -216,6 +228,16 @@ chart-%: $(B)/bench/% | deps
 
 charts: deps $(BENCHES)
 	@for b in $(notdir $(BENCHES)); do $(MAKE) --no-print-directory chart-$$b || exit 1; done
+	$(if $(filter 08,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
+
+# Without Embree, chapter 08's comparison chart shows this program's own
+# rates (from its kd-tree benchmark) and says that Embree was absent.
+.PHONY: chart-embree-absent
+chart-embree-absent: figures/ch08-kdtree.csv
+	{ echo 'method,param,ns_per_op,error,error_kind'; \
+	  grep -E '^kdtree,|^build,[a-z]+,[0-9.]+,[0-9.]+,kdtree_build_ms' figures/ch08-kdtree.csv; \
+	  echo 'embree,absent,0,0,absent'; } > figures/ch08-embree.csv
+	gnuplot -e "csv='figures/ch08-embree.csv'; stem='figures/ch08-embree'" bench/ch08_embree.gp
 
 # ---------------------------------------------------------------- fuzzing
 # make fuzz FUZZ_SECONDS=60: each libFuzzer target for that long, built with

@@ -8,7 +8,7 @@
 kdtree_params kdtree_default_params(void)
 {
     return (kdtree_params){.method = KDTREE_SAH,
-                           .traversal_cost = 15,
+                           .traversal_cost = 80,
                            .intersection_cost = 20,
                            .empty_bonus = 0.2};
 }
@@ -223,12 +223,16 @@ static bool radix_sort_events(event *list, int n)
     return true;
 }
 
-/* Sorts list by position, then type: by insertion when it is short
- * (most are), else by radix, one byte of the position at a time. */
+/* Sorts list by position, then type: by insertion when it is short (most
+ * are), by radix, one byte of the position at a time, when it is long. */
 static void sort_events(event *list, int n)
 {
     if (n >= 256 && radix_sort_events(list, n))
         return;
+    if (n > 16) { /* insertion sort takes n^2 / 4 steps */
+        qsort(list, (size_t)n, sizeof *list, compare_events);
+        return;
+    }
     for (int i = 1; i < n; i++) {
         event e = list[i];
         int j = i;
@@ -303,7 +307,7 @@ static axis_costs costs_across(const box *cell, int axis)
 
 /* Keeps the plane x in *best if it costs less. flat items lie in the
  * plane; the cheaper side gets them. */
-static void consider(const builder *b, const axis_costs *c, double x,
+static inline void consider(const builder *b, const axis_costs *c, double x,
                      int below, int flat, int above, split *best)
 {
     if (!(x > c->lo && x < c->hi))
@@ -360,18 +364,17 @@ static split find_split(builder *b, const event_lists *l, const box *cell,
 }
 
 /* Marks each item of the sorted events e[0..n) on the split's axis with
- * the side (or sides) of the split plane it lies on. */
+ * the side (or sides) of the split plane it lies on. An item's start
+ * comes before its end, so its end has the last word. */
 static void classify(builder *b, const event *e, int n, split s)
 {
-    for (int i = 0; i < n; i++)
-        b->side[event_item(e[i])] = SIDE_BOTH;
     for (int i = 0; i < n; i++) {
         double x = e[i].position;
         int item = event_item(e[i]), type = event_type(e[i]);
-        if (type == EVENT_END && x <= s.position)
+        if (type == EVENT_START) /* until its end says otherwise: both */
+            b->side[item] = x >= s.position ? SIDE_ABOVE : SIDE_BOTH;
+        else if (type == EVENT_END && x <= s.position)
             b->side[item] = SIDE_BELOW;
-        else if (type == EVENT_START && x >= s.position)
-            b->side[item] = SIDE_ABOVE;
         else if (type == EVENT_PLANAR)
             b->side[item] = x < s.position || (x == s.position &&
                                                s.flat_below)
@@ -430,7 +433,7 @@ static bool cut_events(builder *b, const int *items, int n, const box *cell,
 /* Copies to out[*n] the events of cut[*j..] that come before e (all of them
  * when e is NULL); the position of the next one that does not, or
  * infinity: a cheap test of whether to call again. */
-static double flush_before(const event *e, const event_lists *cut, int k,
+static inline double flush_before(const event *e, const event_lists *cut, int k,
                            int *j, event *out, int *n)
 {
     while (*j < cut->n[k] &&
@@ -440,31 +443,36 @@ static double flush_before(const event *e, const event_lists *cut, int k,
 }
 
 /* The events of l's items on one side only go to that side, in order, with
- * the sorted events cut[0] (below) and cut[1] (above) merged in. */
+ * the sorted events cut[0] (below) and cut[1] (above) merged in. Each event
+ * is stored through a table indexed by its side, so that no branch waits
+ * on the sides, which are random: the events of straddling items go to a
+ * scratch slot that never advances. */
 static void keep_sides(const builder *b, const event_lists *l,
                        const event_lists cut[2], event_lists *below,
                        event_lists *above)
 {
+    event scratch;
     for (int k = 0; k < 3; k++) {
-        int nb = 0, na = 0, jb = 0, ja = 0;
+        event *to[4] = {&scratch, below->e[k], above->e[k], &scratch};
+        int n[4] = {0, 0, 0, 0}, items[4] = {0, 0, 0, 0}, jb = 0, ja = 0;
         double next_b = cut[0].n[k] ? cut[0].e[k][0].position : INFINITY;
         double next_a = cut[1].n[k] ? cut[1].e[k][0].position : INFINITY;
         for (int i = 0; i < l->n[k]; i++) {
             event e = l->e[k][i];
             int side = b->side[event_item(e)];
             if (next_b <= e.position)
-                next_b = flush_before(&e, &cut[0], k, &jb, below->e[k], &nb);
+                next_b = flush_before(&e, &cut[0], k, &jb, to[1], &n[1]);
             if (next_a <= e.position)
-                next_a = flush_before(&e, &cut[1], k, &ja, above->e[k], &na);
-            below->e[k][nb] = e, above->e[k][na] = e; /* no branch: the */
-            nb += side == SIDE_BELOW, na += side == SIDE_ABOVE; /* sides */
-            if (k == 0 && event_type(e) != EVENT_END)  /* are random */
-                below->count += side == SIDE_BELOW,
-                    above->count += side == SIDE_ABOVE; /* once an item */
+                next_a = flush_before(&e, &cut[1], k, &ja, to[2], &n[2]);
+            to[side][n[side]] = e;
+            n[side] += side != SIDE_BOTH;
+            items[side] += event_type(e) != EVENT_END; /* once an item */
         }
-        flush_before(NULL, &cut[0], k, &jb, below->e[k], &nb);
-        flush_before(NULL, &cut[1], k, &ja, above->e[k], &na);
-        below->n[k] = nb, above->n[k] = na;
+        flush_before(NULL, &cut[0], k, &jb, to[1], &n[1]);
+        flush_before(NULL, &cut[1], k, &ja, to[2], &n[2]);
+        below->n[k] = n[1], above->n[k] = n[2];
+        if (k == 0)
+            below->count = items[1], above->count = items[2];
     }
     below->count += cut[0].count, above->count += cut[1].count;
 }
@@ -637,28 +645,36 @@ static bool build_sorting(builder *b, item_list *l, box cell, int depth)
     return split_node(b, l, cell, depth, s, build_sorting);
 }
 
-enum { MEDIAN_LEAF_ITEMS = 4 }; /* a median build stops at this many */
-
-/* The middle of the cell's longest axis; axis -1 when the node should be
- * a leaf. */
-static split median_split(const builder *b, const item_list *l,
-                          const box *cell, int depth)
+/* The middle of the cell's longest axis, kept only if the surface area
+ * heuristic says that it pays; axis -1: the node is a leaf. */
+static split median_split(builder *b, const item_list *l, const box *cell,
+                          int depth)
 {
     vec3 e = vec3_sub(cell->hi, cell->lo);
     int axis = e.x >= e.y && e.x >= e.z ? 0 : e.y >= e.z ? 1 : 2;
-    double lo = vec3_axis(cell->lo, axis), hi = vec3_axis(cell->hi, axis);
-    double x = 0.5 * (lo + hi);
-    if (depth >= b->max_depth || l->count <= MEDIAN_LEAF_ITEMS ||
-        !(x > lo && x < hi))
+    axis_costs c = costs_across(cell, axis);
+    split s = {.axis = -1,
+               .cost = b->p.intersection_cost * l->count * c.half_area};
+    double x = 0.5 * (c.lo + c.hi);
+    if (depth >= b->max_depth || l->count <= 1 || !(c.half_area > 0))
         return (split){.axis = -1};
-    return (split){.axis = axis, .position = x, .flat_below = true};
+    int below = 0, above = 0;
+    for (int i = 0; i < l->count; i++) {
+        below += vec3_axis(l->boxes[i].lo, axis) < x ||
+                 vec3_axis(l->boxes[i].hi, axis) <= x;
+        above += vec3_axis(l->boxes[i].hi, axis) > x;
+    }
+    consider(b, &c, x, below, 0, above, &s);
+    long long more = (long long)s.below + s.above - l->count;
+    if (s.axis >= 0 && (b->references + more > b->budget ||
+                        b->tree->node_count > 2 * b->budget))
+        s.axis = -1; /* out of budget: memory stays bounded */
+    return s;
 }
 
-/* Marks each item of l with its side of the plane; the count of
- * references the split would make. */
-static long long classify_boxes(builder *b, const item_list *l, split s)
+/* Marks each item of l with its side (or sides) of the plane of s. */
+static void classify_boxes(builder *b, const item_list *l, split s)
 {
-    long long references = 0;
     for (int i = 0; i < l->count; i++) {
         double lo = vec3_axis(l->boxes[i].lo, s.axis);
         double hi = vec3_axis(l->boxes[i].hi, s.axis);
@@ -669,22 +685,15 @@ static long long classify_boxes(builder *b, const item_list *l, split s)
                    : lo == hi ? SIDE_BELOW /* flat, in the plane */
                               : SIDE_BOTH;
         b->side[l->items[i]] = (unsigned char)side;
-        references += side == SIDE_BOTH ? 2 : 1;
     }
-    return references;
 }
 
 static bool build_median(builder *b, item_list *l, box cell, int depth)
 {
     split s = median_split(b, l, &cell, depth);
-    if (s.axis >= 0) {
-        long long more = classify_boxes(b, l, s) - l->count;
-        if (more == l->count || b->references + more > b->budget ||
-            b->tree->node_count > 2 * b->budget)
-            s.axis = -1; /* nothing separates, or out of budget */
-    }
     if (s.axis < 0)
         return leaf_of_items(b, l, depth);
+    classify_boxes(b, l, s);
     return split_node(b, l, cell, depth, s, build_median);
 }
 

@@ -192,7 +192,7 @@ static bool clip_triangle(const void *context, int item, const box *cell,
         return false;
     *out = (box){poly[0], poly[0]};
     for (int i = 1; i < n; i++)
-        out->lo = vec3_min(out->lo, poly[i]), out->hi = vec3_max(out->hi, poly[i]);
+        *out = (box){vec3_min(out->lo, poly[i]), vec3_max(out->hi, poly[i])};
     return true;
 }
 
@@ -222,8 +222,10 @@ bool mesh_build_tree(mesh *m, const kdtree_params *p)
     bool ok = bounds != NULL;
     for (int k = 0; ok && k < m->triangle_count; k++) {
         const int *v = m->triangles[k].v;
-        vec3 a = m->vertices[v[0]], b = m->vertices[v[1]], c = m->vertices[v[2]];
-        bounds[k] = (box){vec3_min(a, vec3_min(b, c)), vec3_max(a, vec3_max(b, c))};
+        vec3 a = m->vertices[v[0]], b = m->vertices[v[1]];
+        vec3 c = m->vertices[v[2]];
+        bounds[k] = (box){vec3_min(a, vec3_min(b, c)),
+                          vec3_max(a, vec3_max(b, c))};
     }
     ok = ok && kdtree_build(&m->tree, m->triangle_count, bounds, clip_triangle,
                             m, &q);
