@@ -8,7 +8,8 @@
 #   so.
 set datafile separator ","
 set grid ytics
-set terminal svg size 1000,460 font "Helvetica,12" background "white"
+set terminal svg size 1000,480 font "Helvetica,12" background "white"
+set bmargin 4.5
 set output stem.'.svg'
 absent = int(system("grep -c '^embree,absent' ".csv))
 is(m, k) = strcol(1) eq m && strcol(5) eq k
@@ -41,6 +42,6 @@ set offsets 0, 0, 0, 0
 set ylabel "build time (ms, log scale)"
 set title "numbers: our build time / Embree's" font ",10"
 plot csv using (is("build","kdtree_build_ms") ? mesh(strcol(2)) - 0.19 : NaN):4 with boxes lc rgb ours title "kd-tree, SAH, events sorted once", \
-     csv using (is("build","embree_build_ms") ? mesh(strcol(2)) + 0.19 : NaN):4 with boxes lc rgb theirs title "Embree 3, RTC_BUILD_QUALITY_HIGH", \
-     csv using (is("build","build_kdtree_over_embree") ? mesh(strcol(2)) : NaN):(1.5):(sprintf("%.2f", $4)) with labels font ",11" notitle
+     csv using (is("build","embree_build_ms") ? mesh(strcol(2)) + 0.19 : NaN):4 with boxes lc rgb theirs title "Embree 3, RTC\\_BUILD\\_QUALITY\\_HIGH", \
+     csv using (is("build","build_kdtree_over_embree") ? mesh(strcol(2)) : NaN):(1.5):(sprintf("%.2f", $4)) with labels font ",11" tc rgb "white" notitle
 unset multiplot

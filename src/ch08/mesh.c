@@ -145,6 +145,49 @@ bool mesh_intersect(const mesh *m, ray r, double t_min, double t_max, hit *h,
     return true;
 }
 
+/* The nearest hit in node's subtree, the ray in [t0, t1] inside its cell;
+ * *t_max is the nearest hit so far. */
+static int nearest_in(const mesh *m, const mesh_ray *mr, int node,
+                      double t0, double t1, double t_min, double *t_max,
+                      triangle_hit *out, render_stats *stats)
+{
+    const kdtree_node *n = &m->tree.nodes[node];
+    int axis = (int)(n->bits & 3), nearest = -1;
+    stats->kd_nodes++;
+    if (axis == 3) {
+        int first = (int)n->first, count = (int)(n->bits >> 2);
+        stats->triangle_tests += count;
+        int k = triangle_nearest_corners(&mr->shear, m->leaf_corners + first,
+                                         count, t_min, *t_max, out);
+        if (k >= 0)
+            *t_max = out->t, nearest = m->tree.items[first + k];
+        return nearest;
+    }
+    kdtree_todo next[2];
+    double o = vec3_axis(mr->r.origin, axis), thick = m->tree.thickness;
+    kdtree_children(n, node, o - thick, o + thick,
+                    vec3_axis(mr->inv_dir, axis), t0, t1, next);
+    for (int c = 0; c < 2 && next[c].node >= 0; c++) {
+        if (next[c].t_min > *t_max * (1 + KDTREE_SLACK))
+            break; /* a hit nearer than this cell is already found */
+        int k = nearest_in(m, mr, next[c].node, next[c].t_min,
+                           next[c].t_max, t_min, t_max, out, stats);
+        nearest = k >= 0 ? k : nearest;
+    }
+    return nearest;
+}
+
+int mesh_nearest_recursive(const mesh *m, const mesh_ray *mr, double t_min,
+                           double t_max, triangle_hit *out,
+                           render_stats *stats)
+{
+    double near = t_min, far = t_max;
+    if (m->tree.node_count == 0 ||
+        !box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
+        return mesh_nearest(m, mr, t_min, t_max, out, stats);
+    return nearest_in(m, mr, 0, near, far, t_min, &t_max, out, stats);
+}
+
 /* The polygon poly[0..n) cut to the side of the plane coordinate axis =
  * at where sign * (coordinate - at) >= 0: one corner more at most. */
 static int clip_polygon(const vec3 *poly, int n, int axis, double at,
@@ -276,47 +319,4 @@ bool mesh_occluded(const mesh *m, const mesh_ray *mr, double t_min,
     return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
                                        m->triangle_count, t_min, t_max,
                                        &unused) >= 0;
-}
-
-/* The nearest hit in node's subtree, the ray in [t0, t1] inside its cell;
- * *t_max is the nearest hit so far. */
-static int nearest_in(const mesh *m, const mesh_ray *mr, int node,
-                      double t0, double t1, double t_min, double *t_max,
-                      triangle_hit *out, render_stats *stats)
-{
-    const kdtree_node *n = &m->tree.nodes[node];
-    int axis = (int)(n->bits & 3), nearest = -1;
-    stats->kd_nodes++;
-    if (axis == 3) {
-        int first = (int)n->first, count = (int)(n->bits >> 2);
-        stats->triangle_tests += count;
-        int k = triangle_nearest_corners(&mr->shear, m->leaf_corners + first,
-                                         count, t_min, *t_max, out);
-        if (k >= 0)
-            *t_max = out->t, nearest = m->tree.items[first + k];
-        return nearest;
-    }
-    kdtree_todo next[2];
-    double o = vec3_axis(mr->r.origin, axis), thick = m->tree.thickness;
-    kdtree_children(n, node, o - thick, o + thick,
-                    vec3_axis(mr->inv_dir, axis), t0, t1, next);
-    for (int c = 0; c < 2 && next[c].node >= 0; c++) {
-        if (next[c].t_min > *t_max * (1 + KDTREE_SLACK))
-            break; /* a hit nearer than this cell is already found */
-        int k = nearest_in(m, mr, next[c].node, next[c].t_min,
-                           next[c].t_max, t_min, t_max, out, stats);
-        nearest = k >= 0 ? k : nearest;
-    }
-    return nearest;
-}
-
-int mesh_nearest_recursive(const mesh *m, const mesh_ray *mr, double t_min,
-                           double t_max, triangle_hit *out,
-                           render_stats *stats)
-{
-    double near = t_min, far = t_max;
-    if (m->tree.node_count == 0 ||
-        !box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
-        return mesh_nearest(m, mr, t_min, t_max, out, stats);
-    return nearest_in(m, mr, 0, near, far, t_min, &t_max, out, stats);
 }

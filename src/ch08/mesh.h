@@ -70,7 +70,7 @@ bool mesh_build_tree(mesh *m, const kdtree_params *p);
 
 /* Below this many triangles a mesh is searched by brute force: the
  * crossover of the chapter's chart. */
-#define MESH_TREE_MIN_TRIANGLES 4
+#define MESH_TREE_MIN_TRIANGLES 8
 
 /* Does mr hit any triangle of m in (t_min, t_max)? For shadow rays. */
 bool mesh_occluded(const mesh *m, const mesh_ray *mr, double t_min,

@@ -99,7 +99,7 @@ bool scene_build_trees(scene *s);
 
 /* Below this many objects a scene keeps them in a list: the crossover of
  * the chapter's chart. */
-#define SCENE_TREE_MIN_OBJECTS 12
+#define SCENE_TREE_MIN_OBJECTS 26
 
 /* What the scene's trees hold, for --stats. */
 typedef struct {
