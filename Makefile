@@ -33,7 +33,7 @@ LTO_LINK := $(if $(LTO),-Wno-maybe-uninitialized)
 OPT     := $(if $(SAN),$(SANFLAGS),-O2 -g $(LTO))
 CFLAGS  ?=
 LDFLAGS ?=
-ALL_CFLAGS = $(CSTD) $(WARN) $(OPT) $(CFLAGS) -MMD -MP
+ALL_CFLAGS = $(CSTD) $(WARN) $(OPT) -pthread $(CFLAGS) -MMD -MP
 
 # Evaluated when a recipe runs, after `deps` has had its chance to install them.
 PNG_CFLAGS   = $(shell pkg-config --cflags libpng)
@@ -57,8 +57,9 @@ link_meshes = if [ -d $(1)/scenes ]; then ln -sfn $(2)meshes $(1)/scenes/meshes;
 chapters_upto = $(wordlist 1,$(patsubst 0%,%,$(1)),$(CHAPTERS))
 # c_files NN: the .c files that chapters 01..NN declare with file="..."
 c_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\([^"]*\.c\)".*/\1/p' $(call chapters_upto,$(1))))
-# scene_files NN: scenes declared by chapter NN itself, one figure each
-scene_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\(scenes\/ch$(1)-[^"]*\.scene\)".*/\1/p' $(word $(patsubst 0%,%,$(1)),$(CHAPTERS))))
+# scene_files NN: scenes declared by chapter NN itself, one figure each (found
+# by number: chapters may be missing in between)
+scene_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\(scenes\/ch$(1)-[^"]*\.scene\)".*/\1/p' $(filter chapters/$(1)-%,$(CHAPTERS))))
 # suites_upto NN: the Check suites of chapters 01..NN
 suites_upto = $(foreach n,$(wordlist 1,$(patsubst 0%,%,$(1)),$(NUMS)),$(wildcard tests/ch$(n)_*.c))
 # previous NN: the chapter before NN, empty for the first

@@ -14,8 +14,9 @@
  *      walk-recursive|walk-iterative,bunny-1.0,ns_per_ray,nodes,nodes_per_ray
  * 2. Where the time of a ray goes (bunny, K = 1 and 2.5): making the
  *    camera's ray, then its per-ray constants, then the box test, then the
- *    walk and the leaves, each step timed with the ones before it:
- *      fixed-cost,STEP@K,ns_per_ray,0,cumulative
+ *    walk and the leaves, each step timed with the ones before it (ns_per_op:
+ *    the steps so far; error: this step's share of the whole ray's time):
+ *      fixed-cost,STEP@K,ns_per_ray,share,share_of_ray
  * 3. The crossover: the first N triangles of the bunny (N = 1, 2, 4, ...,
  *    all), 64 x 64 rays at K = 1 fitted to their box, by brute force, by a
  *    median-split tree and by the SAH tree (every tree forced, however
@@ -152,14 +153,18 @@ static void exact_rays(mesh *m, const char *name)
         printf("kdtree,%s-%.1f,%.2f,%.4f,mrays_per_s\n", name, K, ns, 1e3 / ns);
         printf("hits,%s-%.1f,0,%ld,kdtree_hits\n", name, K, j.result.hits);
         printf("distance,%s-%.1f,0,%.6f,kdtree_sum_t\n", name, K, j.result.sum_t);
-        if (k == 0 && strcmp(name, "bunny") == 0)
+        if (k == 0 && strcmp(name, "bunny") == 0) {
+            double walk_ns[2];
             for (int w = 0; w < 2; w++) {
                 j.recursive = w == 0;
-                ns = ns_per_ray(&j, 0);
+                walk_ns[w] = ns_per_ray(&j, 0);
                 printf("walk-%s,%s-%.1f,%.2f,%.3f,nodes_per_ray\n",
-                       w == 0 ? "recursive" : "iterative", name, K, ns,
+                       w == 0 ? "recursive" : "iterative", name, K, walk_ns[w],
                        (double)j.stats.kd_nodes / j.n);
             }
+            printf("walk,%s-%.1f,0,%.4f,recursive_over_iterative\n", name, K,
+                   walk_ns[0] / walk_ns[1]);
+        }
         free(rays);
     }
 }
@@ -220,13 +225,17 @@ static void fixed_costs(const mesh *bunny)
             exit(1);
         camera cam = {.fov_deg = 60, .width = 512, .height = 512};
         fixed_job j = {&m, camera_view_of(&cam), 512, 0};
+        double cumulative[4];
         for (int s = 0; s < 4; s++) {
             j.steps = s + 1;
             double ns[ROUNDS];
             for (int r = 0; r < ROUNDS; r++)
                 ns[r] = 1e9 * time_batch(fixed_work, &j, 0.05) / (512.0 * 512);
-            printf("fixed-cost,%s@%.1f,%.2f,0,cumulative\n", steps[s], K, median_of(ns, ROUNDS));
+            cumulative[s] = median_of(ns, ROUNDS);
         }
+        for (int s = 0; s < 4; s++) /* each step's share of the whole ray */
+            printf("fixed-cost,%s@%.1f,%.2f,%.4f,share_of_ray\n", steps[s], K, cumulative[s],
+                   (cumulative[s] - (s ? cumulative[s - 1] : 0)) / cumulative[3]);
         free(m.vertices);
         kdtree_free(&m.tree);
         free(m.leaf_corners);
@@ -234,6 +243,24 @@ static void fixed_costs(const mesh *bunny)
 }
 
 /* ---------------------------------------------------------------- 3 */
+
+/* Where the line b crosses below the line a, both sampled at n[0..count)
+ * (increasing): after the last size at which b is not cheaper, by
+ * interpolating the difference linearly in log n. */
+static double crossover(const double *n, const double *a, const double *b, int count)
+{
+    int last = -1;
+    for (int k = 0; k < count; k++)
+        if (b[k] >= a[k])
+            last = k;
+    if (last < 0)
+        return n[0];
+    if (last == count - 1)
+        return n[count - 1];
+    double d0 = b[last] - a[last], d1 = b[last + 1] - a[last + 1];
+    double f = d0 / (d0 - d1);
+    return exp(log(n[last]) + f * (log(n[last + 1]) - log(n[last])));
+}
 
 /* The first n triangles of whole, sharing its vertices; bounds of those. */
 static mesh first_triangles(const mesh *whole, int n)
@@ -253,6 +280,8 @@ static mesh first_triangles(const mesh *whole, int n)
 static void crossover_meshes(const mesh *bunny)
 {
     static const char *names[3] = {"brute-force", "median", "sah"};
+    double sizes[32], ns[3][32];
+    int count = 0;
     int n_rays = 64 * 64;
     float *reference = malloc((size_t)n_rays * sizeof *reference), *t = malloc((size_t)n_rays * sizeof *t);
     for (int n = 1;; n = 2 * n < bunny->triangle_count ? 2 * n : bunny->triangle_count) {
@@ -269,18 +298,26 @@ static void crossover_meshes(const mesh *bunny)
                 differ += !(reference[k] == t[k] || (isinf(reference[k]) && isinf(t[k])));
             double tests = (double)j.stats.triangle_tests / n_rays;
             j.t = NULL;
+            ns[method][count] = ns_per_ray(&j, 0.02);
             printf("%s,%d,%.2f,%.3f,triangle_tests_per_ray\n", names[method], n,
-                   ns_per_ray(&j, 0.02), tests);
+                   ns[method][count], tests);
             printf("%s,%d,0,%ld,rays_unlike_brute_force\n", names[method], n, differ);
             kdtree_free(&m.tree);
             free(m.leaf_corners), m.leaf_corners = NULL;
         }
         free(rays);
         fflush(stdout);
+        sizes[count++] = n;
         if (n == bunny->triangle_count)
             break;
     }
     free(reference), free(t);
+    int all = count - 1, at64 = 6; /* sizes[6] = 64 */
+    printf("crossover,triangles,0,%.1f,tree_faster_from\n",
+           crossover(sizes, ns[0], ns[2], count));
+    printf("speedup,bunny,0,%.1f,brute_over_sah\n", ns[0][all] / ns[2][all]);
+    printf("speedup,bunny,0,%.3f,median_over_sah\n", ns[1][all] / ns[2][all]);
+    printf("growth,sah,0,%.3f,all_over_64\n", ns[2][all] / ns[2][at64]);
 }
 
 typedef struct {
@@ -316,7 +353,8 @@ static void crossover_objects(void)
         vec3 aim = {2 * uniform01() - 1, 2 * uniform01() - 1, 6};
         rays[k] = (ray){{0, 0, 0}, vec3_normalize(aim)};
     }
-    for (int n = 1; n <= 1024; n *= 2)
+    double sizes[11], ns_list[2][11];
+    for (int n = 1, count = 0; n <= 1024; n *= 2, count++)
         for (int tree = 0; tree < 2; tree++) {
             scene s;
             scene_init(&s);
@@ -337,13 +375,19 @@ static void crossover_objects(void)
             double tests = (double)j.stats.sphere_tests / RAYS, ns[ROUNDS];
             for (int r = 0; r < ROUNDS; r++)
                 ns[r] = 1e9 * time_batch(scene_work, &j, 0.02) / RAYS;
+            sizes[count] = n;
+            ns_list[tree][count] = median_of(ns, ROUNDS);
             printf("objects-%s,%d,%.2f,%.3f,sphere_tests_per_ray\n", tree ? "tree" : "list", n,
-                   median_of(ns, ROUNDS), tests);
+                   ns_list[tree][count], tests);
             scene_free(&s);
         }
+    printf("crossover,spheres,0,%.1f,tree_faster_from\n",
+           crossover(sizes, ns_list[0], ns_list[1], 11));
 }
 
 /* ---------------------------------------------------------------- 4 */
+
+static double default_ms, default_ns; /* the defaults' point, for ratios */
 
 static void sah_point(mesh *m, const float_ray *rays, int n, const char *what, double value,
                       kdtree_params p)
@@ -353,7 +397,11 @@ static void sah_point(mesh *m, const float_ray *rays, int n, const char *what, d
         exit(1);
     trace_job j = {m, rays, n, false, {0}, {0, 0, 0}, NULL};
     double ns = ns_per_ray(&j, 0.05);
+    if (default_ms == 0)
+        default_ms = ms, default_ns = ns;
     printf("sah-%s,%g,%.2f,%.3f,build_ms\n", what, value, ns, ms);
+    printf("sah-%s,%g,%.2f,%.3f,build_over_default\n", what, value, ns, ms / default_ms);
+    printf("sah-%s,%g,%.2f,%.3f,time_over_default\n", what, value, ns, ns / default_ns);
     printf("sah-%s,%g,%.2f,%d,nodes\n", what, value, ns, m->tree.node_count);
     printf("sah-%s,%g,%.2f,%.3f,references_per_triangle\n", what, value, ns,
            (double)m->tree.item_count / m->triangle_count);
@@ -367,6 +415,7 @@ static void sah_parameters(mesh *bunny)
     const double costs[] = {5, 10, 15, 20, 30, 45, 60, 80, 120, 180};
     const double bonuses[] = {0, 0.1, 0.2, 0.3, 0.5, 0.8};
     const int depths[] = {12, 16, 18, 20, 22, 24, 28, 32};
+    sah_point(bunny, rays, n, "defaults", 0, kdtree_default_params());
     for (size_t k = 0; k < sizeof costs / sizeof *costs; k++) {
         kdtree_params p = kdtree_default_params();
         p.traversal_cost = costs[k];
@@ -444,17 +493,29 @@ static void build_scaling(void)
 {
     static const char *names[3] = {"build-sah", "build-sorting", "build-median"};
     static const kdtree_method methods[3] = {KDTREE_SAH, KDTREE_SAH_SORTING, KDTREE_MEDIAN};
+    double per[3][6], sizes[6]; /* ns per triangle */
     for (int levels = 3; levels <= 8; levels++) {
         mesh m = bumpy_sphere(levels);
         for (int k = 0; k < 3; k++) {
             double ms = levels < 7 ? build_ms(&m, forced(methods[k]))
                                    : 1e3 * time_batch(build_work, &(build_job){&m, forced(methods[k])}, 0);
+            per[k][levels - 3] = 1e6 * ms / m.triangle_count;
             printf("%s,%d,%.2f,%.3f,build_ms\n", names[k], m.triangle_count,
-                   1e6 * ms / m.triangle_count, ms);
+                   per[k][levels - 3], ms);
             fflush(stdout);
         }
+        sizes[levels - 3] = m.triangle_count;
         mesh_free(&m);
     }
+    /* from the smallest mesh to the largest: per triangle, and per level */
+    for (int k = 0; k < 3; k++) {
+        double grow = per[k][5] / per[k][0];
+        printf("scaling,%s,0,%.3f,growth_per_triangle\n", names[k], grow);
+        printf("scaling,%s,0,%.3f,growth_per_level\n", names[k],
+               grow * log2(sizes[0]) / log2(sizes[5]));
+    }
+    printf("scaling,sorting-over-sah@%d,0,%.3f,ratio\n", (int)sizes[0], per[1][0] / per[0][0]);
+    printf("scaling,sorting-over-sah@%d,0,%.3f,ratio\n", (int)sizes[5], per[1][5] / per[0][5]);
 }
 
 /* ---------------------------------------------------------------- 6 */
@@ -498,6 +559,7 @@ static void threads(void)
     printf("threads,1,%.1f,%.1f,render_ms\nthreads,2,%.1f,%.1f,render_ms\n", one, one, two, two);
     printf("threads,2,0,%.3f,speedup\n", one / two);
     printf("scene,bunny,%.1f,%.1f,load_ms\n", load, load);
+    printf("scene,bunny,0,%.3f,load_over_render_on_two\n", load / two);
 }
 
 int main(int argc, char **argv)
