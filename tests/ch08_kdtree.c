@@ -758,6 +758,27 @@ START_TEST(test_bad_thread_counts_are_usage_errors)
 }
 END_TEST
 
+START_TEST(test_stats_hint_an_over_fine_mesh)
+{
+    char link[4096];
+    ck_assert_ptr_nonnull(getcwd(link, sizeof link - 16));
+    strcat(link, "/meshes");
+    ck_assert_int_eq(symlink(link, tmp_path("meshes")), 0);
+    char scene_path[192], errors[4096];
+    snprintf(scene_path, sizeof scene_path, "%s",
+             write_file("bunny.scene", "mesh file meshes/bunny.obj scale 12 offset 0 -1.4 6\n"));
+    const char *sizes[2] = {"32x24", "320x240"};
+    for (int k = 0; k < 2; k++) {
+        const char *args[] = {scene_path, "--size", sizes[k], "--stats", "-o", tmp_path("b.png"),
+                              NULL};
+        ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
+        /* at 32 x 24 the box covers at most 768 pixels: 90 triangles each */
+        ck_assert_msg((strstr(errors, "hint: object 1") != NULL) == (k == 0), "%s: %s",
+                      sizes[k], errors);
+    }
+}
+END_TEST
+
 /* ------------------------------------------------------------ the kdtree statement */
 
 START_TEST(test_kdtree_statement_sets_the_parameters)
@@ -824,6 +845,7 @@ Suite *ch08_kdtree_suite(void)
     tcase_add_test(bad, test_thread_count_does_not_change_the_image);
     tcase_add_test(bad, test_statistics_add_up_whatever_the_thread_count);
     tcase_add_test(bad, test_bad_thread_counts_are_usage_errors);
+    tcase_add_test(bad, test_stats_hint_an_over_fine_mesh);
     tcase_add_test(bad, test_kdtree_statement_sets_the_parameters);
     tcase_add_test(bad, test_kdtree_statement_rejects_bad_settings);
     suite_add_tcase(s, bad);

@@ -196,6 +196,25 @@ static void print_trees(const scene *s)
             1e3 * s->tree_seconds);
 }
 
+/* The densest need of the chapter's chart: triangles per covered pixel. */
+#define MESH_HINT_TRIANGLES_PER_PIXEL 42
+
+static void print_mesh_hints(const scene *s)
+{
+    for (int k = 0; k < s->object_count; k++) {
+        const object *o = &s->objects[k];
+        if (o->kind != SHAPE_MESH)
+            continue;
+        double pixels = scene_object_pixels(s, o);
+        int triangles = s->meshes[o->mesh].triangle_count;
+        if (pixels > 0 && triangles > MESH_HINT_TRIANGLES_PER_PIXEL * pixels)
+            fprintf(stderr, "hint: object %d, a mesh of %d triangles, covers "
+                            "at most %.0f pixels: %.0f triangles a pixel, "
+                            "finer than the image can show\n",
+                    k + 1, triangles, pixels, triangles / pixels);
+    }
+}
+
 #include <pthread.h>
 #include <stdatomic.h>
 
@@ -330,6 +349,8 @@ int main(int argc, char **argv)
     band_threads = opt.threads > 0 ? opt.threads : cores_online();
     if (opt.stats)
         print_trees(&s);
+    if (opt.stats)
+        print_mesh_hints(&s);
     if (!image_init(&img, s.cam.width, s.cam.height)) {
         fprintf(stderr, "%s: error: no memory for a %dx%d image\n", argv[0],
                 s.cam.width, s.cam.height);

@@ -315,3 +315,29 @@ scene_tree_summary scene_trees(const scene *s)
     sum.items += s->object_tree.node_count ? s->object_count : 0;
     return sum;
 }
+
+/* Where p, in front of the eye, falls on the image: pixel coordinates. */
+static void pixel_of(const camera_view *v, vec3 p, double *u, double *w)
+{
+    *u = (p.x / p.z - v->left) / v->pixel_size;
+    *w = (v->top - p.y / p.z) / v->pixel_size;
+}
+
+double scene_object_pixels(const scene *s, const object *o)
+{
+    box b = object_bounds(s, o);
+    camera_view view = camera_view_of(&s->cam);
+    double u0 = INFINITY, u1 = -INFINITY, w0 = INFINITY, w1 = -INFINITY;
+    for (int k = 0; k < 8; k++) {
+        vec3 p = {k & 1 ? b.hi.x : b.lo.x, k & 2 ? b.hi.y : b.lo.y,
+                  k & 4 ? b.hi.z : b.lo.z};
+        double u, w;
+        if (!(p.z > 0))
+            return 0;
+        pixel_of(&view, p, &u, &w);
+        u0 = fmin(u0, u), u1 = fmax(u1, u), w0 = fmin(w0, w), w1 = fmax(w1, w);
+    }
+    u0 = fmax(u0, 0), u1 = fmin(u1, s->cam.width);
+    w0 = fmax(w0, 0), w1 = fmin(w1, s->cam.height);
+    return u1 > u0 && w1 > w0 ? (u1 - u0) * (w1 - w0) : 0;
+}

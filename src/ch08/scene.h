@@ -109,4 +109,9 @@ typedef struct {
 
 scene_tree_summary scene_trees(const scene *s);
 
+/* How many pixels of the image the box around object o covers at most:
+ * the rectangle around its corners' images, cut to the image; 0 when a
+ * corner is at or behind the eye (no estimate then). */
+double scene_object_pixels(const scene *s, const object *o);
+
 #endif
