@@ -31,10 +31,17 @@ CC      ?= cc
 CSTD    := -std=c11 -D_POSIX_C_SOURCE=200809L
 WARN    := -Wall -Wextra $(if $(WERROR),-Werror)
 SANFLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
-OPT     := $(if $(SAN),$(SANFLAGS),-O2 -g)
+# Link-time optimization inlines across files: a ray's setup (mesh.c), its
+# box test (box.c) and its triangle tests (triangle_methods.c) become one
+# piece of code; chapter 08 measures what that is worth. Inlined across
+# files, GCC's maybe-uninitialized analysis warns of values that are always
+# set before use; that warning keeps its per-file check at compile time.
+LTO     := $(if $(SAN),,-flto=auto)
+LTO_LINK := $(if $(LTO),-Wno-maybe-uninitialized)
+OPT     := $(if $(SAN),$(SANFLAGS),-O2 -g $(LTO))
 CFLAGS  ?=
 LDFLAGS ?=
-ALL_CFLAGS = $(CSTD) $(WARN) $(OPT) $(CFLAGS) -MMD -MP
+ALL_CFLAGS = $(CSTD) $(WARN) $(OPT) -pthread $(CFLAGS) -MMD -MP
 
 # Evaluated when a recipe runs, after `deps` has had its chance to install them.
 PNG_CFLAGS   = $(shell pkg-config --cflags libpng)
@@ -62,7 +69,8 @@ nums_upto = $(wordlist 1,$(patsubst 0%,%,$(1)),$(TWO_DIGITS))
 chapters_upto = $(foreach c,$(CHAPTERS),$(if $(filter $(firstword $(subst -, ,$(notdir $(c)))),$(call nums_upto,$(1))),$(c)))
 # c_files NN: the .c files that chapters 01..NN declare with file="..."
 c_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\([^"]*\.c\)".*/\1/p' $(call chapters_upto,$(1))))
-# scene_files NN: scenes declared by chapter NN itself, one figure each
+# scene_files NN: scenes declared by chapter NN itself, one figure each (found
+# by number: chapters may be missing in between)
 scene_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\(scenes\/ch$(1)-[^"]*\.scene\)".*/\1/p' $(filter chapters/$(1)-%,$(CHAPTERS))))
 # suites_upto NN: the Check suites of chapters 01..NN
 suites_upto = $(foreach n,$(filter $(call nums_upto,$(1)),$(NUMS)),$(wildcard tests/ch$(n)_*.c))
@@ -117,7 +125,7 @@ $$(O$(1))/%.o: $$(T$(1))/%.c | deps
 
 $(BIN)/ch$(1): $$(OBJ$(1))
 	@mkdir -p $$(@D)
-	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
+	$$(CC) $$(ALL_CFLAGS) $$(LTO_LINK) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
 
 ch$(1): deps $(BIN)/ch$(1)
 
@@ -133,7 +141,7 @@ $$(O$(1))/tests/runner.o: tests/runner.c $$(SUITES$(1)) | deps
 
 $(B)/test/ch$(1): $$(O$(1))/tests/runner.o $$(patsubst tests/%.c,$$(O$(1))/tests/%.o,$$(SUITES$(1))) $$(LIB$(1))
 	@mkdir -p $$(@D)
-	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
+	$$(CC) $$(ALL_CFLAGS) $$(LTO_LINK) -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
 
 test-ch$(1): deps $(B)/test/ch$(1) $(BIN)/ch$(1)
 	@echo "== suites 01..$(1) against the program of chapter $(1)"
@@ -180,7 +188,7 @@ $$(O$(1))/bench/%.o: bench/%.c $$(T$(1))/.stamp | deps
 
 $(B)/bench/ch$(1)_%: $$(O$(1))/bench/ch$(1)_%.o $$(O$(1))/bench/timing.o $$(LIB$(1))
 	@mkdir -p $$(@D)
-	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
+	$$(CC) $$(ALL_CFLAGS) $$(LTO_LINK) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) $$(BENCH_LIBS) -lm
 
 # Failure figures (failures/chNN_*.c) link it the same way.
 $$(O$(1))/failures/%.o: failures/%.c $$(T$(1))/.stamp | deps
@@ -228,26 +236,38 @@ failures: deps $(FAILURE_FIGS)
 check-failures: $(FAILURE_BINS) $(B)/tools/pngdiff
 	@sh tools/check_failures.sh $(B)/tools/pngdiff $(B)/failures $(FAILURE_FIGS)
 
+# Chapter 08 compares its kd-tree with Intel Embree 3 where it is installed
+# (Debian: libembree-dev); without it that benchmark is not built, and
+# `make charts` draws its chart from this program's rates alone.
+HAVE_EMBREE := $(shell printf '\043include <embree3/rtcore.h>\n' | \
+                 $(CC) -E -x c - >/dev/null 2>&1 && echo yes)
+ifneq ($(HAVE_EMBREE),yes)
+BENCHES  := $(filter-out %_embree,$(BENCHES))
+endif
+$(B)/bench/ch08_embree: BENCH_LIBS := -lembree3
+
 src: $(foreach n,$(NUMS),src-ch$(n))
 figures: $(ALL_FIGS) $(FAILURE_FIGS)
 benches: $(BENCHES)
 check-src: $(foreach n,$(NUMS),check-src-ch$(n))
 check-figures: $(foreach n,$(NUMS),check-figures-ch$(n))
 
-# The explanatory diagrams: tools/diagrams/diagrams.c computes every one's
-# geometry and writes figures/chNN-diagram-NAME.svg (committed, like the charts).
+# The explanatory diagrams: programs in tools/diagrams/ compute every one's
+# geometry and write figures/chNN-diagram-NAME.svg (committed, like the
+# charts): diagrams.c draws chapters 1-7's, ch08_kdtree.c chapter 8's.
+DIAGRAM_PROGRAMS := $(B)/tools/diagrams/diagrams $(B)/tools/diagrams/ch08_kdtree
 .PHONY: diagrams check-diagrams
-$(B)/tools/diagrams/diagrams: tools/diagrams/diagrams.c | deps
+$(B)/tools/diagrams/%: tools/diagrams/%.c | deps
 	@mkdir -p $(@D)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(LDFLAGS) -lm
 
-diagrams: $(B)/tools/diagrams/diagrams
-	$< figures
+diagrams: $(DIAGRAM_PROGRAMS)
+	@for p in $(DIAGRAM_PROGRAMS); do $$p figures || exit 1; done
 
-# The committed diagrams must be what the program draws now.
-check-diagrams: $(B)/tools/diagrams/diagrams
+# The committed diagrams must be what the programs draw now.
+check-diagrams: $(DIAGRAM_PROGRAMS)
 	@rm -rf build/diagramcheck && mkdir -p build/diagramcheck
-	@$< build/diagramcheck >/dev/null
+	@for p in $(DIAGRAM_PROGRAMS); do $$p build/diagramcheck >/dev/null || exit 1; done
 	@for f in build/diagramcheck/*.svg; do \
 	  cmp -s $$f figures/$$(basename $$f) || \
 	    { echo "figures/$$(basename $$f) is not what tools/diagrams draws: run 'make diagrams'"; exit 1; }; \
@@ -273,6 +293,16 @@ chart-%: $(B)/bench/% | deps
 
 charts: deps $(BENCHES)
 	@for b in $(notdir $(BENCHES)); do $(MAKE) --no-print-directory chart-$$b || exit 1; done
+	$(if $(filter 08,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
+
+# Without Embree, chapter 08's comparison chart shows this program's own
+# rates (from its kd-tree benchmark) and says that Embree was absent.
+.PHONY: chart-embree-absent
+chart-embree-absent: figures/ch08-kdtree.csv
+	{ echo 'method,param,ns_per_op,error,error_kind'; \
+	  grep -E '^kdtree,|^build,[a-z]+,[0-9.]+,[0-9.]+,kdtree_build_ms' figures/ch08-kdtree.csv; \
+	  echo 'embree,absent,0,0,absent'; } > figures/ch08-embree.csv
+	gnuplot -e "csv='figures/ch08-embree.csv'; stem='figures/ch08-embree'" bench/ch08_embree.gp
 
 # Can the speed axes be trusted? Every bench run twice: the largest ratio
 # between two runs of a method, and whether an ordering a quoted ratio

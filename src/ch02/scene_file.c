@@ -157,7 +157,9 @@ static bool parse_statement(parser *p, void *target)
 bool scene_parse(scene *s, const char *text, size_t length, const char *name,
                  scene_error *err)
 {
-    return parse_lines(text, length, name, err, parse_statement, s);
+    if (!parse_lines(text, length, name, err, parse_statement, s))
+        return false;
+    return true;
 }
 
 bool scene_load(scene *s, const char *path, scene_error *err)

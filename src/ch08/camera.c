@@ -1,0 +1,46 @@
+/* camera.c: primary rays (chapter 1). See camera.h. */
+#include "camera.h"
+
+double camera_pixel_size(const camera *cam)
+{
+    double half_width = tan(cam->fov_deg * (M_PI / 180.0) / 2.0);
+    return 2.0 * half_width / cam->width;
+}
+
+camera_view camera_view_of(const camera *cam)
+{
+    double s = camera_pixel_size(cam);
+    camera_view view = {.pixel_size = s,
+                        .left = -0.5 * cam->width * s, /* = -tan(fov/2) */
+                        .top = 0.5 * cam->height * s};
+    /* <<prepare the camera view>> ch05 */
+    view.is_placed = cam->is_placed && mat4_look_at(cam->position, cam->look_at,
+                                                    cam->up, &view.to_world);
+    return view;
+}
+
+vec3 camera_image_point(const camera *cam, double u, double v)
+{
+    camera_view view = camera_view_of(cam);
+    double s = view.pixel_size;
+    return (vec3){view.left + u * s, view.top - v * s, 1.0};
+}
+
+ray camera_view_ray(const camera_view *view, int i, int j)
+{
+    double s = view->pixel_size;
+    vec3 on_plane = {view->left + (i + 0.5) * s, view->top - (j + 0.5) * s,
+                     1.0};
+    ray r = {{0.0, 0.0, 0.0}, vec3_normalize(on_plane)};
+    /* <<place the primary ray>> ch05 */
+    if (view->is_placed) /* a rotation: renormalised against rounding only */
+        r = (ray){mat4_mul_point(view->to_world, r.origin),
+                  vec3_normalize(mat4_mul_dir(view->to_world, r.dir))};
+    return r;
+}
+
+ray camera_ray(const camera *cam, int i, int j)
+{
+    camera_view view = camera_view_of(cam);
+    return camera_view_ray(&view, i, j);
+}

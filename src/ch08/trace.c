@@ -1,0 +1,144 @@
+/* trace.c: what a ray sees (chapter 1). See trace.h. */
+#include "trace.h"
+
+/* <<trace includes>> ch03 */
+#include "shade.h"
+
+/* <<trace helpers>> ch06 */
+static vec3 trace_path(const scene *s, ray r, int depth, double weight,
+                       render_stats *stats);
+
+/* color mixed with what the mirror at h reflects, when it is a mirror and
+ * the reflected ray is worth tracing; color alone otherwise. */
+static vec3 add_reflection(const scene *s, const hit *h, ray r, int depth,
+                           double weight, vec3 color, render_stats *stats)
+{
+    double alpha = scene_material(s, h->material)->reflect;
+    if (alpha == 0)
+        return color; /* not a mirror: no ray, nothing counted */
+    if (depth >= s->max_depth) {
+        stats->reflection_skipped_depth++;
+        return color;
+    }
+    if (weight * alpha < s->cutoff) {
+        stats->reflection_skipped_weight++;
+        return color;
+    }
+    stats->reflection_rays++;
+    vec3 dir = vec3_reflect(r.dir, h->normal);
+    vec3 seen = trace_path(s, ray_leaving(h, dir), depth + 1,
+                           weight * alpha, stats);
+    return vec3_lerp(color, seen, alpha);
+}
+/* <<secondary rays of other materials>> ch07 */
+
+/* F_R by the material's model, for light from eta1 into eta2 at cos_i. */
+static double reflectance(const material *m, double cos_i, double eta1,
+                          double eta2)
+{
+    if (m->fresnel == FRESNEL_SCHLICK)
+        return fresnel_schlick_tir(cos_i, eta1, eta2);
+    return fresnel_exact(cos_i, eta1, eta2);
+}
+
+/* The surface at h as a ray along dir crosses it: the normal on the ray's
+ * side, the index the ray comes from and the one it goes into. */
+typedef struct {
+    vec3 n;
+    double eta1, eta2;
+} crossing;
+
+static crossing crossing_at(const hit *h, const material *m, vec3 dir)
+{
+    /* inside or out: by the geometric normal, as the hit says */
+    double eta1 = h->inside ? m->ior : 1, eta2 = h->inside ? 1 : m->ior;
+    /* the shading normal turned to face the ray, so that cos_i >= 0 */
+    vec3 n = vec3_dot(h->normal, dir) < 0 ? h->normal
+                                          : vec3_scale(h->normal, -1);
+    return (crossing){n, eta1, eta2};
+}
+
+/* Where --stats counts one kind of secondary ray. */
+typedef struct {
+    long long *traced, *too_deep, *too_light;
+} ray_counters;
+
+/* What a secondary ray of weight w leaving h along dir sees, or fallback
+ * when it has no share of the light or is not worth tracing. */
+static vec3 trace_branch(const scene *s, const hit *h, vec3 dir, int depth,
+                         double w, vec3 fallback, ray_counters counts,
+                         render_stats *stats)
+{
+    if (!(w > 0))
+        return fallback; /* no share of the light: not a ray at all */
+    if (depth >= s->max_depth) {
+        (*counts.too_deep)++;
+        return fallback;
+    }
+    if (w < s->cutoff) {
+        (*counts.too_light)++;
+        return fallback;
+    }
+    (*counts.traced)++;
+    return trace_path(s, ray_leaving(h, dir), depth + 1, w, stats);
+}
+
+/* color mixed with what the clear part of the surface at h passes on:
+ * the reflected and the refracted light, shared by Fresnel. */
+static vec3 add_refraction(const scene *s, const hit *h, ray r, int depth,
+                           double weight, vec3 color, render_stats *stats)
+{
+    const material *m = scene_material(s, h->material);
+    double tau = m->transparency;
+    if (tau == 0)
+        return color; /* opaque: no ray, nothing counted */
+    crossing x = crossing_at(h, m, r.dir);
+    refraction t = refract_standard(r.dir, x.n, x.eta1 / x.eta2);
+    double F = t.total ? 1 : reflectance(m, t.cos_i, x.eta1, x.eta2);
+    stats->total_reflections += t.total;
+    ray_counters mirror = {&stats->reflection_rays,
+                           &stats->reflection_skipped_depth,
+                           &stats->reflection_skipped_weight};
+    ray_counters through = {&stats->refraction_rays,
+                            &stats->refraction_skipped_depth,
+                            &stats->refraction_skipped_weight};
+    vec3 I_r = trace_branch(s, h, vec3_reflect(r.dir, x.n), depth,
+                            weight * tau * F, color, mirror, stats);
+    vec3 I_t = t.total ? color
+                       : trace_branch(s, h, t.dir, depth,
+                                      weight * tau * (1 - F), color,
+                                      through, stats);
+    vec3 clear = vec3_lerp(I_t, I_r, F); /* F I_r + (1 - F) I_t */
+    return vec3_lerp(color, clear, tau);
+}
+
+/* What the ray r sees, when its colour counts weight times in the pixel's
+ * and depth bounces led to it. */
+static vec3 trace_path(const scene *s, ray r, int depth, double weight,
+                       render_stats *stats)
+{
+    hit h;
+    if (!scene_intersect(s, r, 0.0, INFINITY, &h, stats))
+        return background_color(&s->bg, r.dir);
+    /* <<shade the hit>> ch03 */
+    vec3 color = shade(s, &h, vec3_scale(r.dir, -1), stats);
+    /* <<add the light of secondary rays>> ch06 */
+    color = add_reflection(s, &h, r, depth, weight, color, stats);
+    /* <<add the light of secondary rays>> += ch07 */
+    color = add_refraction(s, &h, r, depth, weight, color, stats);
+    return color;
+}
+
+vec3 background_color(const background *bg, vec3 dir)
+{
+    if (bg->kind == BACKGROUND_SOLID)
+        return bg->bottom;
+    double t = 0.5 * (dir.y + 1.0); /* dir.y in [-1, 1] -> t in [0, 1] */
+    return vec3_lerp(bg->bottom, bg->top, t);
+}
+
+vec3 trace(const scene *s, ray r, int depth, render_stats *stats)
+{
+    /* <<trace a ray>> ch06 */
+    return trace_path(s, r, depth, 1.0, stats);
+}

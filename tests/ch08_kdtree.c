@@ -1,0 +1,853 @@
+/* ch08_kdtree.c: kd-trees, their walks, the tree over the objects, and
+ * rendering on all cores (chapter 08).
+ *
+ * The reference for every search through a tree is brute force, the test
+ * of every triangle (chapter 04's mesh_nearest without a tree): a tree must
+ * return a hit at exactly the same distance, on the same triangle or on
+ * another one hit at that same distance. The naive walks that the chapter
+ * warns against are written out here, so that each robustness test first
+ * shows the naive walk failing on its input. */
+#include <check.h>
+#include <float.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "mesh.h"
+#include "obj.h"
+#include "scene.h"
+#include "test_util.h"
+
+/* ------------------------------------------------------------ helpers */
+
+static uint64_t rng_state;
+
+static void seed(uint64_t s) { rng_state = s; }
+
+/* Uniform in [0, 1), from a fixed seed: the same rays on every run. */
+static double uniform01(void)
+{
+    rng_state = rng_state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(rng_state >> 11) / 9007199254740992.0;
+}
+
+static vec3 random_unit(void)
+{
+    for (;;) {
+        vec3 v = {2 * uniform01() - 1, 2 * uniform01() - 1, 2 * uniform01() - 1};
+        double l = vec3_length(v);
+        if (l > 1e-3 && l <= 1)
+            return vec3_scale(v, 1 / l);
+    }
+}
+
+static mesh load(const char *path)
+{
+    mesh m = {0};
+    parse_error err;
+    ck_assert_msg(mesh_load_obj(&m, path, &err), "%s: %s", path, err.message);
+    mesh_compute_bounds(&m);
+    return m;
+}
+
+static void build(mesh *m, kdtree_method method)
+{
+    kdtree_params p = kdtree_default_params();
+    p.method = method;
+    p.min_items = 1; /* a tree, however few the triangles */
+    ck_assert(mesh_build_tree(m, &p));
+}
+
+/* m without its tree: brute force. */
+static mesh brute(const mesh *m)
+{
+    mesh b = *m;
+    b.tree = (kdtree){0};
+    b.leaf_corners = NULL;
+    return b;
+}
+
+typedef enum { WALK_ITERATIVE, WALK_RECURSIVE } walk_kind;
+
+/* The distance of the nearest hit (infinity: none). */
+static double nearest_t(const mesh *m, ray r, walk_kind walk, int *triangle)
+{
+    mesh_ray mr = mesh_ray_of(r);
+    render_stats stats = {0};
+    triangle_hit th;
+    int k = walk == WALK_RECURSIVE ? mesh_nearest_recursive(m, &mr, 0, INFINITY, &th, &stats)
+                                   : mesh_nearest(m, &mr, 0, INFINITY, &th, &stats);
+    if (triangle)
+        *triangle = k;
+    return k >= 0 ? th.t : INFINITY;
+}
+
+/* How many of the rays get a different nearest hit through the tree of m
+ * than by brute force. A different triangle at exactly the same t is a
+ * tie, not a difference. */
+static int disagreements(const mesh *m, const ray *rays, int n, walk_kind walk)
+{
+    mesh b = brute(m);
+    int differ = 0;
+    for (int k = 0; k < n; k++) {
+        int tri_tree, tri_brute;
+        double t_tree = nearest_t(m, rays[k], walk, &tri_tree);
+        double t_brute = nearest_t(&b, rays[k], WALK_ITERATIVE, &tri_brute);
+        if (!(t_tree == t_brute))
+            differ++;
+    }
+    return differ;
+}
+
+/* Random rays from a sphere around m's box towards points inside it. */
+static int random_rays(const mesh *m, ray *rays, int n)
+{
+    vec3 c = vec3_scale(vec3_add(m->bounds.lo, m->bounds.hi), 0.5);
+    vec3 e = vec3_sub(m->bounds.hi, m->bounds.lo);
+    double radius = vec3_length(e) + 1e-9;
+    for (int k = 0; k < n; k++) {
+        vec3 o = vec3_add(c, vec3_scale(random_unit(), radius));
+        vec3 aim = {m->bounds.lo.x + e.x * uniform01(), m->bounds.lo.y + e.y * uniform01(),
+                    m->bounds.lo.z + e.z * uniform01()};
+        rays[k] = (ray){o, vec3_normalize(vec3_sub(aim, o))};
+    }
+    return n;
+}
+
+/* Rays along the axes (a direction with two zero components: 1/d has two
+ * infinities), from random points around the box. */
+static int axis_rays(const mesh *m, ray *rays, int n)
+{
+    vec3 e = vec3_sub(m->bounds.hi, m->bounds.lo);
+    for (int k = 0; k < n; k++) {
+        int axis = k % 3;
+        double sign = (k / 3) % 2 ? 1 : -1;
+        vec3 o = {m->bounds.lo.x + e.x * uniform01(), m->bounds.lo.y + e.y * uniform01(),
+                  m->bounds.lo.z + e.z * uniform01()};
+        vec3_set_axis(&o, axis, sign > 0 ? vec3_axis(m->bounds.lo, axis) - 1
+                                         : vec3_axis(m->bounds.hi, axis) + 1);
+        vec3 d = {0, 0, 0};
+        vec3_set_axis(&d, axis, sign);
+        rays[k] = (ray){o, d};
+    }
+    return n;
+}
+
+/* Rays aimed exactly at vertices and at points of edges of the mesh. */
+static int edge_rays(const mesh *m, ray *rays, int n)
+{
+    vec3 c = vec3_scale(vec3_add(m->bounds.lo, m->bounds.hi), 0.5);
+    double radius = vec3_length(vec3_sub(m->bounds.hi, m->bounds.lo));
+    for (int k = 0; k < n; k++) {
+        const int *v = m->triangles[(int)(uniform01() * m->triangle_count)].v;
+        vec3 a = m->vertices[v[0]], b = m->vertices[v[1]];
+        vec3 target = k % 2 ? a : vec3_lerp(a, b, (double)(k % 7 + 1) / 8);
+        vec3 o = vec3_add(c, vec3_scale(random_unit(), radius));
+        rays[k] = (ray){o, vec3_normalize(vec3_sub(target, o))};
+    }
+    return n;
+}
+
+/* Rays that start exactly on the split planes of m's tree, inside the
+ * mesh's box, in random directions. */
+static int plane_rays(const mesh *m, ray *rays, int n)
+{
+    vec3 e = vec3_sub(m->bounds.hi, m->bounds.lo);
+    int made = 0;
+    for (int k = 0; made < n && m->tree.node_count > 0; k++) {
+        const kdtree_node *node = &m->tree.nodes[k % m->tree.node_count];
+        int axis = (int)(node->bits & 3);
+        if (axis == 3)
+            continue;
+        vec3 o = {m->bounds.lo.x + e.x * uniform01(), m->bounds.lo.y + e.y * uniform01(),
+                  m->bounds.lo.z + e.z * uniform01()};
+        vec3_set_axis(&o, axis, node->split);
+        rays[made++] = (ray){o, random_unit()};
+    }
+    return made;
+}
+
+/* Rays that graze triangles: aimed at a point inside one, along its plane
+ * but for a tilt of 1e-4 to 1e-12. */
+static int grazing_rays(const mesh *m, ray *rays, int n)
+{
+    for (int k = 0; k < n; k++) {
+        const int *v = m->triangles[(int)(uniform01() * m->triangle_count)].v;
+        vec3 a = m->vertices[v[0]], b = m->vertices[v[1]], c = m->vertices[v[2]];
+        vec3 p = vec3_add(vec3_scale(a, 0.4), vec3_add(vec3_scale(b, 0.35), vec3_scale(c, 0.25)));
+        vec3 along = vec3_sub(b, a), normal = vec3_cross(vec3_sub(b, a), vec3_sub(c, a));
+        if (vec3_length(along) == 0 || vec3_length(normal) == 0) {
+            rays[k] = (ray){vec3_add(p, (vec3){0, 0, 1}), {0, 0, -1}};
+            continue;
+        }
+        double tilt = pow(10, -4 - 8 * uniform01());
+        vec3 d = vec3_normalize(vec3_add(vec3_normalize(along),
+                                         vec3_scale(vec3_normalize(normal), tilt)));
+        rays[k] = (ray){vec3_sub(p, vec3_scale(d, 2 * vec3_length(along))), d};
+    }
+    return n;
+}
+
+/* All the kinds of rays above, count of each. */
+static int adversarial_rays(const mesh *m, ray *rays, int count)
+{
+    int n = random_rays(m, rays, count);
+    n += axis_rays(m, rays + n, count);
+    n += edge_rays(m, rays + n, count);
+    n += plane_rays(m, rays + n, count);
+    n += grazing_rays(m, rays + n, count);
+    return n;
+}
+
+/* Builds m by each method and checks both walks against brute force. */
+static void expect_agreement(mesh *m, int count, const char *what)
+{
+    static const kdtree_method methods[3] = {KDTREE_SAH, KDTREE_SAH_SORTING, KDTREE_MEDIAN};
+    ray *rays = malloc(5 * (size_t)count * sizeof *rays);
+    for (int k = 0; k < 3; k++) {
+        build(m, methods[k]);
+        ck_assert_msg(m->tree.node_count > 0, "%s: no tree", what);
+        seed(0x5EED0000u + (uint64_t)k);
+        int n = adversarial_rays(m, rays, count);
+        for (int walk = 0; walk < 2; walk++)
+            ck_assert_msg(disagreements(m, rays, n, (walk_kind)walk) == 0,
+                          "%s, build %d, walk %d: %d of %d rays differ from brute force", what,
+                          k, walk, disagreements(m, rays, n, (walk_kind)walk), n);
+    }
+    free(rays);
+}
+
+/* A mesh from arrays of points and triangles (copied). */
+static mesh make_mesh(const vec3 *points, int n_points, const int (*tris)[3], int n_tris)
+{
+    mesh m = {0};
+    m.vertices = malloc(((size_t)n_points + 1) * sizeof *m.vertices);
+    m.triangles = malloc(((size_t)n_tris + 1) * sizeof *m.triangles);
+    memcpy(m.vertices, points, (size_t)n_points * sizeof *points);
+    for (int k = 0; k < n_tris; k++)
+        m.triangles[k] = (mesh_triangle){{tris[k][0], tris[k][1], tris[k][2]}};
+    m.vertex_count = m.vertex_capacity = n_points;
+    m.triangle_count = m.triangle_capacity = n_tris;
+    mesh_compute_bounds(&m);
+    return m;
+}
+
+/* A grid of 2 n^2 triangles in the plane z = 0, over [-1, 1]^2: every
+ * coordinate a float, every triangle in one plane. */
+static mesh plane_mesh(int n)
+{
+    vec3 *p = malloc((size_t)(n + 1) * (n + 1) * sizeof *p);
+    int (*t)[3] = malloc(2 * (size_t)n * n * sizeof *t);
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++)
+            p[j * (n + 1) + i] = (vec3){-1 + 2.0 * i / n, -1 + 2.0 * j / n, 0};
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            int a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+            int *t0 = t[2 * (j * n + i)], *t1 = t[2 * (j * n + i) + 1];
+            t0[0] = a, t0[1] = b, t0[2] = d, t1[0] = a, t1[1] = d, t1[2] = c;
+        }
+    mesh m = make_mesh(p, (n + 1) * (n + 1), (const int(*)[3])t, 2 * n * n);
+    free(p), free(t);
+    return m;
+}
+
+/* ------------------------------------------------------------ agreement */
+
+START_TEST(test_tree_agrees_with_brute_force_on_the_teapot)
+{
+    mesh m = load("meshes/teapot-8.obj");
+    expect_agreement(&m, 600, "teapot");
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_tree_agrees_with_brute_force_on_the_bunny)
+{
+    mesh m = load("meshes/bunny.obj");
+    expect_agreement(&m, 40, "bunny"); /* brute force costs 1 ms a ray here */
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_tree_agrees_with_brute_force_on_a_plane)
+{
+    mesh m = plane_mesh(24);
+    expect_agreement(&m, 400, "plane");
+    mesh_free(&m);
+}
+END_TEST
+
+/* One huge triangle and 2,000 tiny ones scattered over it, on both sides. */
+START_TEST(test_tree_agrees_with_brute_force_on_huge_and_tiny_triangles)
+{
+    enum { TINY = 2000 };
+    vec3 *p = malloc((3 + 3 * TINY) * sizeof *p);
+    int (*t)[3] = malloc((1 + TINY) * sizeof *t);
+    p[0] = (vec3){-1e4, -1e4, 0}, p[1] = (vec3){1e4, -1e4, 1}, p[2] = (vec3){0, 1e4, -1};
+    t[0][0] = 0, t[0][1] = 1, t[0][2] = 2;
+    seed(42);
+    for (int k = 0; k < TINY; k++) {
+        vec3 c = {200 * uniform01() - 100, 200 * uniform01() - 100, 4 * uniform01() - 2};
+        for (int i = 0; i < 3; i++)
+            p[3 + 3 * k + i] = vec3_add(c, vec3_scale(random_unit(), 1e-3));
+        t[1 + k][0] = 3 + 3 * k, t[1 + k][1] = 4 + 3 * k, t[1 + k][2] = 5 + 3 * k;
+    }
+    mesh m = make_mesh(p, 3 + 3 * TINY, (const int(*)[3])t, 1 + TINY);
+    free(p), free(t);
+    expect_agreement(&m, 400, "huge and tiny");
+    /* and rays aimed at the tiny ones, which are the hard part */
+    ray rays[400];
+    for (int k = 0; k < 400; k++) {
+        vec3 target = m.vertices[3 + (k * 7) % (3 * TINY)];
+        vec3 o = vec3_add(target, vec3_scale(random_unit(), 50));
+        rays[k] = (ray){o, vec3_normalize(vec3_sub(target, o))};
+    }
+    ck_assert_int_eq(disagreements(&m, rays, 400, WALK_ITERATIVE), 0);
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_sweep_and_sorting_builds_make_the_same_tree)
+{
+    mesh a = load("meshes/teapot-8.obj"), b = load("meshes/teapot-8.obj");
+    build(&a, KDTREE_SAH);
+    build(&b, KDTREE_SAH_SORTING);
+    ck_assert_int_eq(a.tree.node_count, b.tree.node_count);
+    ck_assert_int_eq(a.tree.item_count, b.tree.item_count);
+    for (int k = 0; k < a.tree.node_count; k++) {
+        const kdtree_node *x = &a.tree.nodes[k], *y = &b.tree.nodes[k];
+        ck_assert_uint_eq(x->bits, y->bits);
+        if ((x->bits & 3) != 3)
+            ck_assert_msg(x->split == y->split, "node %d splits at %a and %a", k, x->split,
+                          y->split);
+        else
+            ck_assert_uint_eq(x->first, y->first);
+    }
+    ck_assert(memcmp(a.tree.items, b.tree.items, (size_t)a.tree.item_count * sizeof(int)) == 0);
+    mesh_free(&a), mesh_free(&b);
+}
+END_TEST
+
+START_TEST(test_trees_over_zero_one_and_two_triangles)
+{
+    const vec3 p[6] = {{0, 0, 5}, {1, 0, 5}, {0, 1, 5}, {3, 0, 6}, {4, 0, 6}, {3, 1, 6}};
+    const int t[2][3] = {{0, 1, 2}, {3, 4, 5}};
+    for (int n = 0; n <= 2; n++) {
+        mesh m = make_mesh(p, 6, t, n);
+        build(&m, KDTREE_SAH);
+        ck_assert_int_eq(m.tree.node_count > 0, n > 0); /* nothing to hold: no tree */
+        ray rays[200];
+        seed(7);
+        for (int k = 0; k < 200; k++) {
+            vec3 aim = {-1 + 6 * uniform01(), -1 + 3 * uniform01(), 5.5};
+            rays[k] = (ray){{1.5, 0.5, 0}, vec3_normalize(vec3_sub(aim, (vec3){1.5, 0.5, 0}))};
+        }
+        ck_assert_int_eq(disagreements(&m, rays, 200, WALK_ITERATIVE), 0);
+        if (n == 2) { /* two triangles apart: a leaf each, the walk tests one */
+            kdtree_params p = kdtree_default_params();
+            p.min_items = 1, p.traversal_cost = 1; /* splitting is cheap */
+            ck_assert(mesh_build_tree(&m, &p));
+            ck_assert_int_eq(m.tree.item_count, 2);
+            mesh_ray mr = mesh_ray_of((ray){{0.25, 0.25, 0}, {0, 0, 1}});
+            render_stats stats = {0};
+            triangle_hit th;
+            ck_assert_int_eq(mesh_nearest(&m, &mr, 0, INFINITY, &th, &stats), 0);
+            ck_assert_int_eq(stats.triangle_tests, 1);
+        }
+        mesh_free(&m);
+    }
+}
+END_TEST
+
+/* ------------------------------------------------------------ where naive walks fail */
+
+/* The naive habits the chapter warns against, one flag each. */
+typedef struct {
+    bool origin_side;   /* the near side is the origin's: o < split */
+    bool nan_is_a_miss; /* t_split = NaN (0 * inf): the plane is not crossed */
+    bool strict_cells;  /* a cell whose interval is one point is empty, and
+                           the root is clipped without rounding's margin */
+    bool leaf_interval; /* a leaf tests its triangles on its own open interval */
+} naive;
+
+/* The textbook walk (pbrt's, with the flags' habits), with no thickness. */
+static double naive_nearest(const mesh *m, ray r, naive nv)
+{
+    mesh_ray mr = mesh_ray_of(r);
+    double t0 = 0, t1 = INFINITY, best = INFINITY;
+    const double o[3] = {r.origin.x, r.origin.y, r.origin.z};
+    const double inv[3] = {mr.inv_dir.x, mr.inv_dir.y, mr.inv_dir.z};
+    for (int k = 0; k < 3; k++) { /* the slab test */
+        double a = (vec3_axis(m->bounds.lo, k) - o[k]) * inv[k];
+        double b = (vec3_axis(m->bounds.hi, k) - o[k]) * inv[k];
+        double lo = fmin(a, b), hi = fmax(a, b) * (nv.strict_cells ? 1 : 1 + 1e-15);
+        t0 = lo > t0 ? lo : t0, t1 = hi < t1 ? hi : t1;
+    }
+    struct {
+        int node;
+        double t0, t1;
+    } stack[KDTREE_MAX_DEPTH];
+    int top = 0, node = 0;
+    for (;;) {
+        bool skip = nv.strict_cells ? !(t0 < t1) : !(t0 <= t1);
+        const kdtree_node *n = &m->tree.nodes[node];
+        int axis = (int)(n->bits & 3);
+        if (!skip && axis == 3) {
+            triangle_hit th;
+            int first = (int)n->first, count = (int)(n->bits >> 2);
+            double lo = nv.leaf_interval ? t0 : 0, hi = nv.leaf_interval ? fmin(t1, best) : best;
+            if (triangle_nearest_corners(&mr.shear, m->leaf_corners + first, count, lo, hi, &th) >= 0)
+                best = th.t;
+        } else if (!skip) {
+            double t_split = (n->split - o[axis]) * inv[axis];
+            bool below_first = o[axis] < n->split ||
+                               (!nv.origin_side && o[axis] == n->split && inv[axis] < 0);
+            int near = below_first ? node + 1 : (int)(n->bits >> 2);
+            int far = below_first ? (int)(n->bits >> 2) : node + 1;
+            if (t_split != t_split && !nv.nan_is_a_miss) {
+                stack[top].node = far, stack[top].t0 = t0, stack[top++].t1 = t1;
+                node = near;
+            } else if (t_split > t1 || t_split <= 0 || t_split != t_split) {
+                node = near;
+            } else if (t_split < t0) {
+                node = far;
+            } else {
+                stack[top].node = far, stack[top].t0 = t_split, stack[top++].t1 = t1;
+                node = near, t1 = t_split;
+            }
+            continue;
+        }
+        if (top == 0 || stack[top - 1].t0 > best)
+            return best;
+        top--, node = stack[top].node, t0 = stack[top].t0, t1 = stack[top].t1;
+    }
+}
+
+/* By hand: a tree whose root cuts x at 0, triangle 0 of m below, triangle
+ * 1 above. */
+static void hand_tree(mesh *m)
+{
+    m->tree.nodes = malloc(3 * sizeof *m->tree.nodes);
+    m->tree.nodes[0] = (kdtree_node){.split = 0, .bits = 2u << 2 | 0};
+    m->tree.nodes[1] = (kdtree_node){.first = 0, .bits = 1u << 2 | 3};
+    m->tree.nodes[2] = (kdtree_node){.first = 1, .bits = 1u << 2 | 3};
+    m->tree.node_count = m->tree.node_capacity = 3;
+    m->tree.items = malloc(2 * sizeof *m->tree.items);
+    m->tree.items[0] = 0, m->tree.items[1] = 1;
+    m->tree.item_count = m->tree.item_capacity = 2;
+    m->tree.bounds = m->bounds;
+    m->tree.thickness = KDTREE_THICKNESS * 8; /* the largest coordinate is 6 */
+    m->leaf_corners = malloc(2 * sizeof *m->leaf_corners);
+    for (int k = 0; k < 2; k++)
+        for (int c = 0; c < 3; c++)
+            m->leaf_corners[k].p[c] = m->vertices[m->triangles[k].v[c]];
+}
+
+/* Two triangles in the plane x + z = 5 sharing the edge from (0, -1, 5)
+ * to (0, 1, 5), which lies in the root's plane x = 0: triangle 0 on the
+ * side x <= 0, triangle 1 on x >= 0. */
+static mesh hinge(void)
+{
+    const vec3 p[4] = {{0, -1, 5}, {0, 1, 5}, {-1, 0, 6}, {1, 0, 4}};
+    const int t[2][3] = {{0, 1, 2}, {1, 0, 3}};
+    mesh m = make_mesh(p, 4, t, 2);
+    hand_tree(&m);
+    return m;
+}
+
+START_TEST(test_a_ray_from_a_split_plane_goes_where_it_points)
+{
+    mesh m = hinge();
+    /* from the plane x = 0, going to -x: into the cell below */
+    ray r = {{0, 0.25, 5.5}, vec3_normalize((vec3){-0.5, 0, 0.1})};
+    mesh b = brute(&m);
+    double t = nearest_t(&b, r, WALK_ITERATIVE, NULL);
+    ck_assert(isfinite(t));
+    ck_assert(naive_nearest(&m, r, (naive){.origin_side = true}) != t); /* naive: misses */
+    ck_assert(naive_nearest(&m, r, (naive){0}) == t);
+    ck_assert(nearest_t(&m, r, WALK_ITERATIVE, NULL) == t);
+    ck_assert(nearest_t(&m, r, WALK_RECURSIVE, NULL) == t);
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_a_ray_in_a_split_plane_sees_both_sides)
+{
+    mesh m = hinge();
+    /* in the plane x = 0 (d.x = 0, so 1/d.x = inf and t_split = 0 * inf),
+     * aimed at the shared edge: both triangles touch it; the ray starts
+     * on the plane, so the naive near side is the one above */
+    ray r = {{0, 0.25, 9}, {0, 0, -1}};
+    ck_assert(isinf(mesh_ray_of(r).inv_dir.x));
+    mesh b = brute(&m);
+    double t = nearest_t(&b, r, WALK_ITERATIVE, NULL);
+    ck_assert(t == 4); /* at (0, 0.25, 5), on the shared edge */
+    /* with only triangle 0 (below) in the tree: the naive walk goes above
+     * and misses */
+    mesh below = hinge();
+    below.leaf_corners[1] = (triangle_corners){{{9, 9, 9}, {9, 9, 9}, {9, 9, 9}}};
+    ck_assert(isinf(naive_nearest(&below, r, (naive){.nan_is_a_miss = true})));
+    ck_assert(nearest_t(&below, r, WALK_ITERATIVE, NULL) == t);
+    ck_assert(nearest_t(&below, r, WALK_RECURSIVE, NULL) == t);
+    mesh_free(&m), mesh_free(&below);
+}
+END_TEST
+
+START_TEST(test_a_hit_on_a_split_plane_is_not_lost_between_two_leaves)
+{
+    mesh m = hinge();
+    /* along +x through (0, 0.25, 5), a point of the shared edge: the hit is
+     * at t = 1 exactly, and the plane is crossed at t = 1 exactly */
+    ray r = {{-1, 0.25, 5}, {1, 0, 0}};
+    mesh b = brute(&m);
+    double t = nearest_t(&b, r, WALK_ITERATIVE, NULL);
+    ck_assert(t == 1);
+    ck_assert(isinf(naive_nearest(&m, r, (naive){.leaf_interval = true}))); /* leaks */
+    ck_assert(naive_nearest(&m, r, (naive){0}) == 1);
+    ck_assert(nearest_t(&m, r, WALK_ITERATIVE, NULL) == 1);
+    ck_assert(nearest_t(&m, r, WALK_RECURSIVE, NULL) == 1);
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_a_flat_cell_is_not_skipped)
+{
+    mesh m = plane_mesh(8); /* its root cell is flat: z from 0 to 0 */
+    build(&m, KDTREE_SAH);
+    ck_assert(m.tree.bounds.lo.z == 0 && m.tree.bounds.hi.z == 0);
+    int naive_misses = 0;
+    seed(11);
+    for (int k = 0; k < 200; k++) {
+        vec3 target = {1.8 * uniform01() - 0.9, 1.8 * uniform01() - 0.9, 0};
+        vec3 o = {target.x, target.y, k % 2 ? 3 : -3}; /* straight down or up */
+        ray r = {o, {0, 0, k % 2 ? -1 : 1}};
+        mesh b = brute(&m);
+        double t = nearest_t(&b, r, WALK_ITERATIVE, NULL);
+        ck_assert_msg(fabs(t - 3) <= 3 * 4 * DBL_EPSILON, /* a few roundings */
+                      "t = %a", t);
+        naive_misses += isinf(naive_nearest(&m, r, (naive){.strict_cells = true}));
+        ck_assert(nearest_t(&m, r, WALK_ITERATIVE, NULL) == t);
+        ck_assert(nearest_t(&m, r, WALK_RECURSIVE, NULL) == t);
+    }
+    ck_assert_int_eq(naive_misses, 200); /* the naive walk sees none */
+    mesh_free(&m);
+}
+END_TEST
+
+/* ------------------------------------------------------------ degenerate input */
+
+/* Depth, references and nodes stay within their limits. */
+static void expect_bounded(const mesh *m, const char *what)
+{
+    long long n = m->triangle_count;
+    int max_depth = (int)(8 + 1.3 * log2((double)n));
+    ck_assert_msg(m->tree.depth <= max_depth, "%s: depth %d", what, m->tree.depth);
+    ck_assert_msg(m->tree.item_count <= KDTREE_REFERENCES_PER_ITEM * n + 64,
+                  "%s: %d references for %lld triangles", what, m->tree.item_count, n);
+    ck_assert_msg(m->tree.node_count <= 2 * (KDTREE_REFERENCES_PER_ITEM * n + 64) + 1,
+                  "%s: %d nodes", what, m->tree.node_count);
+}
+
+START_TEST(test_degenerate_input_keeps_depth_and_memory_bounded)
+{
+    enum { N = 3000 };
+    vec3 *p = malloc((N + 2) * sizeof *p);
+    int (*t)[3] = malloc(N * sizeof *t);
+    for (int shape = 0; shape < 3; shape++) {
+        const char *what = shape == 0 ? "identical" : shape == 1 ? "one plane" : "one vertex";
+        seed(99);
+        for (int k = 0; k < N; k++) {
+            double a = 2 * M_PI * k / N, b = 2 * M_PI * (k + 1) / N;
+            if (shape == 0) /* all the same triangle */
+                p[k] = k < 3 ? (vec3){k == 1, k == 2, 5} : (vec3){0, 0, 5},
+                t[k][0] = 0, t[k][1] = 1, t[k][2] = 2;
+            else if (shape == 1) /* overlapping triangles in z = 5 */
+                p[k] = (vec3){2 * uniform01() - 1, 2 * uniform01() - 1, 5},
+                t[k][0] = k, t[k][1] = (k * 7 + 1) % N, t[k][2] = (k * 13 + 2) % N;
+            else /* a fan: every triangle has the vertex 0 */
+                p[0] = (vec3){0, 0, 5}, p[1 + k] = (vec3){cos(a), sin(a), 5 + 0.1 * sin(7 * b)},
+                t[k][0] = 0, t[k][1] = 1 + k, t[k][2] = 1 + (k + 1) % N;
+        }
+        mesh m = make_mesh(p, N + 1, (const int(*)[3])t, N);
+        for (int method = 0; method < 3; method++) {
+            build(&m, (kdtree_method)method);
+            expect_bounded(&m, what);
+            ray rays[300];
+            seed(5);
+            int n = random_rays(&m, rays, 100) + axis_rays(&m, rays + 100, 100);
+            n += edge_rays(&m, rays + n, 100);
+            ck_assert_msg(disagreements(&m, rays, n, WALK_ITERATIVE) == 0, "%s", what);
+        }
+        mesh_free(&m);
+    }
+    free(p), free(t);
+}
+END_TEST
+
+START_TEST(test_a_ray_through_a_shared_vertex_tests_every_triangle)
+{
+    /* Correction (sheet 6.6): O(log n) is not a bound. Every one of the N
+     * triangles of a fan contains its centre, so a ray through the centre
+     * must test them all, through any tree. */
+    enum { N = 512 };
+    vec3 p[N + 1];
+    int t[N][3];
+    p[0] = (vec3){0, 0, 5};
+    for (int k = 0; k < N; k++) {
+        double a = 2 * M_PI * k / N;
+        p[1 + k] = (vec3){cos(a), sin(a), 5};
+        t[k][0] = 0, t[k][1] = 1 + k, t[k][2] = 1 + (k + 1) % N;
+    }
+    mesh m = make_mesh(p, N + 1, (const int(*)[3])t, N);
+    build(&m, KDTREE_SAH);
+    mesh_ray mr = mesh_ray_of((ray){{0, 0, 0}, {0, 0, 1}});
+    render_stats stats = {0};
+    triangle_hit th;
+    ck_assert(mesh_nearest(&m, &mr, 0, INFINITY, &th, &stats) >= 0);
+    ck_assert_int_ge(stats.triangle_tests, N);
+    mesh_free(&m);
+}
+END_TEST
+
+/* ------------------------------------------------------------ any hit, objects */
+
+START_TEST(test_any_hit_agrees_with_the_closest_hit)
+{
+    mesh meshes[2] = {load("meshes/teapot-8.obj"), plane_mesh(16)};
+    for (int k = 0; k < 2; k++) {
+        build(&meshes[k], KDTREE_SAH);
+        ray rays[2500];
+        seed(123);
+        int n = adversarial_rays(&meshes[k], rays, 500);
+        for (int i = 0; i < n; i++) {
+            mesh_ray mr = mesh_ray_of(rays[i]);
+            render_stats stats = {0};
+            triangle_hit th;
+            double t_max = 10 * uniform01(); /* a shadow ray's segment */
+            bool closest = mesh_nearest(&meshes[k], &mr, 1e-9, t_max, &th, &stats) >= 0;
+            ck_assert_int_eq(mesh_occluded(&meshes[k], &mr, 1e-9, t_max, &stats), closest);
+            mesh b = brute(&meshes[k]);
+            ck_assert_int_eq(mesh_occluded(&b, &mr, 1e-9, t_max, &stats), closest);
+        }
+        mesh_free(&meshes[k]);
+    }
+}
+END_TEST
+
+START_TEST(test_the_objects_tree_agrees_with_the_list)
+{
+    scene with, without;
+    scene_init(&with);
+    seed(2024);
+    for (int k = 0; k < 300; k++) {
+        object o = {.kind = k % 3 ? SHAPE_SPHERE : SHAPE_TRIANGLE, .color = {1, 1, 1}};
+        vec3 c = {8 * uniform01() - 4, 8 * uniform01() - 4, 4 + 8 * uniform01()};
+        if (o.kind == SHAPE_SPHERE)
+            o.sphere = (sphere){c, 0.05 + 0.4 * uniform01()};
+        else
+            for (int i = 0; i < 3; i++)
+                o.corners[i] = vec3_add(c, vec3_scale(random_unit(), 0.5));
+        ck_assert(scene_add_object(&with, o));
+    }
+    ck_assert(scene_build_trees(&with));
+    ck_assert(with.object_tree.node_count > 0);
+    without = with;
+    without.object_tree = (kdtree){0};
+    for (int k = 0; k < 5000; k++) {
+        ray r = {{0, 0, 0}, vec3_normalize((vec3){uniform01() - 0.5, uniform01() - 0.5, 1})};
+        hit a, b;
+        render_stats stats = {0};
+        bool ha = scene_intersect(&with, r, 0, INFINITY, &a, &stats);
+        bool hb = scene_intersect(&without, r, 0, INFINITY, &b, &stats);
+        ck_assert_int_eq(ha, hb);
+        ck_assert(!ha || a.t == b.t);
+    }
+    scene_free(&with);
+}
+END_TEST
+
+/* ------------------------------------------------------------ command line */
+
+/* Writes a scene with the teapot, and a link to meshes/ beside it. */
+static const char *teapot_scene(void)
+{
+    char target[4096];
+    ck_assert_ptr_nonnull(getcwd(target, sizeof target - 16));
+    strcat(target, "/meshes");
+    ck_assert_int_eq(symlink(target, tmp_path("meshes")), 0);
+    return write_file("teapot.scene",
+                      "image 96 72\n"
+                      "sphere center 0 -1001 6 radius 1000\n"
+                      "mesh file meshes/teapot-8.obj scale 0.5 offset 0 -1 6 smooth\n"
+                      "sphere center 1.5 0 7 radius 0.5\n");
+}
+
+static char *read_all(const char *path, size_t *length)
+{
+    FILE *f = fopen(path, "rb");
+    ck_assert_ptr_nonnull(f);
+    char *data = malloc(1 << 20);
+    *length = fread(data, 1, 1 << 20, f);
+    fclose(f);
+    return data;
+}
+
+START_TEST(test_thread_count_does_not_change_the_image)
+{
+    char scene_path[192], out[3][192], errors[2048];
+    snprintf(scene_path, sizeof scene_path, "%s", teapot_scene());
+    const char *threads[3] = {"1", "2", "3"};
+    for (int k = 0; k < 3; k++) {
+        snprintf(out[k], sizeof out[k], "%s/out%d.png", tmpdir, k);
+        const char *args[] = {scene_path, "--threads", threads[k], "-o", out[k], NULL};
+        ck_assert_msg(run_bin(args, errors, sizeof errors) == 0, "%s", errors);
+    }
+    size_t n0, n;
+    char *first = read_all(out[0], &n0);
+    for (int k = 1; k < 3; k++) {
+        char *other = read_all(out[k], &n);
+        ck_assert_msg(n == n0 && memcmp(first, other, n) == 0, "--threads %s differs",
+                      threads[k]);
+        free(other);
+    }
+    free(first);
+}
+END_TEST
+
+/* The counts --stats prints (no times, no rates) for --threads n. */
+static void stats_counts(const char *scene_path, const char *n, char *counts, size_t size)
+{
+    char errors[4096];
+    const char *args[] = {scene_path, "--threads", n, "--stats", "-o", tmp_path("s.png"), NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
+    counts[0] = '\0';
+    for (char *line = strtok(errors, "\n"); line; line = strtok(NULL, "\n"))
+        if (!strstr(line, "time") && !strstr(line, "per second") && !strstr(line, "built in"))
+            strncat(counts, line, size - strlen(counts) - 2), strcat(counts, "\n");
+}
+
+START_TEST(test_statistics_add_up_whatever_the_thread_count)
+{
+    char scene_path[192], one[2048], three[2048];
+    snprintf(scene_path, sizeof scene_path, "%s", teapot_scene());
+    stats_counts(scene_path, "1", one, sizeof one);
+    stats_counts(scene_path, "3", three, sizeof three);
+    ck_assert_str_eq(one, three);
+    ck_assert_ptr_nonnull(strstr(one, "kd-tree nodes"));
+}
+END_TEST
+
+START_TEST(test_bad_thread_counts_are_usage_errors)
+{
+    const char *bad[] = {"0", "-1", "abc", "2x", "257", "", "1e3"};
+    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
+        char errors[1024];
+        const char *out = tmp_path("never.png");
+        const char *args[] = {"--threads", bad[k], "-o", out, NULL};
+        ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+        ck_assert_msg(strstr(errors, "--threads expects a whole number") != NULL, "%s", errors);
+        ck_assert(!file_exists(out));
+    }
+    char errors[1024];
+    const char *args[] = {"--threads", NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+    ck_assert_ptr_nonnull(strstr(errors, "needs a value"));
+}
+END_TEST
+
+START_TEST(test_stats_hint_an_over_fine_mesh)
+{
+    char link[4096];
+    ck_assert_ptr_nonnull(getcwd(link, sizeof link - 16));
+    strcat(link, "/meshes");
+    ck_assert_int_eq(symlink(link, tmp_path("meshes")), 0);
+    char scene_path[192], errors[4096];
+    snprintf(scene_path, sizeof scene_path, "%s",
+             write_file("bunny.scene", "mesh file meshes/bunny.obj scale 12 offset 0 -1.4 6\n"));
+    const char *sizes[2] = {"32x24", "320x240"};
+    for (int k = 0; k < 2; k++) {
+        const char *args[] = {scene_path, "--size", sizes[k], "--stats", "-o", tmp_path("b.png"),
+                              NULL};
+        ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
+        /* at 32 x 24 the box covers at most 768 pixels: 90 triangles each */
+        ck_assert_msg((strstr(errors, "hint: object 1") != NULL) == (k == 0), "%s: %s",
+                      sizes[k], errors);
+    }
+}
+END_TEST
+
+/* ------------------------------------------------------------ the kdtree statement */
+
+START_TEST(test_kdtree_statement_sets_the_parameters)
+{
+    scene s;
+    scene_error err;
+    ck_assert(parse_text(&s,
+                         "kdtree build median traversal_cost 3 intersection_cost 7 "
+                         "empty_bonus 0.5 max_depth 12 heatmap 40\n",
+                         &err));
+    ck_assert_int_eq(s.tree_params.method, KDTREE_MEDIAN);
+    ck_assert(s.tree_params.traversal_cost == 3 && s.tree_params.intersection_cost == 7);
+    ck_assert(s.tree_params.empty_bonus == 0.5 && s.tree_params.max_depth == 12);
+    ck_assert_int_eq(s.heatmap, 40);
+    scene_free(&s);
+    ck_assert(parse_text(&s, "kdtree build none\nkdtree build sorting\n", &err));
+    ck_assert_int_eq(s.tree_params.method, KDTREE_SAH_SORTING);
+    scene_free(&s);
+}
+END_TEST
+
+START_TEST(test_kdtree_statement_rejects_bad_settings)
+{
+    expect_parse_error("kdtree build fast\n", 1, 14, "build method");
+    expect_parse_error("kdtree build\n", 1, 13, "build method");
+    expect_parse_error("kdtree traversal_cost 0\n", 1, 23, "traversal cost");
+    expect_parse_error("kdtree intersection_cost -2\n", 1, 26, "intersection cost");
+    expect_parse_error("kdtree empty_bonus 1\n", 1, 20, "empty bonus");
+    expect_parse_error("kdtree empty_bonus nan\n", 1, 20, "finite");
+    expect_parse_error("kdtree max_depth 65\n", 1, 18, "maximum depth");
+    expect_parse_error("kdtree max_depth 2.5\n", 1, 18, "whole number");
+    expect_parse_error("kdtree heatmap 0\n", 1, 16, "number of nodes");
+    expect_parse_error("kdtree depth 3\n", 1, 8, "kd-tree setting");
+    expect_parse_error("kdtree\n", 1, 7, "kd-tree setting");
+}
+END_TEST
+
+Suite *ch08_kdtree_suite(void)
+{
+    Suite *s = suite_create("ch08 kdtree");
+    TCase *agree = tcase_create("agreement with brute force");
+    tcase_set_timeout(agree, 120);
+    tcase_add_test(agree, test_trees_over_zero_one_and_two_triangles);
+    tcase_add_test(agree, test_sweep_and_sorting_builds_make_the_same_tree);
+    tcase_add_test(agree, test_tree_agrees_with_brute_force_on_the_teapot);
+    tcase_add_test(agree, test_tree_agrees_with_brute_force_on_the_bunny);
+    tcase_add_test(agree, test_tree_agrees_with_brute_force_on_a_plane);
+    tcase_add_test(agree, test_tree_agrees_with_brute_force_on_huge_and_tiny_triangles);
+    tcase_add_test(agree, test_any_hit_agrees_with_the_closest_hit);
+    tcase_add_test(agree, test_the_objects_tree_agrees_with_the_list);
+    suite_add_tcase(s, agree);
+    TCase *edges = tcase_create("edge cases");
+    tcase_set_timeout(edges, 120);
+    tcase_add_test(edges, test_a_ray_from_a_split_plane_goes_where_it_points);
+    tcase_add_test(edges, test_a_ray_in_a_split_plane_sees_both_sides);
+    tcase_add_test(edges, test_a_hit_on_a_split_plane_is_not_lost_between_two_leaves);
+    tcase_add_test(edges, test_a_flat_cell_is_not_skipped);
+    tcase_add_test(edges, test_degenerate_input_keeps_depth_and_memory_bounded);
+    tcase_add_test(edges, test_a_ray_through_a_shared_vertex_tests_every_triangle);
+    suite_add_tcase(s, edges);
+    TCase *bad = tcase_create("bad input and the command line");
+    tcase_add_checked_fixture(bad, make_tmpdir, remove_tmpdir);
+    tcase_set_timeout(bad, 120);
+    tcase_add_test(bad, test_thread_count_does_not_change_the_image);
+    tcase_add_test(bad, test_statistics_add_up_whatever_the_thread_count);
+    tcase_add_test(bad, test_bad_thread_counts_are_usage_errors);
+    tcase_add_test(bad, test_stats_hint_an_over_fine_mesh);
+    tcase_add_test(bad, test_kdtree_statement_sets_the_parameters);
+    tcase_add_test(bad, test_kdtree_statement_rejects_bad_settings);
+    suite_add_tcase(s, bad);
+    return s;
+}
