@@ -669,6 +669,48 @@ START_TEST(test_the_objects_tree_agrees_with_the_list)
 }
 END_TEST
 
+START_TEST(test_the_objects_tree_agrees_with_the_list_for_placed_objects)
+{
+    /* Ellipsoids and triangles placed by rotations, non-uniform scales and
+     * moves: their world boxes go into the tree. Closest hits and shadow
+     * rays must be what the plain list of objects gives. */
+    static char text[64 * 160];
+    size_t used = 0;
+    seed(77);
+    for (int k = 0; k < 60; k++) {
+        double x = 8 * uniform01() - 4, y = 8 * uniform01() - 4, z = 4 + 8 * uniform01();
+        const char *shape = k % 2 ? "sphere radius 0.3" : "triangle a -0.4 0 0 b 0.4 0 0 c 0 0.5 0";
+        used += (size_t)snprintf(text + used, sizeof text - used,
+                                 "%s transform scale %.3f 1 %.3f rotate y %.1f rotate x %.1f "
+                                 "translate %.3f %.3f %.3f\n",
+                                 shape, 0.5 + uniform01(), 0.5 + 2 * uniform01(),
+                                 360 * uniform01(), 360 * uniform01(), x, y, z);
+    }
+    scene with, without;
+    scene_error err;
+    scene_init(&with);
+    ck_assert_msg(scene_parse(&with, text, used, "placed.scene", &err), "%d:%d %s", err.line,
+                  err.col, err.message);
+    ck_assert(scene_build_trees(&with));
+    ck_assert(with.object_tree.node_count > 0);
+    without = with;
+    without.object_tree = (kdtree){0};
+    for (int k = 0; k < 5000; k++) {
+        ray r = {{0, 0, 0}, vec3_normalize((vec3){uniform01() - 0.5, uniform01() - 0.5, 1})};
+        hit a, b;
+        render_stats stats = {0};
+        bool ha = scene_intersect(&with, r, 0, INFINITY, &a, &stats);
+        bool hb = scene_intersect(&without, r, 0, INFINITY, &b, &stats);
+        ck_assert_int_eq(ha, hb);
+        ck_assert(!ha || a.t == b.t);
+        double t_max = 12 * uniform01();
+        ck_assert_int_eq(scene_occluded(&with, r, 0, t_max, &stats),
+                         scene_occluded(&without, r, 0, t_max, &stats));
+    }
+    scene_free(&with);
+}
+END_TEST
+
 /* ------------------------------------------------------------ command line */
 
 /* Writes a scene with the teapot, and a link to meshes/ beside it. */
@@ -829,6 +871,7 @@ Suite *ch08_kdtree_suite(void)
     tcase_add_test(agree, test_tree_agrees_with_brute_force_on_huge_and_tiny_triangles);
     tcase_add_test(agree, test_any_hit_agrees_with_the_closest_hit);
     tcase_add_test(agree, test_the_objects_tree_agrees_with_the_list);
+    tcase_add_test(agree, test_the_objects_tree_agrees_with_the_list_for_placed_objects);
     suite_add_tcase(s, agree);
     TCase *edges = tcase_create("edge cases");
     tcase_set_timeout(edges, 120);

@@ -243,6 +243,22 @@ static void place_hit_point(const transform *t, vec3 p, vec3 e, hit *h)
 }
 /* <<search helpers>> += ch08 */
 
+/* The world box around b's eight corners moved by t, widened by the
+ * rounding of the move. */
+static box box_to_world(const transform *t, box b)
+{
+    vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = vec3_scale(lo, -1);
+    for (int k = 0; k < 8; k++) {
+        vec3 p = mat4_mul_point(t->m, (vec3){k & 1 ? b.hi.x : b.lo.x,
+                                             k & 2 ? b.hi.y : b.lo.y,
+                                             k & 4 ? b.hi.z : b.lo.z});
+        lo = vec3_min(lo, p), hi = vec3_max(hi, p);
+    }
+    vec3 reach = vec3_max(vec3_abs(lo), vec3_abs(hi));
+    vec3 pad = vec3_scale(reach, gamma_bound(3));
+    return (box){vec3_sub(lo, pad), vec3_add(hi, pad)};
+}
+
 static void object_intersect(const scene *s, const object *o,
                              scene_search *q);
 
@@ -310,6 +326,13 @@ static void object_intersect(const scene *s, const object *o, scene_search *q)
     /* <<search an object in its own space>> += ch06 */
     if (q->any_hit && q->best.object != NULL)
         return; /* an occluder is found: no other object can change that */
+    /* <<search an object in its own space>> += ch08 */
+    if (q->any_hit && o->kind == SHAPE_MESH) {
+        if (mesh_occluded(&s->meshes[o->mesh], prepared_ray(q), q->t_min,
+                          q->best.t, q->stats))
+            q->best.object = o; /* any hit settles a shadow ray */
+        return;
+    }
     shape_intersect(s, o, q);
 }
 
@@ -576,6 +599,9 @@ static box object_bounds(const scene *s, const object *o)
         b = s->meshes[o->mesh].bounds;
         break;
     }
+    /* <<move the object's box into the world>> ch08 */
+    if (o->transform != 0)
+        b = box_to_world(scene_transform(s, o->transform), b);
     return b;
 }
 
@@ -640,6 +666,19 @@ scene_tree_summary scene_trees(const scene *s)
     return sum;
 }
 
+/* A world point in the camera's frame: the placed camera's rotation R and
+ * eye e give R^T (p - e); an unplaced camera's frame is the world's. */
+static vec3 point_to_camera(const camera_view *v, vec3 p)
+{
+    if (!v->is_placed)
+        return p;
+    const double(*m)[4] = v->to_world.m;
+    vec3 d = {p.x - m[0][3], p.y - m[1][3], p.z - m[2][3]};
+    return (vec3){m[0][0] * d.x + m[1][0] * d.y + m[2][0] * d.z,
+                  m[0][1] * d.x + m[1][1] * d.y + m[2][1] * d.z,
+                  m[0][2] * d.x + m[1][2] * d.y + m[2][2] * d.z};
+}
+
 /* Where p, in front of the eye, falls on the image: pixel coordinates. */
 static void pixel_of(const camera_view *v, vec3 p, double *u, double *w)
 {
@@ -653,8 +692,9 @@ double scene_object_pixels(const scene *s, const object *o)
     camera_view view = camera_view_of(&s->cam);
     double u0 = INFINITY, u1 = -INFINITY, w0 = INFINITY, w1 = -INFINITY;
     for (int k = 0; k < 8; k++) {
-        vec3 p = {k & 1 ? b.hi.x : b.lo.x, k & 2 ? b.hi.y : b.lo.y,
-                  k & 4 ? b.hi.z : b.lo.z};
+        vec3 p = point_to_camera(&view, (vec3){k & 1 ? b.hi.x : b.lo.x,
+                                                k & 2 ? b.hi.y : b.lo.y,
+                                                k & 4 ? b.hi.z : b.lo.z});
         double u, w;
         if (!(p.z > 0))
             return 0;
