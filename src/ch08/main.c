@@ -11,7 +11,7 @@
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
     /* <<default scene>> ch08 */
-    "# Chapter 08: twenty spheres on a floor, searched through a kd-tree.\n"
+    "# Chapter 8: twenty spheres on a floor, too few to pay for a tree.\n"
         "camera fov 45\n"
         "image 320 240\n"
         "background gradient 0.9 0.9 0.92  0.45 0.55 0.8\n"
