@@ -197,7 +197,7 @@ $$(O$(1))/failures/%.o: failures/%.c $$(T$(1))/.stamp | deps
 
 $(B)/failures/ch$(1)_%: $$(O$(1))/failures/ch$(1)_%.o $$(LIB$(1))
 	@mkdir -p $$(@D)
-	$$(CC) $$(ALL_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
+	$$(CC) $$(ALL_CFLAGS) $$(LTO_LINK) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
 
 -include $$(wildcard $$(O$(1))/*.d $$(O$(1))/tests/*.d $$(O$(1))/bench/*.d \
                      $$(O$(1))/failures/*.d)

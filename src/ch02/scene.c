@@ -113,6 +113,7 @@ bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
     search_objects(s, &q);
     if (q.best.object == NULL)
         return false;
+    stats->hits++;
     object_fill_hit(s, &q.best, r, h);
     return true;
 }

@@ -250,11 +250,30 @@ static double seconds_now(void)
     return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
 }
 
-static void print_stats(const render_stats *st, double load_s, double render_s,
-                        double write_s)
+/* The processor time this process has used, on every core, in seconds. */
+static double cpu_seconds_now(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
+    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
+}
+
+/* One moment on both clocks; the phases are the spans between moments. */
+typedef struct {
+    double wall, cpu;
+} moment;
+
+static moment moment_now(void)
+{
+    return (moment){seconds_now(), cpu_seconds_now()};
+}
+
+/* at[0..3]: the start, and the ends of loading, rendering and writing. */
+static void print_stats(const render_stats *st, const moment at[4])
 {
     fprintf(stderr, "primary rays       %lld\n", st->primary_rays);
     /* <<print statistics>> ch02 */
+    fprintf(stderr, "hits               %lld\n", st->hits);
     fprintf(stderr, "sphere tests       %lld\n", st->sphere_tests);
     /* <<print statistics>> += ch04 */
     fprintf(stderr, "triangle tests     %lld\n", st->triangle_tests);
@@ -263,9 +282,18 @@ static void print_stats(const render_stats *st, double load_s, double render_s,
     fprintf(stderr, "object-space rays  %lld\n", st->object_space_rays);
     fprintf(stderr, "triangles          %lld stored, %lld instanced\n",
             st->triangles_stored, st->triangles_instanced);
+    double render_s = at[2].wall - at[1].wall;
+    if (render_s > 0)
+        fprintf(stderr, "primary rays/s     %.3g\n",
+                st->primary_rays / render_s);
     fprintf(stderr,
             "time               scene %.1f ms, render %.1f ms, write %.1f ms\n",
-            1e3 * load_s, 1e3 * render_s, 1e3 * write_s);
+            1e3 * (at[1].wall - at[0].wall), 1e3 * render_s,
+            1e3 * (at[3].wall - at[2].wall));
+    fprintf(stderr,
+            "processor time     scene %.1f ms, render %.1f ms, write %.1f ms\n",
+            1e3 * (at[1].cpu - at[0].cpu), 1e3 * (at[2].cpu - at[1].cpu),
+            1e3 * (at[3].cpu - at[2].cpu));
 }
 
 /* <<rendering in bands>> ch01 */
@@ -304,7 +332,7 @@ int main(int argc, char **argv)
         return 0;
     }
     catch_stop_signals();
-    double start = seconds_now();
+    moment at[4] = {moment_now()};
     scene s;
     image img = {0};
     png_output out = {0};
@@ -326,16 +354,16 @@ int main(int argc, char **argv)
     /* <<count what the scene holds>> ch05 */
     scene_count_triangles(&s, &stats.triangles_stored,
                           &stats.triangles_instanced);
-    double loaded = seconds_now();
+    at[1] = moment_now();
     render_in_bands(&s, &img, &stats);
-    double rendered = seconds_now();
+    at[2] = moment_now();
     if (!png_output_finish(&out, &img, why, sizeof why)) {
         print_error(opt.output, 0, 0, why);
         goto done;
     }
+    at[3] = moment_now();
     if (opt.stats)
-        print_stats(&stats, loaded - start, rendered - loaded,
-                    seconds_now() - rendered);
+        print_stats(&stats, at);
     status = 0;
 done:
     close_output(&out);

@@ -154,7 +154,7 @@ static void shape_intersect(const scene *s, const object *o, scene_search *q)
         break;
     }
     case SHAPE_MESH: {
-        triangle_hit th;
+        triangle_hit th = {0}; /* filled whenever k >= 0 */
         int k = mesh_nearest(&s->meshes[o->mesh], prepared_ray(q), q->t_min,
                              q->best.t, &th, q->stats);
         if (k >= 0)
@@ -232,6 +232,7 @@ bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
     search_objects(s, &q);
     if (q.best.object == NULL)
         return false;
+    stats->hits++;
     object_fill_hit(s, &q.best, r, h);
     return true;
 }

@@ -8,6 +8,7 @@
 typedef struct {
     long long primary_rays;
     /* <<statistics counters>> ch02 */
+    long long hits; /* searches for the nearest hit that found one */
     long long sphere_tests;
     /* <<statistics counters>> += ch04 */
     long long triangle_tests;
