@@ -22,6 +22,7 @@
 
 #include "render.h"
 #include "scene_file.h"
+#include "render_util.h"
 #include "timing.h"
 
 static const char SCENE[] =
@@ -36,12 +37,7 @@ static const char SCENE[] =
 
 static void load(scene *s)
 {
-    scene_error err;
-    scene_init(s);
-    if (!scene_parse(s, SCENE, sizeof SCENE - 1, "penumbra", &err)) {
-        fprintf(stderr, "%s:%d:%d: %s\n", err.file, err.line, err.col, err.message);
-        exit(1);
-    }
+    bench_load_scene(s, SCENE, sizeof SCENE - 1, "penumbra");
 }
 
 static void render_with(scene *s, image *img, enum sample_pattern pattern, int n)
@@ -71,17 +67,6 @@ static void run_penumbra_case(void *ctx, long reps)
     }
 }
 
-static double rms(const image *a, const image *b)
-{
-    double sum = 0;
-    size_t n = (size_t)a->width * a->height;
-    for (size_t k = 0; k < n; k++) {
-        vec3 d = vec3_sub(a->pixels[k], b->pixels[k]);
-        sum += vec3_dot(d, d);
-    }
-    return sqrt(sum / (3.0 * n));
-}
-
 int main(void)
 {
     scene s;
@@ -99,7 +84,7 @@ int main(void)
     s.lights[0].position.x = nextafter(s.lights[0].position.x, 0);
     bench_print_machine();
     bench_csv_header();
-    bench_row("reference", "16384", NULL, "%.3g", rms(&ref, &other) / sqrt(2),
+    bench_row("reference", "16384", NULL, "%.3g", image_rms(&ref, &other) / sqrt(2),
               "rms_error");
     const char *names[] = {"uniform", "stratified", "grid"};
     const enum sample_pattern patterns[] = {SAMPLE_UNIFORM, SAMPLE_STRATIFIED, SAMPLE_GRID};
@@ -117,7 +102,7 @@ int main(void)
         bench_time_cases(cases, 3, timing); /* the patterns take turns */
         for (int p = 0; p < 3; p++) {
             render_with(&s, &img, patterns[p], n);
-            bench_row(names[p], param, &timing[p], "%.6f", rms(&img, &ref), "rms_error");
+            bench_row(names[p], param, &timing[p], "%.6f", image_rms(&img, &ref), "rms_error");
         }
         fflush(stdout);
     }

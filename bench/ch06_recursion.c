@@ -22,6 +22,7 @@
 
 #include "render.h"
 #include "scene_file.h"
+#include "render_util.h"
 #include "timing.h"
 
 static const char SCENE[] =
@@ -47,12 +48,7 @@ static const char SCENE[] =
 
 static void load(scene *s)
 {
-    scene_error err;
-    scene_init(s);
-    if (!scene_parse(s, SCENE, sizeof SCENE - 1, "recursion", &err)) {
-        fprintf(stderr, "%s:%d:%d: %s\n", err.file, err.line, err.col, err.message);
-        exit(1);
-    }
+    bench_load_scene(s, SCENE, sizeof SCENE - 1, "recursion");
 }
 
 /* Renders with the limits; returns the rays per pixel. */
@@ -82,17 +78,6 @@ static void run_recursion_case(void *ctx, long reps)
         bench_sink += render_with(c->s, c->img, c->depth, c->cutoff);
 }
 
-static double rms(const image *a, const image *b)
-{
-    double sum = 0;
-    size_t n = (size_t)a->width * a->height;
-    for (size_t k = 0; k < n; k++) {
-        vec3 d = vec3_sub(a->pixels[k], b->pixels[k]);
-        sum += vec3_dot(d, d);
-    }
-    return sqrt(sum / (3.0 * n));
-}
-
 /* Two rows, the error and the rays per pixel, each ending with the rays per
  * pixel as a ninth column (the chart plots it). */
 static void row(scene *s, image *img, const image *ref, const char *name, double param,
@@ -108,7 +93,7 @@ static void row(scene *s, image *img, const image *ref, const char *name, double
     bench_time_cases(&c, 1, &t);
     double rays = render_with(s, img, depth, cutoff);
     printf("%s,%s,%.3f,%.6f,rms_error,%.3f,%.3f,%.3f,%.3f\n", name, p, t.median,
-           rms(img, ref), t.q1, t.q3, t.wall_median, rays);
+           image_rms(img, ref), t.q1, t.q3, t.wall_median, rays);
     printf("%s,%s,%.3f,%.3f,rays_per_pixel,%.3f,%.3f,%.3f,%.3f\n", rays_name, p, t.median,
            rays, t.q1, t.q3, t.wall_median, rays);
     fflush(stdout);

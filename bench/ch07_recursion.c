@@ -27,6 +27,7 @@
 
 #include "render.h"
 #include "scene_file.h"
+#include "render_util.h"
 #include "timing.h"
 
 #define WIDTH 96
@@ -56,13 +57,7 @@ static const char SCENE[] =
 
 static void load(scene *s)
 {
-    scene_error err;
-    scene_init(s);
-    if (!scene_parse(s, SCENE, sizeof SCENE - 1, "recursion", &err)) {
-        fprintf(stderr, "%s:%d:%d: %s\n", err.file, err.line, err.col,
-                err.message);
-        exit(1);
-    }
+    bench_load_scene(s, SCENE, sizeof SCENE - 1, "recursion");
 }
 
 /* Renders with the limits; returns the rays per pixel. */
@@ -76,17 +71,6 @@ static double render_with(scene *s, image *img, int depth, double cutoff)
     return rays / ((double)img->width * img->height);
 }
 
-static double rms(const image *a, const image *b)
-{
-    double sum = 0;
-    size_t n = (size_t)a->width * a->height;
-    for (size_t k = 0; k < n; k++) {
-        vec3 d = vec3_sub(a->pixels[k], b->pixels[k]);
-        sum += vec3_dot(d, d);
-    }
-    return sqrt(sum / (3.0 * n));
-}
-
 /* Two rows: the error, and the rays per pixel; both end with the rays per
  * pixel as a ninth column (the chart plots it). */
 static void row(scene *s, image *img, const image *ref, const char *name,
@@ -96,7 +80,7 @@ static void row(scene *s, image *img, const image *ref, const char *name,
     snprintf(p, sizeof p, "%g", param);
     snprintf(rays_name, sizeof rays_name, "%s-rays", name);
     double rays = render_with(s, img, depth, cutoff);
-    printf("%s,%s,,%.6g,rms_error,,,,%.3f\n", name, p, rms(img, ref), rays);
+    printf("%s,%s,,%.6g,rms_error,,,,%.3f\n", name, p, image_rms(img, ref), rays);
     printf("%s,%s,,%.3f,rays_per_pixel,,,,%.3f\n", rays_name, p, rays, rays);
 }
 
