@@ -37,12 +37,28 @@
  *    and 2, three times each (the render phase that --stats reports, the
  *    best of three):
  *      threads,1|2,ms,ms,render_ms   threads,2,0,speedup,speedup
- *      scene,bunny,ms,ms,load_ms   (reading the scene and building its trees) */
+ *      scene,bunny,ms,ms,load_ms   (reading the scene and building its trees)
+ * 7. A 16 MiB OBJ file of one fan face, made in memory and read by
+ *    mesh_parse_obj (fan_text): "distinct", as many rim vertices as fit
+ *    (f 1 2 3 ... N), and "coincident", three vertices and
+ *    f 1 2 3 2 3 2 3 ..., whose triangles all coincide. The rays are the
+ *    benchmark's at K = 0.5 for the square [-1, 1]^2 that both fans cover,
+ *    4 x 4 of them (2 x 2 through the coincident fan), through the tree
+ *    and by brute force, timed by the harness of timing.h (thread CPU
+ *    time, the two interleaved round by round):
+ *      fan,KIND,ms,ms,load_ms | build_ms   fan,KIND,0,count,triangles
+ *      fan,KIND,0,count,nodes   fan,KIND,0,refs,references_per_triangle
+ *      fan-tree|fan-brute,KIND,ns_per_ray,tests,triangle_tests_per_ray
+ *      fan,KIND,0,s,render_320x240_s (a 320 x 240 picture at the tree's
+ *      time per ray)   fan,KIND,0,ratio,brute_over_tree
+ *    These rows alone have the harness's quartile columns; the CSV starts
+ *    with its machine line. */
 #include <string.h>
 
 #include "camera.h"
 #include "scene.h"
 #include "ch08_rays.h"
+#include "timing.h"
 
 enum { SIDE = 1024, ROUNDS = 5, BUILDS = 5 };
 
@@ -562,12 +578,150 @@ static void threads(void)
     printf("scene,bunny,0,%.3f,load_over_render_on_two\n", load / two);
 }
 
+/* ---------------------------------------------------------------- 7 */
+
+enum { FAN_BYTES = 16 << 20, FAN_SIDE = 4 };
+
+/* The OBJ text of one fan face in at most FAN_BYTES bytes; its length in
+ * *length. coincident: three vertices and as many indices 2 3 2 3 ... as
+ * fit; otherwise vertex 1 at (0, -10, 0) and the rim vertices 2 ... N,
+ * as many as fit with their indices, evenly from (-1, 1, 0) to (1, 1, 0):
+ * thin, nearly upright strips side by side, distinct, which cover the
+ * square [-1, 1]^2 of the view. */
+static char *fan_text(bool coincident, size_t *length)
+{
+    char *text = malloc(FAN_BYTES);
+    if (text == NULL)
+        exit(1);
+    size_t n = 0;
+    if (coincident) {
+        n += (size_t)sprintf(text, "v -4 -2 0\nv 4 -2 0\nv 0 4 0\nf 1 2 3");
+        while (n + 2 + 1 <= FAN_BYTES) {
+            memcpy(text + n, n % 4 == 1 ? " 3" : " 2", 2); /* alternate 2, 3 */
+            n += 2;
+        }
+        text[n++] = '\n';
+        *length = n;
+        return text;
+    }
+    /* distinct: how many rim vertices fit, then write them */
+    int rim = 0;
+    size_t vbytes = 10 /* "v 0 -10 0\n" */, fbytes = 1 + 2 + 1; /* "f 1" "\n" */
+    char line[64];
+    for (;; rim++) {
+        size_t vl = 2 + 10 + 5; /* "v %+.7f 1 0\n": 17 */
+        size_t fl = (size_t)snprintf(line, sizeof line, " %d", rim + 2);
+        if (vbytes + vl + fbytes + fl > FAN_BYTES)
+            break;
+        vbytes += vl, fbytes += fl;
+    }
+    n += (size_t)sprintf(text, "v 0 -10 0\n");
+    for (int k = 0; k < rim; k++)
+        n += (size_t)sprintf(text + n, "v %+.7f 1 0\n", -1 + 2.0 * k / (rim - 1));
+    n += (size_t)sprintf(text + n, "f 1");
+    for (int k = 0; k < rim; k++)
+        n += (size_t)sprintf(text + n, " %d", k + 2);
+    text[n++] = '\n';
+    if (n > FAN_BYTES)
+        exit(1);
+    *length = n;
+    return text;
+}
+
+typedef struct {
+    const mesh *m;
+    const float_ray *rays;
+    int n, next;
+} fan_job;
+
+static void fan_run(void *ctx, long reps)
+{
+    fan_job *j = ctx;
+    render_stats stats = {0};
+    double sum = 0;
+    for (long r = 0; r < reps; r++) {
+        mesh_ray mr = mesh_ray_of(ray_of(&j->rays[j->next]));
+        j->next = (j->next + 1) % j->n;
+        triangle_hit th;
+        sum += mesh_nearest(j->m, &mr, 0, INFINITY, &th, &stats) >= 0 ? th.t : 0;
+    }
+    bench_sink += sum;
+}
+
+static double fan_tests(const mesh *m, const float_ray *rays, int n)
+{
+    render_stats stats = {0};
+    for (int k = 0; k < n; k++) {
+        mesh_ray mr = mesh_ray_of(ray_of(&rays[k]));
+        triangle_hit th;
+        mesh_nearest(m, &mr, 0, INFINITY, &th, &stats);
+    }
+    return (double)stats.triangle_tests / n;
+}
+
+static void fans(void)
+{
+    for (int c = 0; c < 2; c++) {
+        const char *kind = c ? "coincident" : "distinct";
+        size_t length;
+        char *text = fan_text(c, &length);
+        mesh m = {0};
+        parse_error err;
+        double t0 = cpu_seconds();
+        if (!mesh_parse_obj(&m, text, length, kind, &err)) {
+            fprintf(stderr, "%s:%d:%d: error: %s\n", err.file, err.line, err.col, err.message);
+            exit(1);
+        }
+        double load = 1e3 * (cpu_seconds() - t0);
+        free(text);
+        mesh_compute_bounds(&m);
+        t0 = cpu_seconds();
+        if (!build(&m, kdtree_default_params()))
+            exit(1);
+        double build_time = 1e3 * (cpu_seconds() - t0);
+        printf("fan,%s,0,%zu,bytes\n", kind, length);
+        printf("fan,%s,0,%d,triangles\n", kind, m.triangle_count);
+        printf("fan,%s,%.1f,%.1f,load_ms\n", kind, load, load);
+        printf("fan,%s,%.1f,%.1f,build_ms\n", kind, build_time, build_time);
+        printf("fan,%s,0,%d,nodes\n", kind, m.tree.node_count);
+        printf("fan,%s,0,%.3f,references_per_triangle\n", kind,
+               (double)m.tree.item_count / m.triangle_count);
+        fflush(stdout);
+        /* the benchmark's rays (K = 0.5) for the square [-1, 1]^2 at z = 0,
+           which both fans cover; 4 x 4 rays, 2 x 2 through the coincident */
+        mesh view = {.bounds = {{-1, -1, 0}, {1, 1, 0}}};
+        int side = c ? 2 : FAN_SIDE, n = side * side;
+        float_ray *rays = make_rays(&view, 0.5, side);
+        mesh brute = m; /* the same triangles, no tree */
+        brute.tree = (kdtree){0}, brute.leaf_corners = NULL;
+        fan_job jobs[2] = {{&m, rays, n, 0}, {&brute, rays, n, 0}};
+        bench_case cases[2] = {{"fan-tree", kind, fan_run, &jobs[0], n},
+                               {"fan-brute", kind, fan_run, &jobs[1], n}};
+        bench_timing t[2];
+        bench_time_cases(cases, 2, t);
+        bench_row("fan-tree", kind, &t[0], "%.1f", fan_tests(&m, rays, n),
+                  "triangle_tests_per_ray");
+        bench_row("fan-brute", kind, &t[1], "%.1f", fan_tests(&brute, rays, n),
+                  "triangle_tests_per_ray");
+        printf("fan,%s,0,%.1f,render_320x240_s\n", kind, 320 * 240 * t[0].median * 1e-9);
+        printf("fan,%s,0,%.3f,brute_over_tree\n", kind, t[1].median / t[0].median);
+        fflush(stdout);
+        free(rays);
+        mesh_free(&m);
+    }
+}
+
 int main(int argc, char **argv)
 {
     const char *paths[2] = {argc > 1 ? argv[1] : "meshes/bunny.obj",
                             argc > 2 ? argv[2] : "meshes/teapot-8.obj"};
     const char *names[2] = {"bunny", "teapot"};
-    printf("method,param,ns_per_op,error,error_kind\n");
+    bench_print_machine();
+    bench_csv_header();
+    if (argc > 1 && strcmp(argv[1], "--fans") == 0) { /* section 7 alone */
+        fans();
+        return 0;
+    }
     mesh meshes[2];
     for (int k = 0; k < 2; k++) {
         load_float_mesh(paths[k], &meshes[k]);
@@ -582,6 +736,7 @@ int main(int argc, char **argv)
     sah_parameters(&meshes[0]);
     crossover_meshes(&meshes[0]);
     build_scaling();
+    fans();
     for (int k = 0; k < 2; k++)
         mesh_free(&meshes[k]);
     return 0;
