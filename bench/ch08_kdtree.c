@@ -6,8 +6,10 @@
  * time (cpu_seconds in ch08_rays.h), every ray set is the one of ch08_rays.h.
  *
  * 1. The benchmark's rays through the renderer's tree (mesh_nearest), one
- *    thread, for the bunny and the teapot at K = 1 and 2.5:
- *      kdtree,MESH-K,ns_per_ray,Mrays/s,mrays_per_s (median of ROUNDS)
+ *    thread, for the bunny and the teapot at K = 1 and 2.5, timed together
+ *    with the recursive walk by the harness of timing.h (thread CPU time,
+ *    interleaved rounds, quartiles in the last columns):
+ *      kdtree,MESH-K,ns_per_ray,Mrays/s,mrays_per_s (median of the rounds)
  *      hits,MESH-K,0,count,kdtree_hits   distance,MESH-K,0,sum,kdtree_sum_t
  *      build,MESH,ms,ms,kdtree_build_ms (median of BUILDS)
  *    and the recursive walk against the iterative one (bunny, K = 1):
@@ -51,8 +53,8 @@
  *      fan-tree|fan-brute,KIND,ns_per_ray,tests,triangle_tests_per_ray
  *      fan,KIND,0,s,render_320x240_s (a 320 x 240 picture at the tree's
  *      time per ray)   fan,KIND,0,ratio,brute_over_tree
- *    These rows alone have the harness's quartile columns; the CSV starts
- *    with its machine line. */
+ *    These rows and those of section 1 but the build have the harness's
+ *    quartile columns; the CSV starts with its machine line. */
 #include <string.h>
 
 #include "camera.h"
@@ -157,32 +159,77 @@ static double ns_per_ray(trace_job *j, double min_seconds)
 
 /* ---------------------------------------------------------------- 1 */
 
-static void exact_rays(mesh *m, const char *name)
+/* One case of the harness: reps rays of rays[0..n), in turn. */
+typedef struct {
+    const mesh *m;
+    const float_ray *rays;
+    long n, next;
+    bool recursive;
+} ray_case;
+
+static void ray_case_run(void *ctx, long reps)
 {
-    double ms = build_ms(m, kdtree_default_params());
-    printf("build,%s,%.3f,%.3f,kdtree_build_ms\n", name, ms, ms);
+    ray_case *c = ctx;
+    render_stats stats = {0};
+    double sum = 0;
+    for (long r = 0; r < reps; r++) {
+        mesh_ray mr = mesh_ray_of(ray_of(&c->rays[c->next]));
+        c->next = c->next + 1 == c->n ? 0 : c->next + 1;
+        triangle_hit th;
+        int hit = c->recursive ? mesh_nearest_recursive(c->m, &mr, 0, INFINITY, &th, &stats)
+                               : mesh_nearest(c->m, &mr, 0, INFINITY, &th, &stats);
+        sum += hit >= 0 ? th.t : 0;
+    }
+    bench_sink += sum;
+}
+
+/* The benchmark's rays through the bunny and the teapot at K = 1 and 2.5,
+ * and the recursive walk on the bunny at K = 1, the five timed together by
+ * the harness (interleaved rounds, thread CPU time). */
+static void exact_rays(mesh *meshes, const char **names)
+{
     for (int k = 0; k < 2; k++) {
-        double K = k == 0 ? 1.0 : 2.5;
-        float_ray *rays = make_rays(m, K, SIDE);
-        trace_job j = {m, rays, SIDE * SIDE, false, {0}, {0, 0, 0}, NULL};
-        double ns = ns_per_ray(&j, 0);
-        printf("kdtree,%s-%.1f,%.2f,%.4f,mrays_per_s\n", name, K, ns, 1e3 / ns);
-        printf("hits,%s-%.1f,0,%ld,kdtree_hits\n", name, K, j.result.hits);
-        printf("distance,%s-%.1f,0,%.6f,kdtree_sum_t\n", name, K, j.result.sum_t);
-        if (k == 0 && strcmp(name, "bunny") == 0) {
-            double walk_ns[2];
+        double ms = build_ms(&meshes[k], kdtree_default_params());
+        printf("build,%s,%.3f,%.3f,kdtree_build_ms\n", names[k], ms, ms);
+    }
+    enum { CASES = 5 };
+    float_ray *rays[4];
+    ray_case rc[CASES];
+    bench_case cases[CASES];
+    char params[4][32];
+    long n = (long)SIDE * SIDE;
+    for (int c = 0; c < 4; c++) {
+        double K = c % 2 == 0 ? 1.0 : 2.5;
+        rays[c] = make_rays(&meshes[c / 2], K, SIDE);
+        snprintf(params[c], sizeof params[c], "%s-%.1f", names[c / 2], K);
+        rc[c] = (ray_case){&meshes[c / 2], rays[c], n, 0, false};
+        cases[c] = (bench_case){"kdtree", params[c], ray_case_run, &rc[c], n};
+    }
+    rc[4] = (ray_case){&meshes[0], rays[0], n, 0, true};
+    cases[4] = (bench_case){"walk-recursive", params[0], ray_case_run, &rc[4], n};
+    bench_timing t[CASES];
+    bench_time_cases(cases, CASES, t);
+    for (int c = 0; c < 4; c++) {
+        trace_job j = {rc[c].m, rays[c], SIDE * SIDE, false, {0}, {0, 0, 0}, NULL};
+        trace_work(&j); /* the hits and distances, once */
+        bench_row("kdtree", params[c], &t[c], "%.4f", 1e3 / t[c].median, "mrays_per_s");
+        printf("hits,%s,0,%ld,kdtree_hits\n", params[c], j.result.hits);
+        printf("distance,%s,0,%.6f,kdtree_sum_t\n", params[c], j.result.sum_t);
+        if (c == 0) { /* the recursive walk against the iterative one */
             for (int w = 0; w < 2; w++) {
                 j.recursive = w == 0;
-                walk_ns[w] = ns_per_ray(&j, 0);
-                printf("walk-%s,%s-%.1f,%.2f,%.3f,nodes_per_ray\n",
-                       w == 0 ? "recursive" : "iterative", name, K, walk_ns[w],
-                       (double)j.stats.kd_nodes / j.n);
+                trace_work(&j);
+                bench_row(w == 0 ? "walk-recursive" : "walk-iterative", params[0],
+                          &t[w == 0 ? 4 : 0], "%.3f", (double)j.stats.kd_nodes / j.n,
+                          "nodes_per_ray");
             }
-            printf("walk,%s-%.1f,0,%.4f,recursive_over_iterative\n", name, K,
-                   walk_ns[0] / walk_ns[1]);
+            printf("walk,%s,0,%.4f,recursive_over_iterative\n", params[0],
+                   t[4].median / t[0].median);
         }
-        free(rays);
     }
+    for (int c = 0; c < 4; c++)
+        free(rays[c]);
+    fflush(stdout);
 }
 
 /* ---------------------------------------------------------------- 2 */
@@ -727,9 +774,8 @@ int main(int argc, char **argv)
         load_float_mesh(paths[k], &meshes[k]);
         if (!build(&meshes[k], kdtree_default_params()))
             return 1;
-        exact_rays(&meshes[k], names[k]);
-        fflush(stdout);
     }
+    exact_rays(meshes, names);
     fixed_costs(&meshes[0]);
     threads();
     crossover_objects();
