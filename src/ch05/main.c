@@ -11,7 +11,7 @@
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
     /* <<default scene>> ch05 */
-    "# Chapter 05: one unit sphere, stretched, turned and sheared into\n"
+    "# Chapter 5: one unit sphere, stretched, turned and sheared into\n"
     "# ellipsoids by transforms, seen by a placed camera.\n"
     "camera position -1.5 2.2 0.5 look_at 0 0.45 6 up 0 1 0 fov 45\n"
     "image 320 240\n"

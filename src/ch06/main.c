@@ -11,7 +11,7 @@
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
     /* <<default scene>> ch06 */
-    "# Chapter 06: mirror spheres and hard shadows on a floor.\n"
+    "# Chapter 6: mirror spheres and hard shadows on a floor.\n"
         "camera fov 50\n"
         "image 320 240\n"
         "background gradient 0.85 0.85 0.9  0.3 0.45 0.8\n"

@@ -1,4 +1,4 @@
-/* mat4.c: 4x4 matrices, transforms and their inverses (chapter 05). See
+/* mat4.c: 4x4 matrices, transforms and their inverses (chapter 5). See
  * vec.h. */
 #include "vec.h"
 

@@ -1,4 +1,4 @@
-/* offset.c: where a secondary ray starts (chapter 06). See offset.h. */
+/* offset.c: where a secondary ray starts (chapter 6). See offset.h. */
 #include "offset.h"
 
 /* x moved one more double in the direction of the offset, so that the

@@ -1,4 +1,4 @@
-/* offset.h: where a secondary ray starts (chapter 06).
+/* offset.h: where a secondary ray starts (chapter 6).
  *
  * A ray that leaves a surface starts at the hit point moved along the
  * geometric normal, to the side the ray leaves by, just past the bound of

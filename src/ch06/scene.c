@@ -28,7 +28,7 @@ void scene_init(scene *s)
     s->triangle_budget = SCENE_MAX_TRIANGLES;
     s->geometry_budget = SCENE_MAX_GEOMETRY_BYTES;
     /* <<scene member defaults>> += ch05 */
-    s->cam.look_at = (vec3){0, 0, 1}; /* where chapter 01's camera looks */
+    s->cam.look_at = (vec3){0, 0, 1}; /* where chapter 1's camera looks */
     s->cam.up = (vec3){0, 1, 0};
     /* <<scene member defaults>> += ch06 */
     s->max_depth = 64; /* a guarantee; the cutoff usually ends first */

@@ -193,7 +193,7 @@ static bool read_transform(parser *p, scene *s, object *o)
 
 #define AREA_LIGHT_MAX_SAMPLES 1024 /* shadow rays per point and light */
 
-static bool read_light_setting(parser *p, light *L); /* chapter 03 */
+static bool read_light_setting(parser *p, light *L); /* chapter 3 */
 
 static bool read_sample_pattern(parser *p, light *L)
 {
@@ -816,7 +816,7 @@ static bool parse_mesh(parser *p, scene *s)
 }
 /* <<statements>> += ch06 */
 
-#define SCENE_MAX_DEPTH 100 /* a guarantee, not a budget: see chapter 06 */
+#define SCENE_MAX_DEPTH 100 /* a guarantee, not a budget: see chapter 6 */
 
 static bool parse_recursion(parser *p, scene *s)
 {

@@ -1,5 +1,5 @@
 /* sample.c: seeded random numbers and points on an area light
- * (chapter 06). See sample.h. */
+ * (chapter 6). See sample.h. */
 #include "sample.h"
 
 #include <string.h>

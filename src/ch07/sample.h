@@ -1,5 +1,5 @@
 /* sample.h: seeded random numbers and points on an area light
- * (chapter 06).
+ * (chapter 6).
  *
  * A sample_stream is a SplitMix64 generator; sample_stream_at seeds one
  * from two points, so that a shaded point always gets the same samples. */

@@ -88,7 +88,7 @@ static inline vec3 ray_at(ray r, double t)
 
 /* <<homogeneous coordinates>> ch05 */
 /* A point (w = 1) or a vector (w = 0) in homogeneous coordinates
- * (chapter 05). A sum whose w is anything else is neither. */
+ * (chapter 5). A sum whose w is anything else is neither. */
 typedef struct {
     double x, y, z, w;
 } vec4;
@@ -110,7 +110,7 @@ static inline bool vec4_is_point(vec4 a) { return a.w == 1; }
 static inline bool vec4_is_vector(vec4 a) { return a.w == 0; }
 
 /* <<4x4 matrices>> ch05 */
-/* A 4x4 matrix m[row][column] acting on column vectors (chapter 05). The
+/* A 4x4 matrix m[row][column] acting on column vectors (chapter 5). The
  * program's matrices are affine: their last row is 0 0 0 1. */
 typedef struct {
     double m[4][4];
@@ -200,7 +200,7 @@ bool mat4_look_at(vec3 eye, vec3 target, vec3 up, mat4 *out);
 
 /* <<transforms and their inverses>> ch05 */
 /* An affine transform m, from an object's space to the world, and its
- * inverse inv (chapter 05). Each standard step's inverse is known in
+ * inverse inv (chapter 5). Each standard step's inverse is known in
  * closed form, so a transform built from steps never inverts a matrix. */
 typedef struct {
     mat4 m, inv;

@@ -13,7 +13,7 @@ typedef struct {
     double fov_deg;    /* horizontal field of view in degrees, in (0, 180) */
     int width, height; /* image size in pixels, both >= 1 */
     /* <<camera members>> ch05 */
-    bool is_placed; /* false: at the origin, looking down +z (chapter 05) */
+    bool is_placed; /* false: at the origin, looking down +z (chapter 5) */
     vec3 position;  /* the eye */
     vec3 look_at;   /* a point in the middle of the picture */
     vec3 up;        /* up in the picture; not along the view */

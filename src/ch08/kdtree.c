@@ -1,4 +1,4 @@
-/* kdtree.c: building kd-trees (chapter 08). See kdtree.h. */
+/* kdtree.c: building kd-trees (chapter 8). See kdtree.h. */
 #include "kdtree.h"
 
 #include <math.h>

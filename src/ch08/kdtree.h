@@ -1,5 +1,5 @@
 /* kdtree.h: kd-trees over items with boxes, built by the surface area
- * heuristic, and walked by rays (chapter 08).
+ * heuristic, and walked by rays (chapter 8).
  *
  * A kdtree cuts a box, its root cell, by axis-aligned planes into cells;
  * each leaf lists the items (triangles of a mesh, objects of a scene) that
