@@ -350,7 +350,7 @@ static void draw_tree(const char *dir)
         v2 a = nd->axis == 0 ? V(nd->split, nd->cell.lo.y) : V(nd->cell.lo.x, nd->split);
         v2 b = nd->axis == 0 ? V(nd->split, nd->cell.hi.y) : V(nd->cell.hi.x, nd->split);
         line(a, b, C_PLANE, fmax(0.8, 2.6 - 0.4 * nd->depth), NULL);
-        char label[8];
+        char label[16]; /* room for any int */
         snprintf(label, sizeof label, "%d", nd->depth + 1);
         if (nd->axis == 0)
             text(b, 0, -4, "middle", 11, C_PLANE, false, label);
@@ -369,7 +369,7 @@ static void draw_tree(const char *dir)
     text(at(t1), 6, 16, "start", FS_MATH, C_RAY, true, "t<tspan baseline-shift=\"sub\" "
                                                       "font-size=\"11\">max</tspan>");
     for (int v = 0; v < n_visited; v++) { /* where the walk enters each leaf */
-        char label[8];
+        char label[16]; /* room for any int */
         snprintf(label, sizeof label, "%d", v + 1);
         v2 mid = at(0.5 * (fmax(visit_t[v][0], t0) + fmin(visit_t[v][1], best_t)));
         text(mid, 0, -10, "middle", FS_NOTE, INK, false, label);
