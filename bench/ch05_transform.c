@@ -50,17 +50,17 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rng.h"
 #include "vec.h"
 #include "timing.h"
 
 typedef __float128 quad;
 
-static uint64_t rng = 0x2545F4914F6CDD1DULL; /* fixed seed */
+static bench_rng rng = {0x2545F4914F6CDD1DULL}; /* fixed seed */
 
 static double uniform(double lo, double hi)
 {
-    rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
-    return lo + (hi - lo) * (double)(rng >> 11) / 9007199254740992.0;
+    return bench_rng_uniform(&rng, lo, hi);
 }
 
 static vec3 random_unit(void)

@@ -42,6 +42,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "rng.h"
 #include "scene_file.h"
 #include "render.h"
 #include "shade.h"
@@ -136,12 +137,8 @@ static void build_scene(scene *s, double scale)
 
 /* ---------------------------------------------------------------- the samples */
 
-static uint64_t rng_state;
-static double uniform01(void)
-{
-    rng_state = rng_state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(rng_state >> 11) * 0x1p-53;
-}
+static bench_rng rng;
+static double uniform01(void) { return bench_rng_uniform01(&rng); }
 
 /* A unit vector within 60 degrees of the unit vector axis. */
 static vec3 near_direction(vec3 axis)
@@ -177,7 +174,7 @@ static void add_lit(vec3 target, vec3 normal, int object)
 
 static void make_samples(void)
 {
-    rng_state = 0x853C49E6748FEA9BULL; /* fixed seed: the same samples every run */
+    rng = (bench_rng){0x853C49E6748FEA9BULL}; /* fixed seed: the same samples every run */
     light_dir = vec3_normalize((vec3){-0.1, 1, -0.05});
     n_samples = 0;
     for (int k = 0; k < N_EACH; k++) { /* the sphere's top: <n, l> > 0.3 */

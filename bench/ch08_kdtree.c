@@ -57,6 +57,7 @@
  *    quartile columns; the CSV starts with its machine line. */
 #include <string.h>
 
+#include "rng.h"
 #include "camera.h"
 #include "scene.h"
 #include "ch08_rays.h"
@@ -403,9 +404,8 @@ static void scene_work(void *arg)
 /* A pseudo-random number in [0, 1), from a fixed seed. */
 static double uniform01(void)
 {
-    static uint64_t state = 0x9E3779B97F4A7C15ULL;
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(state >> 11) / 9007199254740992.0;
+    static bench_rng rng = {0x9E3779B97F4A7C15ULL}; /* fixed seed */
+    return bench_rng_uniform01(&rng);
 }
 
 static void crossover_objects(void)

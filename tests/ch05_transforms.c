@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../bench/rng.h"
 #include "render.h"
 #include "scene.h"
 #include "scene_file.h"
@@ -37,12 +38,11 @@ static void expect_vec3(vec3 got, vec3 want, double tolerance, const char *what)
 
 #define expect_exact(got, want, what) expect_vec3((got), (want), 0, (what))
 
-static uint64_t rng = 0x9E3779B97F4A7C15ULL; /* fixed seed: the same cases on every run */
+static bench_rng rng = {0x9E3779B97F4A7C15ULL}; /* fixed seed: the same cases on every run */
 
 static double uniform(double lo, double hi)
 {
-    rng = rng * 6364136223846793005ULL + 1442695040888963407ULL;
-    return lo + (hi - lo) * (double)(rng >> 11) / 9007199254740992.0;
+    return bench_rng_uniform(&rng, lo, hi);
 }
 
 static vec3 random_unit(void)

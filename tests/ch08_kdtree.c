@@ -15,6 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "../bench/rng.h"
 #include "mesh.h"
 #include "obj.h"
 #include "scene.h"
@@ -22,15 +23,14 @@
 
 /* ------------------------------------------------------------ helpers */
 
-static uint64_t rng_state;
+static bench_rng rng;
 
-static void seed(uint64_t s) { rng_state = s; }
+static void seed(uint64_t s) { rng = (bench_rng){s}; }
 
 /* Uniform in [0, 1), from a fixed seed: the same rays on every run. */
 static double uniform01(void)
 {
-    rng_state = rng_state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return (double)(rng_state >> 11) / 9007199254740992.0;
+    return bench_rng_uniform01(&rng);
 }
 
 static vec3 random_unit(void)
@@ -637,9 +637,31 @@ START_TEST(test_any_hit_agrees_with_the_closest_hit)
 }
 END_TEST
 
+/* Rays from the eye over the view: the scene with its objects' tree gives
+ * the same closest hits, and the same answers to shadow rays, as the same
+ * scene searched as a list. Frees with. */
+static void expect_tree_agrees_with_list(scene *with)
+{
+    scene without = *with;
+    without.object_tree = (kdtree){0};
+    for (int k = 0; k < 5000; k++) {
+        ray r = {{0, 0, 0}, vec3_normalize((vec3){uniform01() - 0.5, uniform01() - 0.5, 1})};
+        hit a, b;
+        render_stats stats = {0};
+        bool ha = scene_intersect(with, r, 0, INFINITY, &a, &stats);
+        bool hb = scene_intersect(&without, r, 0, INFINITY, &b, &stats);
+        ck_assert_int_eq(ha, hb);
+        ck_assert(!ha || a.t == b.t);
+        double t_max = 12 * uniform01();
+        ck_assert_int_eq(scene_occluded(with, r, 0, t_max, &stats),
+                         scene_occluded(&without, r, 0, t_max, &stats));
+    }
+    scene_free(with);
+}
+
 START_TEST(test_the_objects_tree_agrees_with_the_list)
 {
-    scene with, without;
+    scene with;
     scene_init(&with);
     seed(2024);
     for (int k = 0; k < 300; k++) {
@@ -654,18 +676,7 @@ START_TEST(test_the_objects_tree_agrees_with_the_list)
     }
     ck_assert(scene_build_trees(&with));
     ck_assert(with.object_tree.node_count > 0);
-    without = with;
-    without.object_tree = (kdtree){0};
-    for (int k = 0; k < 5000; k++) {
-        ray r = {{0, 0, 0}, vec3_normalize((vec3){uniform01() - 0.5, uniform01() - 0.5, 1})};
-        hit a, b;
-        render_stats stats = {0};
-        bool ha = scene_intersect(&with, r, 0, INFINITY, &a, &stats);
-        bool hb = scene_intersect(&without, r, 0, INFINITY, &b, &stats);
-        ck_assert_int_eq(ha, hb);
-        ck_assert(!ha || a.t == b.t);
-    }
-    scene_free(&with);
+    expect_tree_agrees_with_list(&with);
 }
 END_TEST
 
@@ -686,28 +697,14 @@ START_TEST(test_the_objects_tree_agrees_with_the_list_for_placed_objects)
                                  shape, 0.5 + uniform01(), 0.5 + 2 * uniform01(),
                                  360 * uniform01(), 360 * uniform01(), x, y, z);
     }
-    scene with, without;
+    scene with;
     scene_error err;
     scene_init(&with);
     ck_assert_msg(scene_parse(&with, text, used, "placed.scene", &err), "%d:%d %s", err.line,
                   err.col, err.message);
     ck_assert(scene_build_trees(&with));
     ck_assert(with.object_tree.node_count > 0);
-    without = with;
-    without.object_tree = (kdtree){0};
-    for (int k = 0; k < 5000; k++) {
-        ray r = {{0, 0, 0}, vec3_normalize((vec3){uniform01() - 0.5, uniform01() - 0.5, 1})};
-        hit a, b;
-        render_stats stats = {0};
-        bool ha = scene_intersect(&with, r, 0, INFINITY, &a, &stats);
-        bool hb = scene_intersect(&without, r, 0, INFINITY, &b, &stats);
-        ck_assert_int_eq(ha, hb);
-        ck_assert(!ha || a.t == b.t);
-        double t_max = 12 * uniform01();
-        ck_assert_int_eq(scene_occluded(&with, r, 0, t_max, &stats),
-                         scene_occluded(&without, r, 0, t_max, &stats));
-    }
-    scene_free(&with);
+    expect_tree_agrees_with_list(&with);
 }
 END_TEST
 
