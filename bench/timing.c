@@ -73,6 +73,8 @@ static int median_ci_rank(int n)
     return m;
 }
 
+/* The statistics of n batches of reps operations: cpu is the clock the
+ * case is timed by (thread CPU time, or the wall clock), wall the wall. */
 static void summarise(double *cpu, double *wall, int n, long reps, bench_timing *t)
 {
     qsort(cpu, (size_t)n, sizeof cpu[0], bench_compare_doubles);
@@ -114,6 +116,8 @@ static long calibrate(const bench_case *c)
     for (;;) {
         double cpu, wall;
         time_batch(c, reps, &cpu, &wall);
+        if (c->wall_clock)
+            cpu = wall; /* the case's own clock */
         if (cpu >= BENCH_MIN_BATCH_NS)
             return reps;
         double grow = cpu > 0 ? 1.25 * BENCH_MIN_BATCH_NS / cpu : 100;
@@ -124,7 +128,27 @@ static long calibrate(const bench_case *c)
 
 void bench_time_cases(const bench_case *cases, int n, bench_timing *out)
 {
-    int rounds = bench_rounds();
+    bench_time_cases_rounds(cases, n, bench_rounds(), out);
+}
+
+void bench_timing_of_samples(double *ns, int n, bench_timing *out)
+{
+    double *copy = malloc((size_t)n * sizeof *copy);
+    if (!copy) {
+        fprintf(stderr, "bench: out of memory\n");
+        exit(1);
+    }
+    memcpy(copy, ns, (size_t)n * sizeof *copy);
+    summarise(ns, copy, n, 1, out);
+    free(copy);
+}
+
+void bench_time_cases_rounds(const bench_case *cases, int n, int rounds, bench_timing *out)
+{
+    if (rounds < 5 || rounds > 201 || rounds % 2 == 0) {
+        fprintf(stderr, "bench: %d rounds is not an odd number in 5..201\n", rounds);
+        exit(1);
+    }
     long *reps = malloc((size_t)n * sizeof *reps);
     double *cpu = malloc((size_t)n * (size_t)rounds * sizeof *cpu);
     double *wall = malloc((size_t)n * (size_t)rounds * sizeof *wall);
@@ -143,8 +167,10 @@ void bench_time_cases(const bench_case *cases, int n, bench_timing *out)
             int k = (r + j) % n;
             time_batch(&cases[k], reps[k], &cpu[k * rounds + r], &wall[k * rounds + r]);
         }
-    for (int k = 0; k < n; k++)
-        summarise(&cpu[k * rounds], &wall[k * rounds], rounds, reps[k], &out[k]);
+    for (int k = 0; k < n; k++) {
+        double *own = cases[k].wall_clock ? &wall[k * rounds] : &cpu[k * rounds];
+        summarise(own, &wall[k * rounds], rounds, reps[k], &out[k]);
+    }
     fprintf(stderr, "bench: %d cases from %s,%s: %d interleaved rounds, %.1f s\n", n,
             cases[0].method, cases[0].param, rounds, (clock_ns(CLOCK_MONOTONIC) - start) / 1e9);
     free(reps);

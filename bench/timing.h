@@ -49,6 +49,8 @@ typedef struct {
     void (*run)(void *ctx, long reps); /* performs reps operations */
     void *ctx;
     long cycle; /* reps is a multiple of this; 0 or 1: any reps */
+    int wall_clock; /* 1: time by the wall clock, for work that other threads
+                       or processes do (the median is then of wall time) */
 } bench_case;
 
 typedef struct {
@@ -64,6 +66,19 @@ int bench_rounds(void);
 
 /* Times the n cases together; out[k] is case k's timing. */
 void bench_time_cases(const bench_case *cases, int n, bench_timing *out);
+
+/* The same with a stated number of rounds (odd, 5..201), for cases whose
+ * one operation takes a second or more, where 21 rounds would take minutes.
+ * $BENCH_ROUNDS does not change it. With 5 to 7 rounds the median's 95%
+ * interval is the whole range (ci_lo, ci_hi: the fastest and slowest). */
+void bench_time_cases_rounds(const bench_case *cases, int n, int rounds,
+                             bench_timing *out);
+
+/* The timing of n samples measured elsewhere, in ns per operation (a phase
+ * that a child process reports, say): the same median, quartiles and
+ * interval as bench_time_cases gives; wall_median is the median, reps 1.
+ * Sorts ns. */
+void bench_timing_of_samples(double *ns, int n, bench_timing *out);
 
 /* "# machine: ..." on a line of its own: print it first. */
 void bench_print_machine(void);

@@ -31,7 +31,7 @@ for bench in "$@"; do
   # A method's timing is repeated on every row of its error kinds: the first
   # row of each method and time stands for the rest.
   awk -F, -v name="$name" '
-    /^#/ || $3 == "" || $3 == "ns_per_op" || (FILENAME SUBSEP $1 SUBSEP $3 SUBSEP $6) in timed { next }
+    /^#/ || $3 == "" || $3 + 0 == 0 || $3 == "ns_per_op" || (FILENAME SUBSEP $1 SUBSEP $3 SUBSEP $6) in timed { next }
     { timed[FILENAME, $1, $3, $6] = 1 }
     FNR == NR { a[$1 "," $2] = $3; next }
     ($1 "," $2) in a {
