@@ -10,25 +10,39 @@
  * made here: a grey floor-less view, one directional light, the shape in
  * the middle. Errors are in 8-bit sRGB codes, over the pixels that the
  * reference shape covers or the tessellation covers: the largest, the RMS,
- * and the share of those pixels off by more than one code. Times are
- * processor time of the render alone (the trees are built before).
+ * and the share of those pixels off by more than one code.
  *
- * Rows (method,param,ns_per_op,error,error_kind):
+ * Times (bench/timing.h): one operation is one whole render of a case's
+ * scene (the trees built before). The renders of one family (flat
+ * icospheres, smooth icospheres, teapots), every level with the tree and by
+ * brute force, are timed together, interleaved, in RENDER_ROUNDS rounds of
+ * thread CPU time (brute force takes seconds a render); every scene of the
+ * family is built first and freed after. The images for the errors are
+ * rendered once, before the timing.
+ *
+ * Rows (method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns), after
+ * the "# machine:" line:
  *   sphere-flat|smooth-tree|brute,LEVEL,ns,value,max_code|rms_code|
  *       over_one_code (an icosphere of 20 4^LEVEL triangles against the
  *       analytic sphere, 320 x 240, 200 pixels across)
  *   teapot-tree|brute,N,ns,value,...   (N x N quads a patch, against 64 x 64)
  *   teapot-size,N,0,T,triangles
+ *   teapot-needed,0,0,N,quads_per_side  teapot-ratio,8,0,X,brute_over_tree
+ *   growth,sphere-smooth-tree,0,X,level7_over_level0
+ *   growth,sphere-smooth-brute,0,X,level4_over_level0     (from medians)
+ *   needed-curve,D:LEVEL,0,share,over_one_code
  *   needed,D,0,LEVEL,level  needed,D,0,T,triangles  needed,D,0,T/D,
  *       triangles_per_pixel_across  needed,D,0,T/area,triangles_per_pixel
  *       (the coarsest smooth icosphere within one code on 99.9% of the
  *       pixels, for a sphere D pixels across)
- * ns_per_op is the render's time per pixel. Brute force stops at
- * BRUTE_MAX_TRIANGLES. */
+ * ns_per_op, ns_q1, ns_q3 and wall_ns are a render's median, quartiles and
+ * median wall time divided by its pixels: ns per pixel. Brute force stops
+ * at BRUTE_MAX_TRIANGLES. */
 #include <string.h>
 
 #include "render.h"
 #include "ch08_rays.h"
+#include "timing.h"
 
 /* Brute force beyond this many triangles takes minutes a render: not run. */
 #define BRUTE_MAX_TRIANGLES 5120
@@ -229,15 +243,13 @@ static void add_mesh(scene *s, mesh m, double scale, vec3 at, bool tree)
         exit(1);
 }
 
-/* Renders s into img; the processor seconds it took. */
-static double render_seconds(const scene *s, image *img)
+/* Renders s into img, made here at the scene's size. */
+static void render_new(const scene *s, image *img)
 {
     render_stats stats = {0};
     if (!image_init(img, s->cam.width, s->cam.height))
         exit(1);
-    double start = cpu_seconds();
     render(s, img, &stats);
-    return cpu_seconds() - start;
 }
 
 typedef struct {
@@ -273,12 +285,87 @@ static image_error compare(const image *img, const image *ref, vec3 bg)
     return e;
 }
 
-static void print_error(const char *method, int param, double ns, image_error e)
+/* ---------------------------------------------------------------- timed renders */
+
+/* Every family's images are 320 x 240. */
+enum { WIDTH = 320, HEIGHT = 240 };
+
+/* Rounds of a family's timing: its brute-force renders take up to 3 s each,
+ * and with 7 rounds the whole benchmark takes about two minutes. */
+#define RENDER_ROUNDS 7
+
+/* One render of a family: its scene, its error against the reference and
+ * its time per pixel. */
+typedef struct {
+    scene s;
+    char method[32], param[16];
+    int level; /* the icosphere's level or the teapot's quads a side */
+    image_error e;
+    bench_timing t; /* ns per pixel */
+} render_case;
+
+static image frame; /* where every timed render draws, one after another */
+
+/* reps renders of the case's scene into frame. */
+static void run_render(void *ctx, long reps)
 {
-    printf("%s,%d,%.2f,%.0f,max_code\n", method, param, ns, e.max);
-    printf("%s,%d,%.2f,%.4f,rms_code\n", method, param, ns, e.rms);
-    printf("%s,%d,%.2f,%.6f,over_one_code\n", method, param, ns, e.over_one);
-    fflush(stdout);
+    const render_case *c = ctx;
+    for (long r = 0; r < reps; r++) {
+        render_stats stats = {0};
+        render(&c->s, &frame, &stats);
+        bench_sink += frame.pixels[(long)WIDTH * HEIGHT / 2].x;
+    }
+}
+
+/* t per pixel of a width x height render instead of per render. */
+static bench_timing per_pixel(bench_timing t, int width, int height)
+{
+    double pixels = (double)width * height;
+    t.median /= pixels, t.q1 /= pixels, t.q3 /= pixels;
+    t.ci_lo /= pixels, t.ci_hi /= pixels, t.wall_median /= pixels;
+    return t;
+}
+
+/* Renders each of the n cases once for its error against ref, then times
+ * the renders of all n together, interleaved; frees their scenes. */
+static void measure(render_case *c, int n, const image *ref)
+{
+    bench_case *cases = malloc((size_t)n * sizeof *cases);
+    bench_timing *t = malloc((size_t)n * sizeof *t);
+    if (!cases || !t || !image_init(&frame, WIDTH, HEIGHT))
+        exit(1);
+    for (int k = 0; k < n; k++) {
+        render_stats stats = {0};
+        render(&c[k].s, &frame, &stats);
+        c[k].e = compare(&frame, ref, c[k].s.bg.bottom);
+        cases[k] = (bench_case){c[k].method, c[k].param, run_render, &c[k], 1, 0};
+    }
+    bench_time_cases_rounds(cases, n, RENDER_ROUNDS, t);
+    for (int k = 0; k < n; k++) {
+        c[k].t = per_pixel(t[k], WIDTH, HEIGHT);
+        scene_free(&c[k].s);
+    }
+    image_free(&frame);
+    free(cases), free(t);
+}
+
+/* Fills in c as the render of mesh m (scaled and moved) with or without a
+ * tree. */
+static void make_case(render_case *c, const char *method, int level, mesh m, double scale,
+                      vec3 at, bool tree)
+{
+    snprintf(c->method, sizeof c->method, "%s-%s", method, tree ? "tree" : "brute");
+    snprintf(c->param, sizeof c->param, "%d", level);
+    c->level = level;
+    bare_scene(&c->s, WIDTH, HEIGHT);
+    add_mesh(&c->s, m, scale, at, tree);
+}
+
+static void print_error(const render_case *c)
+{
+    bench_row(c->method, c->param, &c->t, "%.0f", c->e.max, "max_code");
+    bench_row(c->method, c->param, &c->t, "%.4f", c->e.rms, "rms_code");
+    bench_row(c->method, c->param, &c->t, "%.6f", c->e.over_one, "over_one_code");
 }
 
 /* ---------------------------------------------------------------- the measurements */
@@ -290,38 +377,44 @@ static double radius_for(int pixels_across, int side)
     return 6 * half_width * pixels_across / side;
 }
 
+/* The icospheres of levels 0 to 7, flat or smooth, with the tree and (up
+ * to BRUTE_MAX_TRIANGLES) by brute force, against the analytic sphere;
+ * their times per pixel in ns[tree][level]. */
+static void sphere_family(bool smooth, const image *ref, double r, double ns[2][8])
+{
+    render_case *c = calloc(16, sizeof *c);
+    int n = 0;
+    const char *name = smooth ? "sphere-smooth" : "sphere-flat";
+    if (!c)
+        exit(1);
+    for (int level = 0; level <= 7; level++)
+        for (int tree = 1; tree >= 0; tree--)
+            if (tree || (20 << (2 * level)) <= BRUTE_MAX_TRIANGLES)
+                make_case(&c[n++], name, level, icosphere(level, smooth), r, (vec3){0, 0, 6},
+                          tree);
+    measure(c, n, ref);
+    for (int k = 0; k < n; k++) {
+        print_error(&c[k]);
+        ns[strstr(c[k].method, "-tree") != NULL][c[k].level] = c[k].t.median;
+    }
+    fflush(stdout);
+    free(c);
+}
+
 static void spheres(void)
 {
-    const int width = 320, height = 240, across = 200;
     double ns[2][8] = {{0}};
-    double r = radius_for(across, width);
+    double r = radius_for(200, WIDTH); /* 200 pixels across */
     scene ref;
-    image ref_img, img;
-    bare_scene(&ref, width, height);
+    image ref_img;
+    bare_scene(&ref, WIDTH, HEIGHT);
     object o = {.kind = SHAPE_SPHERE, .color = {0.8, 0.75, 0.7}, .sphere = {{0, 0, 6}, r}};
     if (!scene_add_object(&ref, o))
         exit(1);
-    render_seconds(&ref, &ref_img);
-    for (int smooth = 0; smooth < 2; smooth++)
-        for (int level = 0; level <= 7; level++)
-            for (int tree = 1; tree >= 0; tree--) {
-                char name[64];
-                snprintf(name, sizeof name, "sphere-%s-%s", smooth ? "smooth" : "flat",
-                         tree ? "tree" : "brute");
-                scene s;
-                bare_scene(&s, width, height);
-                add_mesh(&s, icosphere(level, smooth), r, (vec3){0, 0, 6}, tree);
-                bool run = tree || (20 << (2 * level)) <= BRUTE_MAX_TRIANGLES;
-                double seconds = run ? render_seconds(&s, &img) : -1;
-                if (run) {
-                    if (smooth)
-                        ns[tree][level] = 1e9 * seconds / (width * height);
-                    print_error(name, level, 1e9 * seconds / (width * height),
-                                compare(&img, &ref_img, s.bg.bottom));
-                    image_free(&img);
-                }
-                scene_free(&s);
-            }
+    render_new(&ref, &ref_img);
+    double flat_ns[2][8]; /* not used */
+    sphere_family(false, &ref_img, r, flat_ns);
+    sphere_family(true, &ref_img, r, ns);
     image_free(&ref_img);
     scene_free(&ref);
     printf("growth,sphere-smooth-tree,0,%.2f,level7_over_level0\n", ns[1][7] / ns[1][0]);
@@ -340,13 +433,13 @@ static void needed_levels(void)
         object o = {.kind = SHAPE_SPHERE, .color = {0.8, 0.75, 0.7}, .sphere = {{0, 0, 6}, r}};
         if (!scene_add_object(&ref, o))
             exit(1);
-        render_seconds(&ref, &ref_img);
+        render_new(&ref, &ref_img);
         int level = 0;
         for (; level <= 8; level++) {
             scene s;
             bare_scene(&s, side, side);
             add_mesh(&s, icosphere(level, true), r, (vec3){0, 0, 6}, true);
-            render_seconds(&s, &img);
+            render_new(&s, &img);
             image_error e = compare(&img, &ref_img, s.bg.bottom);
             image_free(&img);
             scene_free(&s);
@@ -358,7 +451,8 @@ static void needed_levels(void)
         double area = M_PI / 4 * sizes[k] * sizes[k];
         printf("needed,%d,0,%d,level\n", sizes[k], level);
         printf("needed,%d,0,%d,triangles\n", sizes[k], triangles);
-        printf("needed,%d,0,%.2f,triangles_per_pixel_across\n", sizes[k], triangles / (double)sizes[k]);
+        printf("needed,%d,0,%.2f,triangles_per_pixel_across\n", sizes[k],
+               triangles / (double)sizes[k]);
         printf("needed,%d,0,%.3f,triangles_per_pixel\n", sizes[k], triangles / area);
         fflush(stdout);
         image_free(&ref_img);
@@ -366,43 +460,58 @@ static void needed_levels(void)
     }
 }
 
-/* The teapot 4 units wide, seen from the front at 320 x 240. */
-static void teapots(void)
+/* The quads a side where the share of pixels off by more than one code
+ * reaches 1/1000, between the levels that straddle it. */
+static void teapot_needed(const int *levels, const double *over, int n)
 {
-    const int levels[] = {2, 3, 4, 6, 8, 12, 16, 24, 32, 48};
-    double over[10], ns[2][10] = {{0}};
-    scene ref;
-    image ref_img, img;
-    bare_scene(&ref, 320, 240);
-    add_mesh(&ref, teapot(64), 0.6, (vec3){-0.1, -0.9, 7}, true);
-    render_seconds(&ref, &ref_img);
-    for (size_t k = 0; k < sizeof levels / sizeof *levels; k++)
-        for (int tree = 1; tree >= 0; tree--) {
-            scene s;
-            bare_scene(&s, 320, 240);
-            mesh m = teapot(levels[k]);
-            int triangles = m.triangle_count;
-            add_mesh(&s, m, 0.6, (vec3){-0.1, -0.9, 7}, tree);
-            if (tree || triangles <= BRUTE_MAX_TRIANGLES) {
-                double seconds = render_seconds(&s, &img);
-                image_error e = compare(&img, &ref_img, s.bg.bottom);
-                ns[tree][k] = 1e9 * seconds / (320 * 240);
-                over[k] = e.over_one;
-                print_error(tree ? "teapot-tree" : "teapot-brute", levels[k], ns[tree][k], e);
-                printf("teapot-size,%d,0,%d,triangles\n", levels[k], triangles);
-                image_free(&img);
-            }
-            scene_free(&s);
-        }
-    image_free(&ref_img);
-    scene_free(&ref);
-    for (int k = 0; k + 1 < 10; k++) /* the quads a side where the share */
-        if (over[k] > 0.001 && over[k + 1] <= 0.001) { /* reaches 1/1000 */
+    for (int k = 0; k + 1 < n; k++)
+        if (over[k] > 0.001 && over[k + 1] <= 0.001) {
             double f = log(over[k] / 0.001) / log(over[k] / over[k + 1]);
             printf("teapot-needed,0,0,%.1f,quads_per_side\n",
                    levels[k] * pow((double)levels[k + 1] / levels[k], f));
         }
-    printf("teapot-ratio,8,0,%.1f,brute_over_tree\n", ns[0][4] / ns[1][4]);
+}
+
+/* The teapot 4 units wide, seen from the front at 320 x 240. */
+static void teapots(void)
+{
+    enum { N_LEVELS = 10 };
+    const int levels[N_LEVELS] = {2, 3, 4, 6, 8, 12, 16, 24, 32, 48};
+    const vec3 at = {-0.1, -0.9, 7};
+    double over[N_LEVELS], ns[2] = {0, 0};
+    render_case *c = calloc(2 * N_LEVELS, sizeof *c);
+    int n = 0, triangles[2 * N_LEVELS];
+    scene ref;
+    image ref_img;
+    if (!c)
+        exit(1);
+    bare_scene(&ref, WIDTH, HEIGHT);
+    add_mesh(&ref, teapot(64), 0.6, at, true);
+    render_new(&ref, &ref_img);
+    for (int k = 0; k < N_LEVELS; k++)
+        for (int tree = 1; tree >= 0; tree--) {
+            mesh m = teapot(levels[k]);
+            if (!tree && m.triangle_count > BRUTE_MAX_TRIANGLES) {
+                mesh_free(&m);
+                continue;
+            }
+            triangles[n] = m.triangle_count;
+            make_case(&c[n++], "teapot", levels[k], m, 0.6, at, tree);
+        }
+    measure(c, n, &ref_img);
+    for (int k = 0, level = 0; k < n; k++) {
+        level += k > 0 && c[k].level != c[k - 1].level;
+        over[level] = c[k].e.over_one;
+        print_error(&c[k]);
+        printf("teapot-size,%d,0,%d,triangles\n", c[k].level, triangles[k]);
+        if (c[k].level == 8)
+            ns[strstr(c[k].method, "-tree") != NULL] = c[k].t.median;
+    }
+    image_free(&ref_img);
+    scene_free(&ref);
+    free(c);
+    teapot_needed(levels, over, N_LEVELS);
+    printf("teapot-ratio,8,0,%.1f,brute_over_tree\n", ns[0] / ns[1]);
 }
 
 /* The icosphere of the level as OBJ text, vertices and faces only. */
@@ -427,7 +536,8 @@ int main(int argc, char **argv)
         return 0;
     }
     read_patches(argc > 1 ? argv[1] : "meshes/teapot-newell-patches.txt");
-    printf("method,param,ns_per_op,error,error_kind\n");
+    bench_print_machine();
+    bench_csv_header();
     if (argc > 2 && strcmp(argv[2], "needed") == 0) {
         needed_levels();
         return 0;
