@@ -1,5 +1,5 @@
 /* ch08_embree.c: this program's kd-tree against Intel Embree 3, on the same
- * rays, one thread each, in turns.
+ * rays, one thread each, timed together.
  *
  *   build/rel/bench/ch08_embree [BUNNY.obj TEAPOT.obj] > figures/ch08-embree.csv
  *
@@ -9,28 +9,39 @@
  *
  * For the Stanford bunny and the teapot, at K = 1 and K = 2.5, the
  * 1024 x 1024 rays of ch08_rays.h are traced by closest hit, by
- * mesh_nearest (the renderer's kd-tree) and by rtcIntersect1 (Embree's
- * BVH, built with RTC_BUILD_QUALITY_HIGH, a device with threads=1), in
- * ROUNDS rounds, each program tracing all the rays in turn, so that a
- * slow spell of the machine hits both. The builds are timed the same way,
- * BUILDS times each. Rows (method,param,ns_per_op,error,error_kind):
+ * mesh_nearest (the renderer's kd-tree, as trace_kdtree does) and by
+ * rtcIntersect1 (Embree's BVH, built with RTC_BUILD_QUALITY_HIGH, a device
+ * with threads=1). Times come from the harness (bench/timing.h): one
+ * operation is one ray, every batch whole passes over the SIDE x SIDE
+ * rays, and all eight cases (two programs, two meshes, two K) are timed
+ * together, interleaved, in thread CPU time (rtcIntersect1 runs on the
+ * calling thread). The builds, one operation each (ours: mesh_build_tree
+ * on a copy of the mesh; Embree's: a new scene, rtcCommitScene, release),
+ * are timed the same way, the four together, also in thread CPU time:
+ * Embree's build with threads=1 runs on the calling thread (its CPU time
+ * and wall time agree; the program warns on stderr if they ever do not).
+ * The hits and distances come from one pass of each program, untimed.
  *
- *   kdtree|embree,MESH-K,ns_per_ray,Mrays/s,mrays_per_s       (the median
- *       round; _min and _max: the slowest and the fastest round)
- *   ratio,MESH-K,0,kdtree rate / embree rate,kdtree_over_embree (median of
- *       the rounds' ratios; _min, _max)
+ * Rows (method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns),
+ * after the "# machine:" line:
+ *   kdtree-build|embree-build,MESH,ns_per_build,ms,build_ms,q1,q3,wall
+ *   build,MESH,0,kdtree / embree,build_kdtree_over_embree  (of the medians)
+ *   kdtree|embree,MESH-K,ns_per_ray,Mrays/s,mrays_per_s,q1,q3,wall
+ *   ratio,MESH-K,0,kdtree rate / embree rate,kdtree_over_embree (Embree's
+ *       median ns per ray over ours)
  *   hits,MESH-K,0,count,kdtree_hits|embree_hits|rays_that_disagree
  *       (a ray disagrees when one program hits and the other does not,
  *       or both hit at distances more than 1e-5 apart, relatively)
- *   distance,MESH-K,0,sum of the hits' t,kdtree_sum_t|embree_sum_t
- *   build,MESH,ms,ms,kdtree_build_ms|embree_build_ms (medians)
- *   build,MESH,0,kdtree / embree,build_kdtree_over_embree */
+ *   distance,MESH-K,0,sum of the hits' t,kdtree_sum_t|embree_sum_t */
 #include <embree3/rtcore.h>
 #include <string.h>
 
 #include "ch08_rays.h"
+#include "timing.h"
 
-enum { SIDE = 1024, ROUNDS = 7, BUILDS = 5 };
+enum { SIDE = 1024, N_RAYS = SIDE * SIDE, N_MESHES = 2, N_K = 2 };
+
+static const double K_VALUES[N_K] = {1.0, 2.5};
 
 /* ---------------------------------------------------------------- Embree */
 
@@ -58,68 +69,100 @@ static RTCScene embree_scene(RTCDevice device, const mesh *m)
     return scene;
 }
 
-static batch trace_embree(RTCScene scene, const float_ray *rays, int n, float *t_out)
+/* ---------------------------------------------------------------- one ray each */
+
+/* What both programs trace: a mesh (with its tree) or Embree's scene of
+ * it, and the rays of one K. */
+typedef struct {
+    const mesh *m;
+    RTCScene scene;
+    const float_ray *rays;
+} trace_ctx;
+
+/* Ray k through our kd-tree: its distance (in double), or infinity. */
+static double kdtree_ray(const trace_ctx *c, long k)
 {
-    batch b = {0, 0, 0};
+    render_stats stats = {0};
+    mesh_ray mr = mesh_ray_of(ray_of(&c->rays[k]));
+    triangle_hit th;
+    return mesh_nearest(c->m, &mr, 0, INFINITY, &th, &stats) >= 0 ? th.t : INFINITY;
+}
+
+/* Ray k through Embree's scene: its distance, or infinity. */
+static double embree_ray(const trace_ctx *c, long k)
+{
     struct RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    double start = cpu_seconds();
-    for (int k = 0; k < n; k++) {
-        struct RTCRayHit rh;
-        const float_ray *r = &rays[k];
-        rh.ray.org_x = r->o[0], rh.ray.org_y = r->o[1], rh.ray.org_z = r->o[2];
-        rh.ray.dir_x = r->d[0], rh.ray.dir_y = r->d[1], rh.ray.dir_z = r->d[2];
-        rh.ray.tnear = 0, rh.ray.tfar = INFINITY;
-        rh.ray.mask = 0xffffffffu, rh.ray.flags = 0, rh.ray.time = 0;
-        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-        rtcIntersect1(scene, &context, &rh);
-        bool hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-        b.hits += hit;
-        b.sum_t += hit ? rh.ray.tfar : 0;
-        if (t_out)
-            t_out[k] = hit ? rh.ray.tfar : INFINITY;
-    }
-    b.seconds = cpu_seconds() - start;
-    return b;
+    struct RTCRayHit rh;
+    const float_ray *r = &c->rays[k];
+    rh.ray.org_x = r->o[0], rh.ray.org_y = r->o[1], rh.ray.org_z = r->o[2];
+    rh.ray.dir_x = r->d[0], rh.ray.dir_y = r->d[1], rh.ray.dir_z = r->d[2];
+    rh.ray.tnear = 0, rh.ray.tfar = INFINITY;
+    rh.ray.mask = 0xffffffffu, rh.ray.flags = 0, rh.ray.time = 0;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(c->scene, &context, &rh);
+    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : INFINITY;
 }
 
-/* ---------------------------------------------------------------- builds */
-
-static double median_build_ms(const mesh *m, RTCDevice device)
+/* reps rays, whole passes over the rays (the harness's cycle). */
+static void run_kdtree(void *ctx, long reps)
 {
-    double ms[BUILDS];
-    for (int b = 0; b < BUILDS; b++) {
-        double start = cpu_seconds();
-        if (device == NULL) {
-            mesh copy = *m; /* the tree is built into a copy's members */
-            copy.tree = (kdtree){0}, copy.leaf_corners = NULL;
-            kdtree_params p = kdtree_default_params();
-            if (!mesh_build_tree(&copy, &p))
-                exit(1);
-            ms[b] = 1e3 * (cpu_seconds() - start);
-            kdtree_free(&copy.tree);
-            free(copy.leaf_corners);
-        } else {
-            RTCScene scene = embree_scene(device, m);
-            rtcCommitScene(scene);
-            ms[b] = 1e3 * (cpu_seconds() - start);
-            rtcReleaseScene(scene);
-        }
-    }
-    return median_of(ms, BUILDS);
+    double sum = 0;
+    for (long k = 0; k < reps; k++)
+        sum += kdtree_ray(ctx, k % N_RAYS) < INFINITY;
+    bench_sink += sum;
 }
 
-/* ---------------------------------------------------------------- one case */
-
-static void print_rates(const char *method, const char *name, const double *rate)
+static void run_embree(void *ctx, long reps)
 {
-    double r[ROUNDS];
-    memcpy(r, rate, sizeof r);
-    double mid = median_of(r, ROUNDS);
-    printf("%s,%s,%.2f,%.4f,mrays_per_s\n", method, name, 1e3 / mid, mid);
-    printf("%s,%s,%.2f,%.4f,mrays_per_s_min\n", method, name, 1e3 / r[0], r[0]);
-    printf("%s,%s,%.2f,%.4f,mrays_per_s_max\n", method, name, 1e3 / r[ROUNDS - 1],
-           r[ROUNDS - 1]);
+    double sum = 0;
+    for (long k = 0; k < reps; k++)
+        sum += embree_ray(ctx, k % N_RAYS) < INFINITY;
+    bench_sink += sum;
+}
+
+/* ---------------------------------------------------------------- one build each */
+
+typedef struct {
+    const mesh *m;
+    RTCDevice device;
+} build_ctx;
+
+static void run_kdtree_build(void *ctx, long reps)
+{
+    const build_ctx *c = ctx;
+    for (long r = 0; r < reps; r++) {
+        mesh copy = *c->m; /* the tree is built into a copy's members */
+        copy.tree = (kdtree){0}, copy.leaf_corners = NULL;
+        kdtree_params p = kdtree_default_params();
+        if (!mesh_build_tree(&copy, &p))
+            exit(1);
+        bench_sink += copy.tree.node_count;
+        kdtree_free(&copy.tree);
+        free(copy.leaf_corners);
+    }
+}
+
+static void run_embree_build(void *ctx, long reps)
+{
+    const build_ctx *c = ctx;
+    for (long r = 0; r < reps; r++) {
+        RTCScene scene = embree_scene(c->device, c->m);
+        rtcCommitScene(scene);
+        bench_sink += 1;
+        rtcReleaseScene(scene);
+    }
+}
+
+/* ---------------------------------------------------------------- the rows */
+
+/* Warns when a case's thread CPU time falls well short of its wall time:
+ * then other threads did its work, and the thread CPU time is not its cost. */
+static void check_own_thread(const bench_case *c, const bench_timing *t)
+{
+    if (!c->wall_clock && t->median < 0.8 * t->wall_median)
+        fprintf(stderr, "ch08_embree: %s,%s: CPU %.0f ns but wall %.0f ns: other threads?\n",
+                c->method, c->param, t->median, t->wall_median);
 }
 
 static long disagreements(const float *a, const float *b, int n)
@@ -132,62 +175,123 @@ static long disagreements(const float *a, const float *b, int n)
     return count;
 }
 
-static void compare(const mesh *m, RTCScene scene, const char *mesh_name, double K)
+/* One untimed pass of both programs over c's rays: the hits, distances and
+ * disagreements. */
+static void print_agreement(const trace_ctx *c, const char *name)
 {
-    int n = SIDE * SIDE;
-    float_ray *rays = make_rays(m, K, SIDE);
-    float *t_ours = malloc((size_t)n * sizeof *t_ours), *t_embree = malloc((size_t)n * sizeof *t_embree);
-    double ours[ROUNDS], theirs[ROUNDS], ratio[ROUNDS];
-    batch a = {0, 0, 0}, b = {0, 0, 0};
-    for (int round = 0; round < ROUNDS; round++) {
-        a = trace_kdtree(m, rays, n, round == 0 ? t_ours : NULL);
-        b = trace_embree(scene, rays, n, round == 0 ? t_embree : NULL);
-        ours[round] = 1e-6 * n / a.seconds, theirs[round] = 1e-6 * n / b.seconds;
-        ratio[round] = ours[round] / theirs[round];
+    float *a = malloc((size_t)N_RAYS * sizeof *a), *b = malloc((size_t)N_RAYS * sizeof *b);
+    long hits_a = 0, hits_b = 0;
+    double sum_a = 0, sum_b = 0;
+    if (!a || !b)
+        exit(1);
+    for (long k = 0; k < N_RAYS; k++) {
+        double ta = kdtree_ray(c, k), tb = embree_ray(c, k);
+        a[k] = (float)ta, b[k] = (float)tb; /* compared in float, as Embree's */
+        hits_a += ta < INFINITY, hits_b += tb < INFINITY;
+        sum_a += ta < INFINITY ? ta : 0, sum_b += tb < INFINITY ? tb : 0;
     }
-    char name[64];
-    snprintf(name, sizeof name, "%s-%.1f", mesh_name, K);
-    print_rates("kdtree", name, ours);
-    print_rates("embree", name, theirs);
-    double mid = median_of(ratio, ROUNDS);
-    printf("ratio,%s,0,%.4f,kdtree_over_embree\n", name, mid);
-    printf("ratio,%s,0,%.4f,kdtree_over_embree_min\n", name, ratio[0]);
-    printf("ratio,%s,0,%.4f,kdtree_over_embree_max\n", name, ratio[ROUNDS - 1]);
-    printf("hits,%s,0,%ld,kdtree_hits\nhits,%s,0,%ld,embree_hits\n", name, a.hits, name, b.hits);
-    printf("hits,%s,0,%ld,rays_that_disagree\n", name, disagreements(t_ours, t_embree, n));
-    printf("distance,%s,0,%.6f,kdtree_sum_t\ndistance,%s,0,%.6f,embree_sum_t\n", name, a.sum_t,
-           name, b.sum_t);
-    free(rays), free(t_ours), free(t_embree);
+    printf("hits,%s,0,%ld,kdtree_hits\nhits,%s,0,%ld,embree_hits\n", name, hits_a, name, hits_b);
+    printf("hits,%s,0,%ld,rays_that_disagree\n", name, disagreements(a, b, N_RAYS));
+    printf("distance,%s,0,%.6f,kdtree_sum_t\ndistance,%s,0,%.6f,embree_sum_t\n", name, sum_a,
+           name, sum_b);
+    free(a), free(b);
+}
+
+/* The rays of both programs: rows of the timings t of the cases c. */
+static void print_rays(const bench_case *c, const bench_timing *t)
+{
+    bench_row(c[0].method, c[0].param, &t[0], "%.4f", 1e3 / t[0].median, "mrays_per_s");
+    bench_row(c[1].method, c[1].param, &t[1], "%.4f", 1e3 / t[1].median, "mrays_per_s");
+    printf("ratio,%s,0,%.4f,kdtree_over_embree\n", c[0].param, t[1].median / t[0].median);
+}
+
+static void print_builds(const bench_case *c, const bench_timing *t)
+{
+    bench_row(c[0].method, c[0].param, &t[0], "%.3f", t[0].median / 1e6, "build_ms");
+    bench_row(c[1].method, c[1].param, &t[1], "%.3f", t[1].median / 1e6, "build_ms");
+    printf("build,%s,0,%.4f,build_kdtree_over_embree\n", c[0].param, t[0].median / t[1].median);
+}
+
+/* ---------------------------------------------------------------- main */
+
+static const char *NAMES[N_MESHES] = {"bunny", "teapot"};
+
+/* The builds of both meshes by both programs, interleaved. */
+static void time_builds(const mesh *meshes, RTCDevice device, bench_timing *t,
+                        bench_case *c)
+{
+    static build_ctx ctx[2 * N_MESHES];
+    for (int k = 0; k < N_MESHES; k++) {
+        ctx[2 * k] = (build_ctx){&meshes[k], NULL};
+        ctx[2 * k + 1] = (build_ctx){&meshes[k], device};
+        c[2 * k] = (bench_case){"kdtree-build", NAMES[k], run_kdtree_build, &ctx[2 * k], 1, 0};
+        c[2 * k + 1] =
+            (bench_case){"embree-build", NAMES[k], run_embree_build, &ctx[2 * k + 1], 1, 0};
+    }
+    bench_time_cases(c, 2 * N_MESHES, t);
+    for (int k = 0; k < 2 * N_MESHES; k++)
+        check_own_thread(&c[k], &t[k]);
+}
+
+enum { N_TRACES = N_MESHES * N_K };
+
+/* The rays of every mesh and K by both programs, interleaved; case 2 j is
+ * ours and 2 j + 1 Embree's for trace j = mesh N_K + K's index. */
+static void time_rays(const trace_ctx *ctx, char names[][32], bench_timing *t, bench_case *c)
+{
+    for (int j = 0; j < N_TRACES; j++) {
+        void *x = (void *)&ctx[j];
+        c[2 * j] = (bench_case){"kdtree", names[j], run_kdtree, x, N_RAYS, 0};
+        c[2 * j + 1] = (bench_case){"embree", names[j], run_embree, x, N_RAYS, 0};
+    }
+    bench_time_cases(c, 2 * N_TRACES, t);
+    for (int k = 0; k < 2 * N_TRACES; k++)
+        check_own_thread(&c[k], &t[k]);
 }
 
 int main(int argc, char **argv)
 {
-    const char *paths[2] = {argc > 1 ? argv[1] : "meshes/bunny.obj",
-                            argc > 2 ? argv[2] : "meshes/teapot-8.obj"};
-    const char *names[2] = {"bunny", "teapot"};
+    const char *paths[N_MESHES] = {argc > 1 ? argv[1] : "meshes/bunny.obj",
+                                   argc > 2 ? argv[2] : "meshes/teapot-8.obj"};
     RTCDevice device = rtcNewDevice("threads=1");
     if (device == NULL) {
         fprintf(stderr, "ch08_embree: Embree has no device\n");
         return 1;
     }
-    printf("method,param,ns_per_op,error,error_kind\n");
-    for (int k = 0; k < 2; k++) {
-        mesh m;
-        load_float_mesh(paths[k], &m);
-        double ours = median_build_ms(&m, NULL), theirs = median_build_ms(&m, device);
-        printf("build,%s,%.3f,%.3f,kdtree_build_ms\n", names[k], ours, ours);
-        printf("build,%s,%.3f,%.3f,embree_build_ms\n", names[k], theirs, theirs);
-        printf("build,%s,0,%.4f,build_kdtree_over_embree\n", names[k], ours / theirs);
+    mesh meshes[N_MESHES];
+    RTCScene scenes[N_MESHES];
+    for (int k = 0; k < N_MESHES; k++)
+        load_float_mesh(paths[k], &meshes[k]);
+    bench_case build_cases[2 * N_MESHES], ray_cases[2 * N_TRACES];
+    bench_timing builds[2 * N_MESHES], rays[2 * N_TRACES];
+    time_builds(meshes, device, builds, build_cases);
+    trace_ctx ctx[N_TRACES];
+    char names[N_TRACES][32];
+    for (int k = 0; k < N_MESHES; k++) {
         kdtree_params p = kdtree_default_params();
-        if (!mesh_build_tree(&m, &p))
+        if (!mesh_build_tree(&meshes[k], &p))
             return 1;
-        RTCScene scene = embree_scene(device, &m);
-        rtcCommitScene(scene);
-        compare(&m, scene, names[k], 1.0);
-        compare(&m, scene, names[k], 2.5);
-        rtcReleaseScene(scene);
-        mesh_free(&m);
-        fflush(stdout);
+        scenes[k] = embree_scene(device, &meshes[k]);
+        rtcCommitScene(scenes[k]);
+        for (int i = 0; i < N_K; i++) {
+            int j = k * N_K + i;
+            ctx[j] = (trace_ctx){&meshes[k], scenes[k], make_rays(&meshes[k], K_VALUES[i], SIDE)};
+            snprintf(names[j], sizeof names[j], "%s-%.1f", NAMES[k], K_VALUES[i]);
+        }
+    }
+    time_rays(ctx, names, rays, ray_cases);
+    bench_print_machine();
+    bench_csv_header();
+    for (int k = 0; k < N_MESHES; k++) {
+        print_builds(&build_cases[2 * k], &builds[2 * k]);
+        for (int i = 0; i < N_K; i++) {
+            int j = k * N_K + i;
+            print_rays(&ray_cases[2 * j], &rays[2 * j]);
+            print_agreement(&ctx[j], names[j]);
+            free((void *)ctx[j].rays);
+        }
+        rtcReleaseScene(scenes[k]);
+        mesh_free(&meshes[k]);
     }
     rtcReleaseDevice(device);
     return 0;
