@@ -317,15 +317,6 @@ static void run_render(void *ctx, long reps)
     }
 }
 
-/* t per pixel of a width x height render instead of per render. */
-static bench_timing per_pixel(bench_timing t, int width, int height)
-{
-    double pixels = (double)width * height;
-    t.median /= pixels, t.q1 /= pixels, t.q3 /= pixels;
-    t.ci_lo /= pixels, t.ci_hi /= pixels, t.wall_median /= pixels;
-    return t;
-}
-
 /* Renders each of the n cases once for its error against ref, then times
  * the renders of all n together, interleaved; frees their scenes. */
 static void measure(render_case *c, int n, const image *ref)
@@ -338,11 +329,11 @@ static void measure(render_case *c, int n, const image *ref)
         render_stats stats = {0};
         render(&c[k].s, &frame, &stats);
         c[k].e = compare(&frame, ref, c[k].s.bg.bottom);
-        cases[k] = (bench_case){c[k].method, c[k].param, run_render, &c[k], 1, 0};
+        cases[k] = (bench_case){c[k].method, c[k].param, run_render, &c[k], 1};
     }
     bench_time_cases_rounds(cases, n, RENDER_ROUNDS, t);
     for (int k = 0; k < n; k++) {
-        c[k].t = per_pixel(t[k], WIDTH, HEIGHT);
+        c[k].t = bench_timing_scaled(t[k], 1.0 / ((double)WIDTH * HEIGHT));
         scene_free(&c[k].s);
     }
     image_free(&frame);

@@ -16,7 +16,7 @@ lo = -5
 hi = 0
 
 eval machine_label
-set multiplot layout 1,2 title "Chapter 08: how much model a picture needs" font ",14" margins 0.08,0.98,0.17,0.86 spacing 0.08
+set multiplot layout 1,2 title "Chapter 8: how much model a picture needs" font ",14" margins 0.08,0.98,0.17,0.86 spacing 0.08
 eval zero_axis_y
 set logscale x
 set format x "10^{%L}"

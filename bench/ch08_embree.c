@@ -9,7 +9,7 @@
  *
  * For the Stanford bunny and the teapot, at K = 1 and K = 2.5, the
  * 1024 x 1024 rays of ch08_rays.h are traced by closest hit, by
- * mesh_nearest (the renderer's kd-tree, as trace_kdtree does) and by
+ * mesh_nearest (the renderer's kd-tree) and by
  * rtcIntersect1 (Embree's BVH, built with RTC_BUILD_QUALITY_HIGH, a device
  * with threads=1). Times come from the harness (bench/timing.h): one
  * operation is one ray, every batch whole passes over the SIDE x SIDE
@@ -160,7 +160,7 @@ static void run_embree_build(void *ctx, long reps)
  * then other threads did its work, and the thread CPU time is not its cost. */
 static void check_own_thread(const bench_case *c, const bench_timing *t)
 {
-    if (!c->wall_clock && t->median < 0.8 * t->wall_median)
+    if (t->median < 0.8 * t->wall_median)
         fprintf(stderr, "ch08_embree: %s,%s: CPU %.0f ns but wall %.0f ns: other threads?\n",
                 c->method, c->param, t->median, t->wall_median);
 }
@@ -224,9 +224,9 @@ static void time_builds(const mesh *meshes, RTCDevice device, bench_timing *t,
     for (int k = 0; k < N_MESHES; k++) {
         ctx[2 * k] = (build_ctx){&meshes[k], NULL};
         ctx[2 * k + 1] = (build_ctx){&meshes[k], device};
-        c[2 * k] = (bench_case){"kdtree-build", NAMES[k], run_kdtree_build, &ctx[2 * k], 1, 0};
+        c[2 * k] = (bench_case){"kdtree-build", NAMES[k], run_kdtree_build, &ctx[2 * k], 1};
         c[2 * k + 1] =
-            (bench_case){"embree-build", NAMES[k], run_embree_build, &ctx[2 * k + 1], 1, 0};
+            (bench_case){"embree-build", NAMES[k], run_embree_build, &ctx[2 * k + 1], 1};
     }
     bench_time_cases(c, 2 * N_MESHES, t);
     for (int k = 0; k < 2 * N_MESHES; k++)
@@ -241,8 +241,8 @@ static void time_rays(const trace_ctx *ctx, char names[][32], bench_timing *t, b
 {
     for (int j = 0; j < N_TRACES; j++) {
         void *x = (void *)&ctx[j];
-        c[2 * j] = (bench_case){"kdtree", names[j], run_kdtree, x, N_RAYS, 0};
-        c[2 * j + 1] = (bench_case){"embree", names[j], run_embree, x, N_RAYS, 0};
+        c[2 * j] = (bench_case){"kdtree", names[j], run_kdtree, x, N_RAYS};
+        c[2 * j + 1] = (bench_case){"embree", names[j], run_embree, x, N_RAYS};
     }
     bench_time_cases(c, 2 * N_TRACES, t);
     for (int k = 0; k < 2 * N_TRACES; k++)

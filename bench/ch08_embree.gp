@@ -28,7 +28,7 @@ set style fill solid 0.85 noborder
 set boxwidth 0.36
 
 eval machine_label
-set multiplot layout 1,2 title (absent ? "Chapter 08: this program's kd-tree (Embree was absent when this chart was made)" : "Chapter 08: this program's kd-tree against Embree 3, the same rays, one thread each") font ",14"
+set multiplot layout 1,2 title (absent ? "Chapter 8: this program's kd-tree (Embree was absent when this chart was made)" : "Chapter 8: this program's kd-tree against Embree 3, the same rays, one thread each") font ",14"
 set xrange [-0.6:3.6]
 set yrange [0:*]
 set offsets 0, 0, graph 0.25, 0

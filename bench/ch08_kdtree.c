@@ -1,60 +1,71 @@
 /* ch08_kdtree.c: what a kd-tree costs and what it saves.
  *
  *   build/rel/bench/ch08_kdtree [BUNNY.obj TEAPOT.obj] > figures/ch08-kdtree.csv
+ *   build/rel/bench/ch08_kdtree --fans    (section 7 alone)
  *
- * Rows (method,param,ns_per_op,error,error_kind); every time is processor
- * time (cpu_seconds in ch08_rays.h), every ray set is the one of ch08_rays.h.
+ * Every time is taken by the harness of timing.h: thread CPU time, the
+ * methods of one comparison interleaved round by round, the median and
+ * quartiles of the rounds (21 rounds, or fewer where one operation takes
+ * seconds, as stated below). The CSV starts with its machine line; its
+ * columns are method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns.
+ * Rows with an empty ns_per_op are counts; rows with ns_per_op 0 are
+ * derived from the medians of other rows. Every ray set is ch08_rays.h's.
  *
- * 1. The benchmark's rays through the renderer's tree (mesh_nearest), one
- *    thread, for the bunny and the teapot at K = 1 and 2.5, timed together
- *    with the recursive walk by the harness of timing.h (thread CPU time,
- *    interleaved rounds, quartiles in the last columns):
- *      kdtree,MESH-K,ns_per_ray,Mrays/s,mrays_per_s (median of the rounds)
- *      hits,MESH-K,0,count,kdtree_hits   distance,MESH-K,0,sum,kdtree_sum_t
- *      build,MESH,ms,ms,kdtree_build_ms (median of BUILDS)
- *    and the recursive walk against the iterative one (bunny, K = 1):
+ * 1. The benchmark's rays through the renderer's tree (mesh_nearest), for
+ *    the bunny and the teapot at K = 1 and 2.5, timed together with the
+ *    recursive walk on the bunny at K = 1; and the two meshes' builds:
+ *      kdtree,MESH-K,ns_per_ray,Mrays/s,mrays_per_s
+ *      hits,MESH-K,,count,kdtree_hits   distance,MESH-K,,sum,kdtree_sum_t
  *      walk-recursive|walk-iterative,bunny-1.0,ns_per_ray,nodes,nodes_per_ray
- * 2. Where the time of a ray goes (bunny, K = 1 and 2.5): making the
- *    camera's ray, then its per-ray constants, then the box test, then the
- *    walk and the leaves, each step timed with the ones before it (ns_per_op:
- *    the steps so far; error: this step's share of the whole ray's time):
- *      fixed-cost,STEP@K,ns_per_ray,share,share_of_ray
+ *      kdtree-build,MESH,ns_per_build,ms,build_ms
+ * 2. Where the time of a ray goes (bunny, K = 1 and 2.5, 512 x 512 rays
+ *    from the renderer's camera): making the camera's ray, then its
+ *    per-ray constants, then the box test, then the walk and the leaves,
+ *    each step timed with the steps before it, the eight together:
+ *      fixed-cost,STEP@K,ns_per_ray_so_far,share,share_of_ray
+ *    (share: this step's part of the whole ray's median time).
  * 3. The crossover: the first N triangles of the bunny (N = 1, 2, 4, ...,
- *    all), 64 x 64 rays at K = 1 fitted to their box, by brute force, by a
+ *    all), 64 x 64 rays at K = 1 fitted to their box (SLOW_ROUNDS rounds
+ *    from 16,384 triangles), by brute force, by a
  *    median-split tree and by the SAH tree (every tree forced, however
- *    small); and N random spheres searched as a list or through the
- *    objects' tree:
+ *    small), the three interleaved; and N random spheres searched as a list
+ *    or through the objects' tree, the two interleaved:
  *      brute-force|median|sah,N,ns_per_ray,tests,triangle_tests_per_ray
- *      METHOD,N,0,count,rays_unlike_brute_force (hit or distance differs)
+ *      METHOD,N,,count,rays_unlike_brute_force (hit or distance differs)
  *      objects-list|objects-tree,N,ns_per_ray,tests,sphere_tests_per_ray
+ *      crossover,triangles|spheres,0,N,tree_faster_from (from the medians)
  * 4. The SAH's parameters, one at a time from the defaults (bunny, K = 1,
- *    256 x 256 rays): build time against trace time
- *      sah-traversal-cost|sah-empty-bonus|sah-max-depth,VALUE,ns_per_ray,
- *          ms,build_ms   (and nodes, references_per_triangle)
+ *    256 x 256 rays): each family's trees traced interleaved (21 rounds)
+ *    and built interleaved (SLOW_ROUNDS rounds):
+ *      sah-FAMILY,VALUE,ns_per_ray,ms,build_ms (the build's median)
+ *      sah-build-FAMILY,VALUE,ns_per_build,ns,ns_per_ray (the trace's)
+ *      sah-FAMILY,VALUE,,count,nodes|references_per_triangle
+ *    FAMILY: traversal-cost, empty-bonus, max-depth.
  * 5. Build time per triangle against N for subdivided, bumpy spheres of
- *    1,280 to 1,310,720 triangles (made here, no download), by the three
- *    builds:
+ *    1,280 to 1,310,720 triangles (made here, no download), the builds of
+ *    one size interleaved (SLOW_ROUNDS rounds from 327,680 triangles; the
+ *    per-node sort is not run at 1,310,720, where one build takes 10 s):
  *      build-sah|build-sorting|build-median,N,ns_per_triangle,ms,build_ms
  * 6. Threads: bin/ch08 renders the chapter's bunny scene with --threads 1
- *    and 2, three times each (the render phase that --stats reports, the
- *    best of three):
- *      threads,1|2,ms,ms,render_ms   threads,2,0,speedup,speedup
- *      scene,bunny,ms,ms,load_ms   (reading the scene and building its trees)
- * 7. A 16 MiB OBJ file of one fan face, made in memory and read by
+ *    and 2, in turns, THREAD_ROUNDS times each; the phases as --stats
+ *    reports them (wall clock), summarised like the harness's rounds:
+ *      threads,1|2,ns_per_render,ms,render_ms   threads,2,0,speedup,speedup
+ *      scene,bunny,ns_per_load,ms,load_ms (reading the scene, building
+ *      its trees; from both kinds of run)
+ * 7. Two 16 MiB OBJ files of one fan face, made in memory and read by
  *    mesh_parse_obj (fan_text): "distinct", as many rim vertices as fit
  *    (f 1 2 3 ... N), and "coincident", three vertices and
- *    f 1 2 3 2 3 2 3 ..., whose triangles all coincide. The rays are the
- *    benchmark's at K = 0.5 for the square [-1, 1]^2 that both fans cover,
- *    4 x 4 of them (2 x 2 through the coincident fan), through the tree
- *    and by brute force, timed by the harness of timing.h (thread CPU
- *    time, the two interleaved round by round):
- *      fan,KIND,ms,ms,load_ms | build_ms   fan,KIND,0,count,triangles
- *      fan,KIND,0,count,nodes   fan,KIND,0,refs,references_per_triangle
+ *    f 1 2 3 2 3 2 3 ..., whose triangles all coincide. Their reading and
+ *    their builds (SLOW_ROUNDS rounds) are timed, the two kinds
+ *    interleaved; the rays are the benchmark's at K = 0.5 for the square
+ *    [-1, 1]^2 that both fans cover, 4 x 4 of them (2 x 2 through the
+ *    coincident fan), through the tree and by brute force, interleaved:
+ *      fan-load|fan-build,KIND,ns,ms,load_ms|build_ms
+ *      fan,KIND,,count,bytes|triangles|nodes   fan,KIND,,refs,
+ *          references_per_triangle
  *      fan-tree|fan-brute,KIND,ns_per_ray,tests,triangle_tests_per_ray
  *      fan,KIND,0,s,render_320x240_s (a 320 x 240 picture at the tree's
- *      time per ray)   fan,KIND,0,ratio,brute_over_tree
- *    These rows and those of section 1 but the build have the harness's
- *    quartile columns; the CSV starts with its machine line. */
+ *      time per ray)   fan,KIND,0,ratio,brute_over_tree */
 #include <string.h>
 
 #include "rng.h"
@@ -63,27 +74,11 @@
 #include "ch08_rays.h"
 #include "timing.h"
 
-enum { SIDE = 1024, ROUNDS = 5, BUILDS = 5 };
+/* SLOW_ROUNDS: the rounds of cases whose one batch takes a tenth of a
+ * second or more, where 21 rounds of every such case would take minutes. */
+enum { SIDE = 1024, SLOW_ROUNDS = 5, THREAD_ROUNDS = 7 };
 
-static volatile double sink; /* keeps the compiler from dropping work */
-
-/* ---------------------------------------------------------------- timing */
-
-/* Runs one batch of work(arg) as often as it takes to fill min_seconds of
- * processor time; the seconds one batch took. The one timing function. */
-static double time_batch(void (*work)(void *), void *arg, double min_seconds)
-{
-    int runs = 0;
-    double start = cpu_seconds(), elapsed;
-    do {
-        work(arg);
-        runs++;
-        elapsed = cpu_seconds() - start;
-    } while (elapsed < min_seconds);
-    return elapsed / runs;
-}
-
-/* ---------------------------------------------------------------- trees */
+/* ---------------------------------------------------------------- cases */
 
 static bool build(mesh *m, kdtree_params p)
 {
@@ -98,69 +93,39 @@ static kdtree_params forced(kdtree_method method)
     return p;
 }
 
+/* A mesh that shares m's vertices and triangles and has no tree yet: the
+ * tree it gets is its own. */
+static mesh sharing(const mesh *m)
+{
+    mesh copy = *m;
+    copy.tree = (kdtree){0}, copy.leaf_corners = NULL;
+    return copy;
+}
+
+static void free_tree(mesh *m)
+{
+    kdtree_free(&m->tree);
+    free(m->leaf_corners), m->leaf_corners = NULL;
+}
+
+/* A case of the harness: each operation builds the tree of its mesh
+ * (a copy sharing the triangles) with its parameters. */
 typedef struct {
-    mesh *m;
+    mesh m;
     kdtree_params p;
-} build_job;
+} build_case;
 
-static void build_work(void *arg)
+static void build_run(void *ctx, long reps)
 {
-    build_job *j = arg;
-    if (!build(j->m, j->p))
-        exit(1);
+    build_case *b = ctx;
+    for (long r = 0; r < reps; r++)
+        if (!build(&b->m, b->p))
+            exit(1);
+    bench_sink += b->m.tree.node_count;
 }
 
-static double build_ms(mesh *m, kdtree_params p)
-{
-    build_job j = {m, p};
-    double ms[BUILDS];
-    for (int b = 0; b < BUILDS; b++)
-        ms[b] = 1e3 * time_batch(build_work, &j, 0);
-    return median_of(ms, BUILDS);
-}
-
-/* ---------------------------------------------------------------- tracing */
-
-typedef struct {
-    const mesh *m;
-    const float_ray *rays;
-    int n;
-    bool recursive;
-    render_stats stats;
-    batch result;
-    float *t; /* NULL, or each ray's distance (infinity: a miss) */
-} trace_job;
-
-static void trace_work(void *arg)
-{
-    trace_job *j = arg;
-    j->stats = (render_stats){0};
-    j->result = (batch){0, 0, 0};
-    for (int k = 0; k < j->n; k++) {
-        mesh_ray mr = mesh_ray_of(ray_of(&j->rays[k]));
-        triangle_hit th;
-        int hit = j->recursive
-                      ? mesh_nearest_recursive(j->m, &mr, 0, INFINITY, &th, &j->stats)
-                      : mesh_nearest(j->m, &mr, 0, INFINITY, &th, &j->stats);
-        j->result.hits += hit >= 0;
-        j->result.sum_t += hit >= 0 ? th.t : 0;
-        if (j->t)
-            j->t[k] = hit >= 0 ? (float)th.t : INFINITY;
-    }
-}
-
-/* Nanoseconds per ray, the median of ROUNDS batches. */
-static double ns_per_ray(trace_job *j, double min_seconds)
-{
-    double ns[ROUNDS];
-    for (int r = 0; r < ROUNDS; r++)
-        ns[r] = 1e9 * time_batch(trace_work, j, min_seconds) / j->n;
-    return median_of(ns, ROUNDS);
-}
-
-/* ---------------------------------------------------------------- 1 */
-
-/* One case of the harness: reps rays of rays[0..n), in turn. */
+/* A case of the harness: each operation traces the next of the rays
+ * rays[0..n), through m's tree (or its triangles, without one). */
 typedef struct {
     const mesh *m;
     const float_ray *rays;
@@ -184,15 +149,54 @@ static void ray_case_run(void *ctx, long reps)
     bench_sink += sum;
 }
 
-/* The benchmark's rays through the bunny and the teapot at K = 1 and 2.5,
- * and the recursive walk on the bunny at K = 1, the five timed together by
- * the harness (interleaved rounds, thread CPU time). */
-static void exact_rays(mesh *meshes, const char **names)
+/* What tracing rays[0..n) through m finds and counts, once: the hits, the
+ * sum of their distances, and each ray's distance in t (infinity: a
+ * miss) when t is not NULL. */
+typedef struct {
+    long hits;
+    double sum_t;
+    render_stats stats;
+} trace_count;
+
+static trace_count count_rays(const mesh *m, const float_ray *rays, int n, bool recursive,
+                              float *t)
 {
-    for (int k = 0; k < 2; k++) {
-        double ms = build_ms(&meshes[k], kdtree_default_params());
-        printf("build,%s,%.3f,%.3f,kdtree_build_ms\n", names[k], ms, ms);
+    trace_count c = {0, 0, {0}};
+    for (int k = 0; k < n; k++) {
+        mesh_ray mr = mesh_ray_of(ray_of(&rays[k]));
+        triangle_hit th;
+        int hit = recursive ? mesh_nearest_recursive(m, &mr, 0, INFINITY, &th, &c.stats)
+                            : mesh_nearest(m, &mr, 0, INFINITY, &th, &c.stats);
+        c.hits += hit >= 0;
+        c.sum_t += hit >= 0 ? th.t : 0;
+        if (t)
+            t[k] = hit >= 0 ? (float)th.t : INFINITY;
     }
+    return c;
+}
+
+/* ---------------------------------------------------------------- 1 */
+
+/* The two meshes' trees with the defaults, built in turns. */
+static void tree_builds(const mesh *meshes, const char **names)
+{
+    build_case b[2] = {{sharing(&meshes[0]), kdtree_default_params()},
+                       {sharing(&meshes[1]), kdtree_default_params()}};
+    bench_case cases[2] = {{"kdtree-build", names[0], build_run, &b[0], 1},
+                           {"kdtree-build", names[1], build_run, &b[1], 1}};
+    bench_timing t[2];
+    bench_time_cases(cases, 2, t);
+    for (int k = 0; k < 2; k++) {
+        bench_row("kdtree-build", names[k], &t[k], "%.3f", t[k].median / 1e6, "build_ms");
+        free_tree(&b[k].m);
+    }
+    fflush(stdout);
+}
+
+/* The benchmark's rays through the bunny and the teapot at K = 1 and 2.5,
+ * and the recursive walk on the bunny at K = 1, the five interleaved. */
+static void exact_rays(const mesh *meshes, const char **names)
+{
     enum { CASES = 5 };
     float_ray *rays[4];
     ray_case rc[CASES];
@@ -211,22 +215,15 @@ static void exact_rays(mesh *meshes, const char **names)
     bench_timing t[CASES];
     bench_time_cases(cases, CASES, t);
     for (int c = 0; c < 4; c++) {
-        trace_job j = {rc[c].m, rays[c], SIDE * SIDE, false, {0}, {0, 0, 0}, NULL};
-        trace_work(&j); /* the hits and distances, once */
+        trace_count found = count_rays(rc[c].m, rays[c], (int)n, false, NULL);
         bench_row("kdtree", params[c], &t[c], "%.4f", 1e3 / t[c].median, "mrays_per_s");
-        printf("hits,%s,0,%ld,kdtree_hits\n", params[c], j.result.hits);
-        printf("distance,%s,0,%.6f,kdtree_sum_t\n", params[c], j.result.sum_t);
-        if (c == 0) { /* the recursive walk against the iterative one */
-            for (int w = 0; w < 2; w++) {
-                j.recursive = w == 0;
-                trace_work(&j);
-                bench_row(w == 0 ? "walk-recursive" : "walk-iterative", params[0],
-                          &t[w == 0 ? 4 : 0], "%.3f", (double)j.stats.kd_nodes / j.n,
-                          "nodes_per_ray");
-            }
-            printf("walk,%s,0,%.4f,recursive_over_iterative\n", params[0],
-                   t[4].median / t[0].median);
-        }
+        printf("hits,%s,,%ld,kdtree_hits\n", params[c], found.hits);
+        printf("distance,%s,,%.6f,kdtree_sum_t\n", params[c], found.sum_t);
+    }
+    for (int w = 0; w < 2; w++) { /* the recursive walk against the iterative one */
+        trace_count walk = count_rays(&meshes[0], rays[0], (int)n, w == 0, NULL);
+        bench_row(w == 0 ? "walk-recursive" : "walk-iterative", params[0], &t[w == 0 ? 4 : 0],
+                  "%.3f", (double)walk.stats.kd_nodes / (double)n, "nodes_per_ray");
     }
     for (int c = 0; c < 4; c++)
         free(rays[c]);
@@ -235,75 +232,90 @@ static void exact_rays(mesh *meshes, const char **names)
 
 /* ---------------------------------------------------------------- 2 */
 
+/* A case of the harness: each operation is the next pixel's ray from the
+ * renderer's camera, taken through the first `steps` steps of a ray. */
 typedef struct {
     const mesh *m;
     camera_view view;
     int side, steps;
-} fixed_job;
+    long next;
+} fixed_case;
 
-static void fixed_work(void *arg)
+static void fixed_run(void *ctx, long reps)
 {
-    fixed_job *j = arg;
+    fixed_case *j = ctx;
     render_stats stats = {0};
     double sum = 0;
-    for (int py = 0; py < j->side; py++)
-        for (int px = 0; px < j->side; px++) {
-            ray r = camera_view_ray(&j->view, px, py);
-            sum += r.dir.x;
-            if (j->steps < 2)
-                continue;
-            mesh_ray mr = mesh_ray_of(r);
-            sum += mr.shear.sz;
-            if (j->steps < 3)
-                continue;
-            double near = 0, far = INFINITY;
-            sum += box_clip(&j->m->bounds, mr.r.origin, mr.inv_dir, &near, &far);
-            if (j->steps < 4)
-                continue;
-            triangle_hit th;
-            sum += mesh_nearest(j->m, &mr, 0, INFINITY, &th, &stats);
-        }
-    sink += sum;
+    for (long r = 0; r < reps; r++) {
+        int px = (int)(j->next % j->side), py = (int)(j->next / j->side);
+        j->next = (j->next + 1) % ((long)j->side * j->side);
+        ray ray = camera_view_ray(&j->view, px, py);
+        sum += ray.dir.x;
+        if (j->steps < 2)
+            continue;
+        mesh_ray mr = mesh_ray_of(ray);
+        sum += mr.shear.sz;
+        if (j->steps < 3)
+            continue;
+        double near = 0, far = INFINITY;
+        sum += box_clip(&j->m->bounds, mr.r.origin, mr.inv_dir, &near, &far);
+        if (j->steps < 4)
+            continue;
+        triangle_hit th;
+        sum += mesh_nearest(j->m, &mr, 0, INFINITY, &th, &stats);
+    }
+    bench_sink += sum;
 }
 
-/* The renderer's camera at the eye of the benchmark: the camera looks down
- * +z from the origin, so the mesh is turned half a turn about y and moved
- * to sit where the benchmark's rays see it. */
+/* The bunny where the renderer's camera sees it as the benchmark's rays
+ * do at distance K: the camera looks down +z from the origin, so the mesh
+ * is turned half a turn about y and moved; its own tree, built anew. */
+static mesh bunny_before_camera(const mesh *bunny, double K)
+{
+    mesh m = sharing(bunny);
+    vec3 c = vec3_scale(vec3_add(m.bounds.lo, m.bounds.hi), 0.5);
+    double diag = vec3_length(vec3_sub(m.bounds.hi, m.bounds.lo));
+    m.vertices = malloc((size_t)m.vertex_count * sizeof *m.vertices);
+    if (m.vertices == NULL)
+        exit(1);
+    for (int v = 0; v < m.vertex_count; v++) {
+        vec3 p = vec3_sub(bunny->vertices[v], c); /* turned: x, z negated */
+        m.vertices[v] = (vec3){-p.x, p.y, K * diag - p.z};
+    }
+    mesh_compute_bounds(&m);
+    if (!build(&m, kdtree_default_params()))
+        exit(1);
+    return m;
+}
+
 static void fixed_costs(const mesh *bunny)
 {
     static const char *steps[4] = {"camera ray", "per-ray constants", "box test",
                                    "walk and leaves"};
-    for (int k = 0; k < 2; k++) {
-        double K = k == 0 ? 1.0 : 2.5;
-        mesh m = *bunny; /* the same tree; vertices moved in a copy */
-        vec3 c = vec3_scale(vec3_add(m.bounds.lo, m.bounds.hi), 0.5);
-        double diag = vec3_length(vec3_sub(m.bounds.hi, m.bounds.lo));
-        m.vertices = malloc((size_t)m.vertex_count * sizeof *m.vertices);
-        for (int v = 0; v < m.vertex_count; v++) {
-            vec3 p = vec3_sub(bunny->vertices[v], c); /* turned: x, z negated */
-            m.vertices[v] = (vec3){-p.x, p.y, K * diag - p.z};
-        }
-        mesh_compute_bounds(&m);
-        m.tree = (kdtree){0}, m.leaf_corners = NULL;
-        if (!build(&m, kdtree_default_params()))
-            exit(1);
-        camera cam = {.fov_deg = 60, .width = 512, .height = 512};
-        fixed_job j = {&m, camera_view_of(&cam), 512, 0};
-        double cumulative[4];
-        for (int s = 0; s < 4; s++) {
-            j.steps = s + 1;
-            double ns[ROUNDS];
-            for (int r = 0; r < ROUNDS; r++)
-                ns[r] = 1e9 * time_batch(fixed_work, &j, 0.05) / (512.0 * 512);
-            cumulative[s] = median_of(ns, ROUNDS);
-        }
-        for (int s = 0; s < 4; s++) /* each step's share of the whole ray */
-            printf("fixed-cost,%s@%.1f,%.2f,%.4f,share_of_ray\n", steps[s], K, cumulative[s],
-                   (cumulative[s] - (s ? cumulative[s - 1] : 0)) / cumulative[3]);
-        free(m.vertices);
-        kdtree_free(&m.tree);
-        free(m.leaf_corners);
+    enum { PIXELS = 512 };
+    camera cam = {.fov_deg = 60, .width = PIXELS, .height = PIXELS};
+    mesh m[2] = {bunny_before_camera(bunny, 1.0), bunny_before_camera(bunny, 2.5)};
+    fixed_case fc[8];
+    bench_case cases[8];
+    char params[8][48];
+    for (int c = 0; c < 8; c++) {
+        snprintf(params[c], sizeof params[c], "%s@%.1f", steps[c % 4], c < 4 ? 1.0 : 2.5);
+        fc[c] = (fixed_case){&m[c / 4], camera_view_of(&cam), PIXELS, c % 4 + 1, 0};
+        cases[c] = (bench_case){"fixed-cost", params[c], fixed_run, &fc[c],
+                                (long)PIXELS * PIXELS};
     }
+    bench_timing t[8];
+    bench_time_cases(cases, 8, t);
+    for (int c = 0; c < 8; c++) { /* each step's share of the whole ray */
+        double before = c % 4 ? t[c - 1].median : 0, whole = t[c / 4 * 4 + 3].median;
+        bench_row("fixed-cost", params[c], &t[c], "%.4f", (t[c].median - before) / whole,
+                  "share_of_ray");
+    }
+    for (int k = 0; k < 2; k++) {
+        free(m[k].vertices);
+        free_tree(&m[k]);
+    }
+    fflush(stdout);
 }
 
 /* ---------------------------------------------------------------- 3 */
@@ -341,64 +353,97 @@ static mesh first_triangles(const mesh *whole, int n)
     return m;
 }
 
-static void crossover_meshes(const mesh *bunny)
+/* How many of the n rays a tree answers unlike brute force: another hit,
+ * or another distance (reference: brute force's distances). */
+static long unlike(const float *reference, const float *t, int n)
+{
+    long differ = 0;
+    for (int k = 0; k < n; k++)
+        differ += !(reference[k] == t[k] || (isinf(reference[k]) && isinf(t[k])));
+    return differ;
+}
+
+/* Brute force, the median-split tree and the SAH tree on the first n
+ * triangles, the three interleaved (in SLOW_ROUNDS rounds from 16,384
+ * triangles, where one pass of brute force takes a second or more); their
+ * medians in ns[0..3). */
+static void crossover_point(const mesh *bunny, int n, float *reference, float *t, double *ns)
 {
     static const char *names[3] = {"brute-force", "median", "sah"};
+    enum { RAYS = 64 * 64 };
+    mesh m[3];
+    m[0] = first_triangles(bunny, n);
+    float_ray *rays = make_rays(&m[0], 1.0, 64);
+    ray_case rc[3];
+    bench_case cases[3];
+    char param[16];
+    snprintf(param, sizeof param, "%d", n);
+    for (int k = 0; k < 3; k++) {
+        m[k] = m[0];
+        if (k > 0 && !build(&m[k], forced(k == 1 ? KDTREE_MEDIAN : KDTREE_SAH)))
+            exit(1);
+        rc[k] = (ray_case){&m[k], rays, RAYS, 0, false};
+        cases[k] = (bench_case){names[k], param, ray_case_run, &rc[k], RAYS};
+    }
+    bench_timing timing[3];
+    if (n < 16384)
+        bench_time_cases(cases, 3, timing);
+    else
+        bench_time_cases_rounds(cases, 3, SLOW_ROUNDS, timing);
+    for (int k = 0; k < 3; k++) {
+        trace_count c = count_rays(&m[k], rays, RAYS, false, k == 0 ? reference : t);
+        ns[k] = timing[k].median;
+        bench_row(names[k], param, &timing[k], "%.3f", (double)c.stats.triangle_tests / RAYS,
+                  "triangle_tests_per_ray");
+        printf("%s,%d,,%ld,rays_unlike_brute_force\n", names[k], n,
+               k == 0 ? 0 : unlike(reference, t, RAYS));
+        if (k > 0)
+            free_tree(&m[k]);
+    }
+    free(rays);
+    fflush(stdout);
+}
+
+static void crossover_meshes(const mesh *bunny)
+{
     double sizes[32], ns[3][32];
     int count = 0;
-    int n_rays = 64 * 64;
-    float *reference = malloc((size_t)n_rays * sizeof *reference), *t = malloc((size_t)n_rays * sizeof *t);
+    float *reference = malloc(64 * 64 * sizeof *reference), *t = malloc(64 * 64 * sizeof *t);
+    if (reference == NULL || t == NULL)
+        exit(1);
     for (int n = 1;; n = 2 * n < bunny->triangle_count ? 2 * n : bunny->triangle_count) {
-        mesh m = first_triangles(bunny, n);
-        float_ray *rays = make_rays(&m, 1.0, 64);
-        for (int method = 0; method < 3; method++) {
-            bool ok = method == 0 || build(&m, forced(method == 1 ? KDTREE_MEDIAN : KDTREE_SAH));
-            if (!ok)
-                exit(1);
-            trace_job j = {&m, rays, n_rays, false, {0}, {0, 0, 0}, method == 0 ? reference : t};
-            trace_work(&j); /* the distances, and the tests counted once */
-            long differ = 0;
-            for (int k = 0; method > 0 && k < n_rays; k++)
-                differ += !(reference[k] == t[k] || (isinf(reference[k]) && isinf(t[k])));
-            double tests = (double)j.stats.triangle_tests / n_rays;
-            j.t = NULL;
-            ns[method][count] = ns_per_ray(&j, 0.02);
-            printf("%s,%d,%.2f,%.3f,triangle_tests_per_ray\n", names[method], n,
-                   ns[method][count], tests);
-            printf("%s,%d,0,%ld,rays_unlike_brute_force\n", names[method], n, differ);
-            kdtree_free(&m.tree);
-            free(m.leaf_corners), m.leaf_corners = NULL;
-        }
-        free(rays);
-        fflush(stdout);
+        double point[3];
+        crossover_point(bunny, n, reference, t, point);
+        for (int k = 0; k < 3; k++)
+            ns[k][count] = point[k];
         sizes[count++] = n;
         if (n == bunny->triangle_count)
             break;
     }
     free(reference), free(t);
-    int all = count - 1, at64 = 6; /* sizes[6] = 64 */
     printf("crossover,triangles,0,%.1f,tree_faster_from\n",
            crossover(sizes, ns[0], ns[2], count));
-    printf("speedup,bunny,0,%.1f,brute_over_sah\n", ns[0][all] / ns[2][all]);
-    printf("speedup,bunny,0,%.3f,median_over_sah\n", ns[1][all] / ns[2][all]);
-    printf("growth,sah,0,%.3f,all_over_64\n", ns[2][all] / ns[2][at64]);
 }
 
+/* A case of the harness: each operation is the next ray of rays[0..n)
+ * through the scene's objects. */
 typedef struct {
     const scene *s;
     const ray *rays;
-    int n;
-    render_stats stats;
-} scene_job;
+    long n, next;
+} scene_case;
 
-static void scene_work(void *arg)
+static void scene_run(void *ctx, long reps)
 {
-    scene_job *j = arg;
-    j->stats = (render_stats){0};
-    for (int k = 0; k < j->n; k++) {
+    scene_case *c = ctx;
+    render_stats stats = {0};
+    double sum = 0;
+    for (long r = 0; r < reps; r++) {
         hit h;
-        sink += scene_intersect(j->s, j->rays[k], 0, INFINITY, &h, &j->stats);
+        sum += scene_intersect(c->s, c->rays[c->next], 0, INFINITY, &h, &stats);
+        c->next = c->next + 1 == c->n ? 0 : c->next + 1;
     }
+    bench_sink += sum;
 }
 
 /* A pseudo-random number in [0, 1), from a fixed seed. */
@@ -408,92 +453,142 @@ static double uniform01(void)
     return bench_rng_uniform01(&rng);
 }
 
+/* The spheres of one point of the chart: n in the cube [-1, 1]^3 around
+ * z = 6, smaller as there are more, added to both scenes. */
+static void add_spheres(scene *list, scene *tree, int n)
+{
+    for (int k = 0; k < n; k++) {
+        object o = {.kind = SHAPE_SPHERE};
+        o.sphere.center = (vec3){2 * uniform01() - 1, 2 * uniform01() - 1, 5 + 2 * uniform01()};
+        o.sphere.radius = 0.5 / sqrt(n) * (0.5 + uniform01());
+        if (!scene_add_object(list, o) || !scene_add_object(tree, o))
+            exit(1);
+    }
+}
+
+/* The same n spheres as a list and through a tree, interleaved. */
+static void objects_point(int n, const ray *rays, int count, double *ns)
+{
+    scene s[2];
+    scene_init(&s[0]), scene_init(&s[1]);
+    add_spheres(&s[0], &s[1], n);
+    scene_case sc[2];
+    bench_case cases[2];
+    char param[16];
+    snprintf(param, sizeof param, "%d", n);
+    for (int tree = 0; tree < 2; tree++) {
+        s[tree].tree_params.min_items = 1;
+        s[tree].tree_params.method = tree ? KDTREE_SAH : KDTREE_NONE;
+        if (!scene_build_trees(&s[tree]))
+            exit(1);
+        sc[tree] = (scene_case){&s[tree], rays, count, 0};
+        cases[tree] = (bench_case){tree ? "objects-tree" : "objects-list", param, scene_run,
+                                   &sc[tree], count};
+    }
+    bench_timing t[2];
+    bench_time_cases(cases, 2, t);
+    for (int tree = 0; tree < 2; tree++) {
+        render_stats stats = {0};
+        for (int k = 0; k < count; k++) {
+            hit h;
+            scene_intersect(&s[tree], rays[k], 0, INFINITY, &h, &stats);
+        }
+        ns[tree] = t[tree].median;
+        bench_row(cases[tree].method, param, &t[tree], "%.3f",
+                  (double)stats.sphere_tests / count, "sphere_tests_per_ray");
+        scene_free(&s[tree]);
+    }
+    fflush(stdout);
+}
+
 static void crossover_objects(void)
 {
     enum { RAYS = 4096 };
-    ray rays[RAYS];
-    for (int k = 0; k < RAYS; k++) { /* from the eye into the cube [-1, 1]^2 at z = 6 */
+    static ray rays[RAYS];
+    for (int k = 0; k < RAYS; k++) { /* from the eye into the square [-1, 1]^2 at z = 6 */
         vec3 aim = {2 * uniform01() - 1, 2 * uniform01() - 1, 6};
         rays[k] = (ray){{0, 0, 0}, vec3_normalize(aim)};
     }
-    double sizes[11], ns_list[2][11];
-    for (int n = 1, count = 0; n <= 1024; n *= 2, count++)
-        for (int tree = 0; tree < 2; tree++) {
-            scene s;
-            scene_init(&s);
-            for (int k = 0; k < n; k++) { /* spheres in the cube [-1, 1]^3 around z = 6 */
-                object o = {.kind = SHAPE_SPHERE};
-                o.sphere.center = (vec3){2 * uniform01() - 1, 2 * uniform01() - 1,
-                                         5 + 2 * uniform01()};
-                o.sphere.radius = 0.5 / sqrt(n) * (0.5 + uniform01());
-                if (!scene_add_object(&s, o))
-                    exit(1);
-            }
-            s.tree_params.min_items = 1;
-            s.tree_params.method = tree ? KDTREE_SAH : KDTREE_NONE;
-            if (!scene_build_trees(&s))
-                exit(1);
-            scene_job j = {&s, rays, RAYS, {0}};
-            scene_work(&j);
-            double tests = (double)j.stats.sphere_tests / RAYS, ns[ROUNDS];
-            for (int r = 0; r < ROUNDS; r++)
-                ns[r] = 1e9 * time_batch(scene_work, &j, 0.02) / RAYS;
-            sizes[count] = n;
-            ns_list[tree][count] = median_of(ns, ROUNDS);
-            printf("objects-%s,%d,%.2f,%.3f,sphere_tests_per_ray\n", tree ? "tree" : "list", n,
-                   ns_list[tree][count], tests);
-            scene_free(&s);
-        }
-    printf("crossover,spheres,0,%.1f,tree_faster_from\n",
-           crossover(sizes, ns_list[0], ns_list[1], 11));
+    double sizes[11], ns[2][11];
+    for (int n = 1, count = 0; n <= 1024; n *= 2, count++) {
+        double point[2];
+        objects_point(n, rays, RAYS, point);
+        sizes[count] = n, ns[0][count] = point[0], ns[1][count] = point[1];
+    }
+    printf("crossover,spheres,0,%.1f,tree_faster_from\n", crossover(sizes, ns[0], ns[1], 11));
 }
 
 /* ---------------------------------------------------------------- 4 */
 
-static double default_ms, default_ns; /* the defaults' point, for ratios */
+/* One family of the SAH's parameters: the values of one parameter, the
+ * others at their defaults. */
+typedef struct {
+    const char *name;
+    const double *values;
+    int count;
+} sah_family;
 
-static void sah_point(mesh *m, const float_ray *rays, int n, const char *what, double value,
-                      kdtree_params p)
+static kdtree_params with_value(const char *family, double value)
 {
-    double ms = build_ms(m, p);
-    if (!build(m, p))
-        exit(1);
-    trace_job j = {m, rays, n, false, {0}, {0, 0, 0}, NULL};
-    double ns = ns_per_ray(&j, 0.05);
-    if (default_ms == 0)
-        default_ms = ms, default_ns = ns;
-    printf("sah-%s,%g,%.2f,%.3f,build_ms\n", what, value, ns, ms);
-    printf("sah-%s,%g,%.2f,%.3f,build_over_default\n", what, value, ns, ms / default_ms);
-    printf("sah-%s,%g,%.2f,%.3f,time_over_default\n", what, value, ns, ns / default_ns);
-    printf("sah-%s,%g,%.2f,%d,nodes\n", what, value, ns, m->tree.node_count);
-    printf("sah-%s,%g,%.2f,%.3f,references_per_triangle\n", what, value, ns,
-           (double)m->tree.item_count / m->triangle_count);
+    kdtree_params p = kdtree_default_params();
+    if (strcmp(family, "traversal-cost") == 0)
+        p.traversal_cost = value;
+    else if (strcmp(family, "empty-bonus") == 0)
+        p.empty_bonus = value;
+    else
+        p.max_depth = (int)value;
+    return p;
+}
+
+/* The family's trees traced interleaved, and built interleaved. */
+static void sah_family_points(const mesh *bunny, const float_ray *rays, int n, sah_family f)
+{
+    enum { MAX = 16 };
+    mesh traced[MAX];
+    build_case builds[MAX];
+    ray_case rc[MAX];
+    bench_case trace_cases[MAX], build_cases[MAX];
+    char params[MAX][16], build_name[64], trace_name[64];
+    snprintf(trace_name, sizeof trace_name, "sah-%s", f.name);
+    snprintf(build_name, sizeof build_name, "sah-build-%s", f.name);
+    for (int k = 0; k < f.count; k++) {
+        kdtree_params p = with_value(f.name, f.values[k]);
+        snprintf(params[k], sizeof params[k], "%g", f.values[k]);
+        traced[k] = sharing(bunny);
+        if (!build(&traced[k], p))
+            exit(1);
+        rc[k] = (ray_case){&traced[k], rays, n, 0, false};
+        trace_cases[k] = (bench_case){trace_name, params[k], ray_case_run, &rc[k], n};
+        builds[k] = (build_case){sharing(bunny), p};
+        build_cases[k] = (bench_case){build_name, params[k], build_run, &builds[k], 1};
+    }
+    bench_timing trace[MAX], built[MAX];
+    bench_time_cases(trace_cases, f.count, trace);
+    bench_time_cases_rounds(build_cases, f.count, SLOW_ROUNDS, built);
+    for (int k = 0; k < f.count; k++) {
+        const kdtree *tree = &traced[k].tree;
+        bench_row(trace_name, params[k], &trace[k], "%.3f", built[k].median / 1e6, "build_ms");
+        bench_row(build_name, params[k], &built[k], "%.2f", trace[k].median, "ns_per_ray");
+        printf("%s,%s,,%d,nodes\n", trace_name, params[k], tree->node_count);
+        printf("%s,%s,,%.3f,references_per_triangle\n", trace_name, params[k],
+               (double)tree->item_count / bunny->triangle_count);
+        free_tree(&traced[k]);
+        free_tree(&builds[k].m);
+    }
     fflush(stdout);
 }
 
-static void sah_parameters(mesh *bunny)
+static void sah_parameters(const mesh *bunny)
 {
     float_ray *rays = make_rays(bunny, 1.0, 256);
-    int n = 256 * 256;
-    const double costs[] = {5, 10, 15, 20, 30, 45, 60, 80, 120, 180};
-    const double bonuses[] = {0, 0.1, 0.2, 0.3, 0.5, 0.8};
-    const int depths[] = {12, 16, 18, 20, 22, 24, 28, 32};
-    sah_point(bunny, rays, n, "defaults", 0, kdtree_default_params());
-    for (size_t k = 0; k < sizeof costs / sizeof *costs; k++) {
-        kdtree_params p = kdtree_default_params();
-        p.traversal_cost = costs[k];
-        sah_point(bunny, rays, n, "traversal-cost", costs[k], p);
-    }
-    for (size_t k = 0; k < sizeof bonuses / sizeof *bonuses; k++) {
-        kdtree_params p = kdtree_default_params();
-        p.empty_bonus = bonuses[k];
-        sah_point(bunny, rays, n, "empty-bonus", bonuses[k], p);
-    }
-    for (size_t k = 0; k < sizeof depths / sizeof *depths; k++) {
-        kdtree_params p = kdtree_default_params();
-        p.max_depth = depths[k];
-        sah_point(bunny, rays, n, "max-depth", depths[k], p);
-    }
+    static const double costs[] = {5, 10, 15, 20, 30, 45, 60, 80, 120, 180};
+    static const double bonuses[] = {0, 0.1, 0.2, 0.3, 0.5, 0.8};
+    static const double depths[] = {12, 16, 18, 20, 22, 24, 28, 32};
+    const sah_family families[3] = {{"traversal-cost", costs, 10},
+                                    {"empty-bonus", bonuses, 6},
+                                    {"max-depth", depths, 8}};
+    for (int k = 0; k < 3; k++)
+        sah_family_points(bunny, rays, 256 * 256, families[k]);
     free(rays);
 }
 
@@ -552,77 +647,101 @@ static mesh bumpy_sphere(int levels)
     return m;
 }
 
-static void build_scaling(void)
+/* The three builds of one bumpy sphere, interleaved; ns per triangle. */
+static void build_scaling_point(int levels, double *per)
 {
     static const char *names[3] = {"build-sah", "build-sorting", "build-median"};
     static const kdtree_method methods[3] = {KDTREE_SAH, KDTREE_SAH_SORTING, KDTREE_MEDIAN};
-    double per[3][6], sizes[6]; /* ns per triangle */
+    mesh m = bumpy_sphere(levels);
+    build_case builds[3];
+    bench_case cases[3];
+    int count = 0, map[3]; /* the builds run at this size */
+    char param[16];
+    snprintf(param, sizeof param, "%d", m.triangle_count);
+    for (int k = 0; k < 3; k++) {
+        per[k] = 0;
+        if (methods[k] == KDTREE_SAH_SORTING && levels >= 8)
+            continue; /* 10 s a build */
+        builds[count] = (build_case){sharing(&m), forced(methods[k])};
+        cases[count] = (bench_case){names[k], param, build_run, &builds[count], 1};
+        map[count++] = k;
+    }
+    bench_timing t[3];
+    if (levels < 7)
+        bench_time_cases(cases, count, t);
+    else
+        bench_time_cases_rounds(cases, count, SLOW_ROUNDS, t);
+    for (int c = 0; c < count; c++) {
+        bench_timing each = bench_timing_scaled(t[c], 1.0 / m.triangle_count);
+        per[map[c]] = each.median;
+        bench_row(names[map[c]], param, &each, "%.3f", t[c].median / 1e6, "build_ms");
+        free_tree(&builds[c].m);
+    }
+    mesh_free(&m);
+    fflush(stdout);
+}
+
+static void build_scaling(void)
+{
+    double per[6][3], sizes[6]; /* ns per triangle */
     for (int levels = 3; levels <= 8; levels++) {
-        mesh m = bumpy_sphere(levels);
-        for (int k = 0; k < 3; k++) {
-            double ms = levels < 7 ? build_ms(&m, forced(methods[k]))
-                                   : 1e3 * time_batch(build_work, &(build_job){&m, forced(methods[k])}, 0);
-            per[k][levels - 3] = 1e6 * ms / m.triangle_count;
-            printf("%s,%d,%.2f,%.3f,build_ms\n", names[k], m.triangle_count,
-                   per[k][levels - 3], ms);
-            fflush(stdout);
-        }
-        sizes[levels - 3] = m.triangle_count;
-        mesh_free(&m);
+        build_scaling_point(levels, per[levels - 3]);
+        sizes[levels - 3] = 20 << (2 * levels);
     }
     /* from the smallest mesh to the largest: per triangle, and per level */
-    for (int k = 0; k < 3; k++) {
-        double grow = per[k][5] / per[k][0];
-        printf("scaling,%s,0,%.3f,growth_per_triangle\n", names[k], grow);
-        printf("scaling,%s,0,%.3f,growth_per_level\n", names[k],
-               grow * log2(sizes[0]) / log2(sizes[5]));
-    }
-    printf("scaling,sorting-over-sah@%d,0,%.3f,ratio\n", (int)sizes[0], per[1][0] / per[0][0]);
-    printf("scaling,sorting-over-sah@%d,0,%.3f,ratio\n", (int)sizes[5], per[1][5] / per[0][5]);
+    double grow = per[5][0] / per[0][0];
+    printf("scaling,build-sah,0,%.3f,growth_per_triangle\n", grow);
+    printf("scaling,build-sah,0,%.3f,growth_per_level\n",
+           grow * log2(sizes[0]) / log2(sizes[5]));
 }
 
 /* ---------------------------------------------------------------- 6 */
 
-/* The render phase of bin/ch08 SCENE --threads N --stats, as it reports
- * it (wall clock, ms), the best of three, and in *load the scene phase
- * (reading the files and building the trees); 0 when the binary or the
- * scene is not there. */
-static double render_ms(const char *bin, const char *scene, int threads, double *load)
+/* Runs bin/ch08 SCENE --threads N --stats once: the render phase and the
+ * scene phase (reading the files, building the trees) as it reports them,
+ * in ms of the wall clock; false when the binary or the scene is not
+ * there, or it fails. */
+static bool run_renderer(const char *bin, const char *scene, int threads, double *render,
+                         double *load)
 {
-    char n[16], command[512];
-    snprintf(n, sizeof n, "%d", threads);
-    snprintf(command, sizeof command, "%s %s --threads %s --stats -o /dev/null 2>&1", bin,
-             scene, n);
-    double best = 0;
-    for (int r = 0; r < 3; r++) {
-        FILE *p = popen(command, "r");
-        char line[256];
-        double ms = 0;
-        while (p != NULL && fgets(line, sizeof line, p) != NULL) {
-            const char *at = strstr(line, "render "), *scene_at = strstr(line, "scene ");
-            if (strstr(line, "time") && at && scene_at)
-                ms = atof(at + 7), *load = atof(scene_at + 6);
-        }
-        if (p == NULL || pclose(p) != 0 || ms <= 0)
-            return 0;
-        best = r == 0 || ms < best ? ms : best;
+    char command[512];
+    snprintf(command, sizeof command, "%s %s --threads %d --stats -o /dev/null 2>&1", bin,
+             scene, threads);
+    FILE *p = popen(command, "r");
+    char line[256];
+    *render = 0;
+    while (p != NULL && fgets(line, sizeof line, p) != NULL) {
+        const char *at = strstr(line, "render "), *scene_at = strstr(line, "scene ");
+        if (strncmp(line, "time ", 5) == 0 && at && scene_at) /* the wall clock's line */
+            *render = atof(at + 7), *load = atof(scene_at + 6);
     }
-    return best;
+    return p != NULL && pclose(p) == 0 && *render > 0;
 }
 
-/* The chapter's figure, rendered on one core and on two: the render phase
- * only (the scene's loading and its trees are built on one core). */
+/* The chapter's figure, rendered on one core and on two in turns: the
+ * render phase only (the scene's loading and its trees are built on one
+ * core), summarised over THREAD_ROUNDS runs of each as the harness does. */
 static void threads(void)
 {
     const char *bin = "bin/ch08", *scene = "build/tangle/ch08/scenes/ch08-bunny.scene";
-    double load;
-    double one = render_ms(bin, scene, 1, &load), two = render_ms(bin, scene, 2, &load);
-    if (one == 0 || two == 0)
-        return; /* run from the top of the repository, after make */
-    printf("threads,1,%.1f,%.1f,render_ms\nthreads,2,%.1f,%.1f,render_ms\n", one, one, two, two);
-    printf("threads,2,0,%.3f,speedup\n", one / two);
-    printf("scene,bunny,%.1f,%.1f,load_ms\n", load, load);
-    printf("scene,bunny,0,%.3f,load_over_render_on_two\n", load / two);
+    double render[2][THREAD_ROUNDS], load[2 * THREAD_ROUNDS];
+    for (int r = 0; r < THREAD_ROUNDS; r++)
+        for (int j = 0; j < 2; j++) {
+            int k = (r + j) % 2; /* 1 then 2 threads, then 2 then 1 */
+            double ms, load_ms;
+            if (!run_renderer(bin, scene, k + 1, &ms, &load_ms))
+                return; /* run from the top of the repository, after make */
+            render[k][r] = 1e6 * ms, load[2 * r + k] = 1e6 * load_ms;
+        }
+    bench_timing t[2], loading;
+    for (int k = 0; k < 2; k++) {
+        bench_timing_of_samples(render[k], THREAD_ROUNDS, &t[k]);
+        bench_row("threads", k ? "2" : "1", &t[k], "%.1f", t[k].median / 1e6, "render_ms");
+    }
+    bench_timing_of_samples(load, 2 * THREAD_ROUNDS, &loading);
+    printf("threads,2,0,%.3f,speedup\n", t[0].median / t[1].median);
+    bench_row("scene", "bunny", &loading, "%.1f", loading.median / 1e6, "load_ms");
+    fflush(stdout);
 }
 
 /* ---------------------------------------------------------------- 7 */
@@ -675,86 +794,94 @@ static char *fan_text(bool coincident, size_t *length)
     return text;
 }
 
+/* A case of the harness: each operation reads the OBJ text into a mesh,
+ * then frees it. */
 typedef struct {
-    const mesh *m;
-    const float_ray *rays;
-    int n, next;
-} fan_job;
+    const char *text, *name;
+    size_t length;
+} load_case;
 
-static void fan_run(void *ctx, long reps)
+static void load_run(void *ctx, long reps)
 {
-    fan_job *j = ctx;
-    render_stats stats = {0};
-    double sum = 0;
+    load_case *c = ctx;
     for (long r = 0; r < reps; r++) {
-        mesh_ray mr = mesh_ray_of(ray_of(&j->rays[j->next]));
-        j->next = (j->next + 1) % j->n;
-        triangle_hit th;
-        sum += mesh_nearest(j->m, &mr, 0, INFINITY, &th, &stats) >= 0 ? th.t : 0;
+        mesh m = {0};
+        parse_error err;
+        if (!mesh_parse_obj(&m, c->text, c->length, c->name, &err)) {
+            fprintf(stderr, "%s:%d:%d: error: %s\n", err.file, err.line, err.col, err.message);
+            exit(1);
+        }
+        bench_sink += m.triangle_count;
+        mesh_free(&m);
     }
-    bench_sink += sum;
 }
 
 static double fan_tests(const mesh *m, const float_ray *rays, int n)
 {
-    render_stats stats = {0};
-    for (int k = 0; k < n; k++) {
-        mesh_ray mr = mesh_ray_of(ray_of(&rays[k]));
-        triangle_hit th;
-        mesh_nearest(m, &mr, 0, INFINITY, &th, &stats);
-    }
-    return (double)stats.triangle_tests / n;
+    return (double)count_rays(m, rays, n, false, NULL).stats.triangle_tests / n;
+}
+
+/* The rays through one fan, with its tree and by brute force, interleaved. */
+static void fan_rays(const mesh *m, const char *kind, bool coincident)
+{
+    /* the benchmark's rays (K = 0.5) for the square [-1, 1]^2 at z = 0,
+       which both fans cover; 4 x 4 rays, 2 x 2 through the coincident */
+    mesh view = {.bounds = {{-1, -1, 0}, {1, 1, 0}}};
+    int side = coincident ? 2 : FAN_SIDE, n = side * side;
+    float_ray *rays = make_rays(&view, 0.5, side);
+    mesh brute = sharing(m); /* the same triangles, no tree */
+    ray_case rc[2] = {{m, rays, n, 0, false}, {&brute, rays, n, 0, false}};
+    bench_case cases[2] = {{"fan-tree", kind, ray_case_run, &rc[0], n},
+                           {"fan-brute", kind, ray_case_run, &rc[1], n}};
+    bench_timing t[2];
+    bench_time_cases(cases, 2, t);
+    bench_row("fan-tree", kind, &t[0], "%.1f", fan_tests(m, rays, n), "triangle_tests_per_ray");
+    bench_row("fan-brute", kind, &t[1], "%.1f", fan_tests(&brute, rays, n),
+              "triangle_tests_per_ray");
+    printf("fan,%s,0,%.1f,render_320x240_s\n", kind, 320 * 240 * t[0].median * 1e-9);
+    printf("fan,%s,0,%.3f,brute_over_tree\n", kind, t[1].median / t[0].median);
+    free(rays);
+    fflush(stdout);
 }
 
 static void fans(void)
 {
+    static const char *kinds[2] = {"distinct", "coincident"};
+    char *text[2];
+    mesh m[2];
+    load_case loads[2];
+    build_case builds[2];
+    bench_case load_cases[2], build_cases[2];
     for (int c = 0; c < 2; c++) {
-        const char *kind = c ? "coincident" : "distinct";
         size_t length;
-        char *text = fan_text(c, &length);
-        mesh m = {0};
+        text[c] = fan_text(c, &length);
+        loads[c] = (load_case){text[c], kinds[c], length};
+        load_cases[c] = (bench_case){"fan-load", kinds[c], load_run, &loads[c], 1};
+        m[c] = (mesh){0};
         parse_error err;
-        double t0 = cpu_seconds();
-        if (!mesh_parse_obj(&m, text, length, kind, &err)) {
-            fprintf(stderr, "%s:%d:%d: error: %s\n", err.file, err.line, err.col, err.message);
+        if (!mesh_parse_obj(&m[c], text[c], length, kinds[c], &err))
             exit(1);
-        }
-        double load = 1e3 * (cpu_seconds() - t0);
-        free(text);
-        mesh_compute_bounds(&m);
-        t0 = cpu_seconds();
-        if (!build(&m, kdtree_default_params()))
+        mesh_compute_bounds(&m[c]);
+        builds[c] = (build_case){sharing(&m[c]), kdtree_default_params()};
+        build_cases[c] = (bench_case){"fan-build", kinds[c], build_run, &builds[c], 1};
+    }
+    bench_timing loaded[2], built[2];
+    bench_time_cases(load_cases, 2, loaded);
+    bench_time_cases_rounds(build_cases, 2, SLOW_ROUNDS, built);
+    for (int c = 0; c < 2; c++) {
+        free_tree(&builds[c].m);
+        free(text[c]);
+        if (!build(&m[c], kdtree_default_params()))
             exit(1);
-        double build_time = 1e3 * (cpu_seconds() - t0);
-        printf("fan,%s,0,%zu,bytes\n", kind, length);
-        printf("fan,%s,0,%d,triangles\n", kind, m.triangle_count);
-        printf("fan,%s,%.1f,%.1f,load_ms\n", kind, load, load);
-        printf("fan,%s,%.1f,%.1f,build_ms\n", kind, build_time, build_time);
-        printf("fan,%s,0,%d,nodes\n", kind, m.tree.node_count);
-        printf("fan,%s,0,%.3f,references_per_triangle\n", kind,
-               (double)m.tree.item_count / m.triangle_count);
-        fflush(stdout);
-        /* the benchmark's rays (K = 0.5) for the square [-1, 1]^2 at z = 0,
-           which both fans cover; 4 x 4 rays, 2 x 2 through the coincident */
-        mesh view = {.bounds = {{-1, -1, 0}, {1, 1, 0}}};
-        int side = c ? 2 : FAN_SIDE, n = side * side;
-        float_ray *rays = make_rays(&view, 0.5, side);
-        mesh brute = m; /* the same triangles, no tree */
-        brute.tree = (kdtree){0}, brute.leaf_corners = NULL;
-        fan_job jobs[2] = {{&m, rays, n, 0}, {&brute, rays, n, 0}};
-        bench_case cases[2] = {{"fan-tree", kind, fan_run, &jobs[0], n},
-                               {"fan-brute", kind, fan_run, &jobs[1], n}};
-        bench_timing t[2];
-        bench_time_cases(cases, 2, t);
-        bench_row("fan-tree", kind, &t[0], "%.1f", fan_tests(&m, rays, n),
-                  "triangle_tests_per_ray");
-        bench_row("fan-brute", kind, &t[1], "%.1f", fan_tests(&brute, rays, n),
-                  "triangle_tests_per_ray");
-        printf("fan,%s,0,%.1f,render_320x240_s\n", kind, 320 * 240 * t[0].median * 1e-9);
-        printf("fan,%s,0,%.3f,brute_over_tree\n", kind, t[1].median / t[0].median);
-        fflush(stdout);
-        free(rays);
-        mesh_free(&m);
+        printf("fan,%s,,%zu,bytes\n", kinds[c], loads[c].length);
+        printf("fan,%s,,%d,triangles\n", kinds[c], m[c].triangle_count);
+        bench_row("fan-load", kinds[c], &loaded[c], "%.1f", loaded[c].median / 1e6, "load_ms");
+        bench_row("fan-build", kinds[c], &built[c], "%.1f", built[c].median / 1e6, "build_ms");
+        printf("fan,%s,,%d,nodes\n", kinds[c], m[c].tree.node_count);
+        printf("fan,%s,,%.3f,references_per_triangle\n", kinds[c],
+               (double)m[c].tree.item_count / m[c].triangle_count);
+        fan_rays(&m[c], kinds[c], c == 1);
+        mesh_free(&m[c]);
     }
 }
 
@@ -775,6 +902,7 @@ int main(int argc, char **argv)
         if (!build(&meshes[k], kdtree_default_params()))
             return 1;
     }
+    tree_builds(meshes, names);
     exact_rays(meshes, names);
     fixed_costs(&meshes[0]);
     threads();

@@ -16,7 +16,6 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 
 #include "mesh.h"
 #include "obj.h"
@@ -77,56 +76,6 @@ static inline float_ray *make_rays(const mesh *m, double K, int side)
 static inline ray ray_of(const float_ray *f)
 {
     return (ray){{f->o[0], f->o[1], f->o[2]}, {f->d[0], f->d[1], f->d[2]}};
-}
-
-/* The processor time this process has used, in seconds: a benchmark that
- * the machine's other work interrupts is not charged for the interruption.
- * (All the timing of these benchmarks goes through this one function.) */
-static inline double cpu_seconds(void)
-{
-    struct timespec t;
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return (double)t.tv_sec + 1e-9 * (double)t.tv_nsec;
-}
-
-/* What tracing a batch of rays found. */
-typedef struct {
-    long hits;
-    double sum_t;   /* of the hits' distances */
-    double seconds; /* processor time */
-} batch;
-
-/* Traces rays[0..n) through m by closest hit, as the renderer does. */
-static inline batch trace_kdtree(const mesh *m, const float_ray *rays, int n,
-                                 float *t_out)
-{
-    batch b = {0, 0, 0};
-    render_stats stats = {0};
-    double start = cpu_seconds();
-    for (int k = 0; k < n; k++) {
-        mesh_ray mr = mesh_ray_of(ray_of(&rays[k]));
-        triangle_hit th;
-        bool hit = mesh_nearest(m, &mr, 0, INFINITY, &th, &stats) >= 0;
-        b.hits += hit;
-        b.sum_t += hit ? th.t : 0;
-        if (t_out)
-            t_out[k] = hit ? (float)th.t : INFINITY;
-    }
-    b.seconds = cpu_seconds() - start;
-    return b;
-}
-
-static inline int compare_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* The median of v[0..n), which it sorts. */
-static inline double median_of(double *v, int n)
-{
-    qsort(v, (size_t)n, sizeof *v, compare_double);
-    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 #endif

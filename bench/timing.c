@@ -73,8 +73,8 @@ static int median_ci_rank(int n)
     return m;
 }
 
-/* The statistics of n batches of reps operations: cpu is the clock the
- * case is timed by (thread CPU time, or the wall clock), wall the wall. */
+/* The statistics of n batches of reps operations, from their thread CPU
+ * times (or, for bench_timing_of_samples, the samples) and wall times. */
 static void summarise(double *cpu, double *wall, int n, long reps, bench_timing *t)
 {
     qsort(cpu, (size_t)n, sizeof cpu[0], bench_compare_doubles);
@@ -116,8 +116,6 @@ static long calibrate(const bench_case *c)
     for (;;) {
         double cpu, wall;
         time_batch(c, reps, &cpu, &wall);
-        if (c->wall_clock)
-            cpu = wall; /* the case's own clock */
         if (cpu >= BENCH_MIN_BATCH_NS)
             return reps;
         double grow = cpu > 0 ? 1.25 * BENCH_MIN_BATCH_NS / cpu : 100;
@@ -167,15 +165,20 @@ void bench_time_cases_rounds(const bench_case *cases, int n, int rounds, bench_t
             int k = (r + j) % n;
             time_batch(&cases[k], reps[k], &cpu[k * rounds + r], &wall[k * rounds + r]);
         }
-    for (int k = 0; k < n; k++) {
-        double *own = cases[k].wall_clock ? &wall[k * rounds] : &cpu[k * rounds];
-        summarise(own, &wall[k * rounds], rounds, reps[k], &out[k]);
-    }
+    for (int k = 0; k < n; k++)
+        summarise(&cpu[k * rounds], &wall[k * rounds], rounds, reps[k], &out[k]);
     fprintf(stderr, "bench: %d cases from %s,%s: %d interleaved rounds, %.1f s\n", n,
             cases[0].method, cases[0].param, rounds, (clock_ns(CLOCK_MONOTONIC) - start) / 1e9);
     free(reps);
     free(cpu);
     free(wall);
+}
+
+bench_timing bench_timing_scaled(bench_timing t, double factor)
+{
+    t.median *= factor, t.q1 *= factor, t.q3 *= factor;
+    t.ci_lo *= factor, t.ci_hi *= factor, t.wall_median *= factor;
+    return t;
 }
 
 /* ---------------------------------------------------------------- output */

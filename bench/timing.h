@@ -12,7 +12,9 @@
  * call, one ray against a whole mesh: what the chart calls an operation) and
  * feeds their results to bench_sink, so that the compiler cannot drop them.
  * cycle is the size of the case's input set: every batch is a whole number
- * of passes over it, so that every batch sees the same inputs (1: no cycle).
+ * of passes over it, so that every batch sees the same inputs (1: no cycle,
+ * only for operations that all cost the same: calibration would otherwise
+ * size the batches from the cheap first few, and every batch would differ).
  *
  * What bench_time_cases does:
  *   1. Calibrates each case: reps grows until one batch takes at least
@@ -49,8 +51,6 @@ typedef struct {
     void (*run)(void *ctx, long reps); /* performs reps operations */
     void *ctx;
     long cycle; /* reps is a multiple of this; 0 or 1: any reps */
-    int wall_clock; /* 1: time by the wall clock, for work that other threads
-                       or processes do (the median is then of wall time) */
 } bench_case;
 
 typedef struct {
@@ -79,6 +79,9 @@ void bench_time_cases_rounds(const bench_case *cases, int n, int rounds,
  * interval as bench_time_cases gives; wall_median is the median, reps 1.
  * Sorts ns. */
 void bench_timing_of_samples(double *ns, int n, bench_timing *out);
+
+/* t with every time multiplied by factor: per pixel from per image, say. */
+bench_timing bench_timing_scaled(bench_timing t, double factor);
 
 /* "# machine: ..." on a line of its own: print it first. */
 void bench_print_machine(void);

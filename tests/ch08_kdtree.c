@@ -807,12 +807,12 @@ START_TEST(test_stats_hint_an_over_fine_mesh)
     char scene_path[192], errors[4096];
     snprintf(scene_path, sizeof scene_path, "%s",
              write_file("bunny.scene", "mesh file meshes/bunny.obj scale 12 offset 0 -1.4 6\n"));
-    const char *sizes[2] = {"32x24", "320x240"};
+    const char *sizes[2] = {"16x12", "320x240"};
     for (int k = 0; k < 2; k++) {
         const char *args[] = {scene_path, "--size", sizes[k], "--stats", "-o", tmp_path("b.png"),
                               NULL};
         ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
-        /* at 32 x 24 the box covers at most 768 pixels: 90 triangles each */
+        /* at 16 x 12 the box covers at most 192 pixels: 362 triangles each */
         ck_assert_msg((strstr(errors, "hint: object 1") != NULL) == (k == 0), "%s: %s",
                       sizes[k], errors);
     }

@@ -360,7 +360,7 @@ static void print_trees(const scene *s)
 }
 
 /* The densest need of the chapter's chart: triangles per covered pixel. */
-#define MESH_HINT_TRIANGLES_PER_PIXEL 42
+#define MESH_HINT_TRIANGLES_PER_PIXEL 167
 
 static void print_mesh_hints(const scene *s)
 {
