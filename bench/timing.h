@@ -68,7 +68,8 @@ int bench_rounds(void);
 void bench_time_cases(const bench_case *cases, int n, bench_timing *out);
 
 /* The same with a stated number of rounds (odd, 5..201), for cases whose
- * one operation takes a second or more, where 21 rounds would take minutes.
+ * one batch takes a tenth of a second or more, where 21 rounds would take
+ * minutes.
  * $BENCH_ROUNDS does not change it. With 5 to 7 rounds the median's 95%
  * interval is the whole range (ci_lo, ci_hi: the fastest and slowest). */
 void bench_time_cases_rounds(const bench_case *cases, int n, int rounds,
