@@ -38,7 +38,8 @@ for bench in "$@"; do
       r = a[$1 "," $2] / $3; if (r < 1) r = 1 / r
       if (r > worst) { worst = r; which = $1 "," $2 ": " a[$1 "," $2] ", " $3 }
     }
-    END { printf "%-20s %-10.3f %s\n", name, worst, which }' \
+    END { if (which == "") printf "%-20s %-10s %s\n", name, "-", "(no timed rows)"
+          else printf "%-20s %-10.3f %s\n", name, worst, which }' \
     "$out/run1/$name.csv" "$out/run2/$name.csv"
 done
 
