@@ -13,10 +13,13 @@
  *
  * 1. The benchmark's rays through the renderer's tree (mesh_nearest), for
  *    the bunny and the teapot at K = 1 and 2.5, timed together with the
- *    recursive walk on the bunny at K = 1; and the two meshes' builds:
+ *    recursive walk and a shuffled order on the bunny at K = 1; and the
+ *    two meshes' builds:
  *      kdtree,MESH-K,ns_per_ray,Mrays/s,mrays_per_s
  *      hits,MESH-K,,count,kdtree_hits   distance,MESH-K,,sum,kdtree_sum_t
  *      walk-recursive|walk-iterative,bunny-1.0,ns_per_ray,nodes,nodes_per_ray
+ *      kdtree-shuffled,bunny-1.0,ns_per_ray,Mrays/s,mrays_per_s (the same
+ *          rays in a pseudo-random order instead of the pixels')
  *      kdtree-build,MESH,ns_per_build,ms,build_ms
  * 2. Where the time of a ray goes (bunny, K = 1 and 2.5, 512 x 512 rays
  *    from the renderer's camera): making the camera's ray, then its
@@ -193,11 +196,28 @@ static void tree_builds(const mesh *meshes, const char **names)
     fflush(stdout);
 }
 
+/* A copy of rays[0..n) in a pseudo-random order, from a fixed seed. */
+static float_ray *shuffled(const float_ray *rays, long n)
+{
+    float_ray *copy = malloc((size_t)n * sizeof *copy);
+    if (copy == NULL)
+        exit(1);
+    memcpy(copy, rays, (size_t)n * sizeof *copy);
+    bench_rng rng = {0x2545F4914F6CDD1DULL};
+    for (long k = n - 1; k > 0; k--) { /* Fisher-Yates */
+        long j = (long)(bench_rng_uniform01(&rng) * (double)(k + 1));
+        float_ray swap = copy[k];
+        copy[k] = copy[j], copy[j] = swap;
+    }
+    return copy;
+}
+
 /* The benchmark's rays through the bunny and the teapot at K = 1 and 2.5,
- * and the recursive walk on the bunny at K = 1, the five interleaved. */
+ * the recursive walk on the bunny at K = 1, and the same rays of the bunny
+ * in a shuffled order, the six interleaved. */
 static void exact_rays(const mesh *meshes, const char **names)
 {
-    enum { CASES = 5 };
+    enum { CASES = 6 };
     float_ray *rays[4];
     ray_case rc[CASES];
     bench_case cases[CASES];
@@ -212,6 +232,9 @@ static void exact_rays(const mesh *meshes, const char **names)
     }
     rc[4] = (ray_case){&meshes[0], rays[0], n, 0, true};
     cases[4] = (bench_case){"walk-recursive", params[0], ray_case_run, &rc[4], n};
+    float_ray *mixed = shuffled(rays[0], n);
+    rc[5] = (ray_case){&meshes[0], mixed, n, 0, false};
+    cases[5] = (bench_case){"kdtree-shuffled", params[0], ray_case_run, &rc[5], n};
     bench_timing t[CASES];
     bench_time_cases(cases, CASES, t);
     for (int c = 0; c < 4; c++) {
@@ -225,8 +248,10 @@ static void exact_rays(const mesh *meshes, const char **names)
         bench_row(w == 0 ? "walk-recursive" : "walk-iterative", params[0], &t[w == 0 ? 4 : 0],
                   "%.3f", (double)walk.stats.kd_nodes / (double)n, "nodes_per_ray");
     }
+    bench_row("kdtree-shuffled", params[0], &t[5], "%.4f", 1e3 / t[5].median, "mrays_per_s");
     for (int c = 0; c < 4; c++)
         free(rays[c]);
+    free(mixed);
     fflush(stdout);
 }
 
