@@ -101,20 +101,6 @@ static bench_rng rng = {SEED};
 
 static double uniform01(void) { return bench_rng_uniform01(&rng); }
 
-/* A unit vector within 60 degrees of the unit vector axis. */
-static vec3 near_direction(vec3 axis)
-{
-    for (;;) {
-        vec3 v = {2 * uniform01() - 1, 2 * uniform01() - 1, 2 * uniform01() - 1};
-        double len2 = vec3_dot(v, v);
-        if (len2 > 1 || len2 < 1e-6)
-            continue;
-        v = vec3_scale(v, 1 / sqrt(len2));
-        if (vec3_dot(v, axis) > 0.5)
-            return v;
-    }
-}
-
 #define MAX_RAYS 30000
 static ray rays[MAX_RAYS];
 static int touching[MAX_RAYS][7]; /* faces around each ray's target, -1 ended */
@@ -137,7 +123,7 @@ static void faces_around(int a, int b, int list[7])
 static void aim_at(vec3 target, vec3 offset, int a, int b)
 {
     for (int k = 0; k < 4 && n_rays < MAX_RAYS; k++) {
-        vec3 out = near_direction(vec3_normalize(target));
+        vec3 out = bench_rng_near_direction(&rng, vec3_normalize(target));
         vec3 origin = vec3_add(target, vec3_scale(out, 3 + 2 * uniform01()));
         vec3 o = vec3_add(origin, offset), aim = vec3_add(target, offset);
         faces_around(a, b, touching[n_rays]);

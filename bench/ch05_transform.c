@@ -63,16 +63,6 @@ static double uniform(double lo, double hi)
     return bench_rng_uniform(&rng, lo, hi);
 }
 
-static vec3 random_unit(void)
-{
-    for (;;) {
-        vec3 v = {uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
-        double l = vec3_length(v);
-        if (l > 0.1 && l <= 1)
-            return vec3_scale(v, 1 / l);
-    }
-}
-
 /* The angle between a and b in degrees, by atan2 so that tiny angles keep
  * their digits. */
 static double degrees_between_l(const long double a[3], const long double b[3])
@@ -182,7 +172,7 @@ static void run_normals(void *ctx, long reps)
 static void measure_normals(void)
 {
     for (int k = 0; k < NORMALS; k++)
-        normals[k] = random_unit();
+        normals[k] = bench_rng_unit_vector(&rng, 0.1);
     vec3 axis = vec3_normalize((vec3){1, 2, 3});
     transform cases[N_TRANSFORMS] = {
         transform_rotate(axis, 40),
@@ -379,9 +369,9 @@ static void measure_inverses(void)
         double kappa = pow(10, 2 * e), root = sqrt(kappa);
         for (int k = 0; k < TRANSFORMS; k++) {
             test_transform *t = &tests[e][k];
-            t->steps[0] = transform_rotate(random_unit(), uniform(-180, 180));
+            t->steps[0] = transform_rotate(bench_rng_unit_vector(&rng, 0.1), uniform(-180, 180));
             t->steps[1] = transform_scale((vec3){root, 1, 1 / root});
-            t->steps[2] = transform_rotate(random_unit(), uniform(-180, 180));
+            t->steps[2] = transform_rotate(bench_rng_unit_vector(&rng, 0.1), uniform(-180, 180));
             t->steps[3] = transform_translate((vec3){uniform(-10, 10), uniform(-10, 10), uniform(-10, 10)});
             composed[e][k] = compose(t).m;
             qmat product = qmat_of(t->steps[0].m); /* the exact steps, multiplied in 113 bits */

@@ -140,20 +140,6 @@ static void build_scene(scene *s, double scale)
 static bench_rng rng;
 static double uniform01(void) { return bench_rng_uniform01(&rng); }
 
-/* A unit vector within 60 degrees of the unit vector axis. */
-static vec3 near_direction(vec3 axis)
-{
-    for (;;) {
-        vec3 v = {2 * uniform01() - 1, 2 * uniform01() - 1, 2 * uniform01() - 1};
-        double len2 = vec3_dot(v, v);
-        if (len2 > 1 || len2 < 1e-6)
-            continue;
-        v = vec3_scale(v, 1 / sqrt(len2));
-        if (vec3_dot(v, axis) > 0.5)
-            return v;
-    }
-}
-
 typedef struct {
     vec3 origin, target; /* at scale 1 */
     int object;          /* the object the target is on */
@@ -168,7 +154,7 @@ static vec3 light_dir; /* towards the light, unit */
 
 static void add_lit(vec3 target, vec3 normal, int object)
 {
-    vec3 out = near_direction(normal);
+    vec3 out = bench_rng_near_direction(&rng, normal);
     samples[n_samples++] = (sample){vec3_add(target, vec3_scale(out, 3)), target, object, false};
 }
 
@@ -180,7 +166,7 @@ static void make_samples(void)
     for (int k = 0; k < N_EACH; k++) { /* the sphere's top: <n, l> > 0.3 */
         vec3 n;
         do
-            n = near_direction(light_dir);
+            n = bench_rng_near_direction(&rng, light_dir);
         while (vec3_dot(n, light_dir) < 0.3);
         add_lit(vec3_add(SPHERE_CENTER, n), n, SPHERE);
         add_lit(vec3_add(ICO_CENTER, n), n, ICOSPHERE); /* near the mesh */

@@ -45,23 +45,13 @@ static double uniform(double lo, double hi)
     return bench_rng_uniform(&rng, lo, hi);
 }
 
-static vec3 random_unit(void)
-{
-    for (;;) {
-        vec3 v = {uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
-        double l = vec3_length(v);
-        if (l > 0.1 && l <= 1)
-            return vec3_scale(v, 1 / l);
-    }
-}
-
 /* A transform of every kind of step: scale, shear, rotation, translation. */
 static transform random_transform(double largest_scale)
 {
     transform t = transform_scale((vec3){uniform(1, largest_scale), uniform(0.5, 2),
                                          -uniform(1 / largest_scale, 1)});
     t = transform_then(t, transform_shear(mat4_shear_xz(uniform(-1, 1), uniform(-1, 1))));
-    t = transform_then(t, transform_rotate(random_unit(), uniform(-180, 180)));
+    t = transform_then(t, transform_rotate(bench_rng_unit_vector(&rng, 0.1), uniform(-180, 180)));
     return transform_then(t, transform_translate((vec3){uniform(-9, 9), uniform(-9, 9), uniform(-9, 9)}));
 }
 
@@ -270,8 +260,8 @@ START_TEST(test_inverse_transpose_keeps_normals_perpendicular)
 {
     for (int k = 0; k < 500; k++) {
         transform t = random_transform(100);
-        vec3 n = random_unit();
-        vec3 tangent = vec3_cross(n, random_unit()); /* any vector perpendicular to n */
+        vec3 n = bench_rng_unit_vector(&rng, 0.1);
+        vec3 tangent = vec3_cross(n, bench_rng_unit_vector(&rng, 0.1)); /* any vector perpendicular to n */
         if (vec3_length(tangent) < 0.1)
             continue;
         vec3 moved = mat4_mul_dir(t.m, tangent);
@@ -626,9 +616,9 @@ START_TEST(test_look_at_is_a_rotation_not_a_mirror)
 {
     for (int k = 0; k < 300; k++) {
         vec3 eye = {uniform(-50, 50), uniform(-50, 50), uniform(-50, 50)};
-        vec3 target = vec3_add(eye, vec3_scale(random_unit(), uniform(0.1, 100)));
+        vec3 target = vec3_add(eye, vec3_scale(bench_rng_unit_vector(&rng, 0.1), uniform(0.1, 100)));
         mat4 m;
-        if (!mat4_look_at(eye, target, random_unit(), &m))
+        if (!mat4_look_at(eye, target, bench_rng_unit_vector(&rng, 0.1), &m))
             continue;
         /* det +1 and orthonormal columns, to a few u */
         ck_assert_double_eq_tol(mat4_det3(m), 1, 16 * U);
