@@ -49,70 +49,11 @@
 
 /* ---------------------------------------------------------------- an icosphere */
 
-typedef struct {
-    int a, b, mid;
-} edge_entry;
-
-/* The vertex halfway along the edge (a, b), pushed out to the unit sphere,
- * made once for both triangles that share the edge (a hash of edges). */
-static int midpoint(mesh *m, edge_entry *table, int size, int a, int b)
-{
-    int lo = a < b ? a : b, hi = a < b ? b : a;
-    unsigned h = ((unsigned)lo * 2654435761u ^ (unsigned)hi * 40503u) % (unsigned)size;
-    while (table[h].mid >= 0 && !(table[h].a == lo && table[h].b == hi))
-        h = (h + 1) % (unsigned)size;
-    if (table[h].mid < 0) {
-        vec3 p = vec3_normalize(vec3_add(m->vertices[lo], m->vertices[hi]));
-        m->vertices[m->vertex_count] = p;
-        table[h] = (edge_entry){lo, hi, m->vertex_count++};
-    }
-    return table[h].mid;
-}
-
-static void subdivide(mesh *m)
-{
-    int n = m->triangle_count, size = 6 * n + 1;
-    edge_entry *table = malloc((size_t)size * sizeof *table);
-    mesh_triangle *next = malloc(4 * (size_t)n * sizeof *next);
-    for (int k = 0; k < size; k++)
-        table[k].mid = -1;
-    for (int f = 0; f < n; f++) {
-        int a = m->triangles[f].v[0], b = m->triangles[f].v[1], c = m->triangles[f].v[2];
-        int ab = midpoint(m, table, size, a, b), bc = midpoint(m, table, size, b, c);
-        int ca = midpoint(m, table, size, c, a);
-        next[4 * f] = (mesh_triangle){{a, ab, ca}};
-        next[4 * f + 1] = (mesh_triangle){{ab, b, bc}};
-        next[4 * f + 2] = (mesh_triangle){{ca, bc, c}};
-        next[4 * f + 3] = (mesh_triangle){{ab, bc, ca}};
-    }
-    free(m->triangles);
-    m->triangles = next;
-    m->triangle_count = m->triangle_capacity = 4 * n;
-    free(table);
-}
-
-/* The unit icosphere of 20 4^level triangles, its vertices shared; with
- * smooth, the exact sphere's normals at its vertices. */
+/* The unit icosphere of 20 4^level triangles (ch08_rays.h); with smooth,
+ * the exact sphere's normals at its vertices. */
 static mesh icosphere(int level, bool smooth)
 {
-    mesh m = {0};
-    int faces = 20 << (2 * level), vertices = faces / 2 + 2;
-    m.vertices = malloc((size_t)vertices * sizeof *m.vertices);
-    m.triangles = malloc(20 * sizeof *m.triangles);
-    double g = (1 + sqrt(5.0)) / 2;
-    const double c[12][3] = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0}, {0, -1, g}, {0, 1, g},
-                             {0, -1, -g}, {0, 1, -g}, {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-    const int ico[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                            {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                            {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                            {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-    for (int k = 0; k < 12; k++)
-        m.vertices[k] = vec3_normalize((vec3){c[k][0], c[k][1], c[k][2]});
-    for (int f = 0; f < 20; f++)
-        m.triangles[f] = (mesh_triangle){{ico[f][0], ico[f][1], ico[f][2]}};
-    m.vertex_count = 12, m.triangle_count = 20;
-    for (int l = 0; l < level; l++)
-        subdivide(&m);
+    mesh m = unit_icosphere(level);
     if (smooth) { /* vertex k's normal is vertex k itself */
         m.normals = malloc((size_t)m.vertex_count * sizeof *m.normals);
         memcpy(m.normals, m.vertices, (size_t)m.vertex_count * sizeof *m.normals);

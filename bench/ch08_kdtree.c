@@ -619,49 +619,13 @@ static void sah_parameters(const mesh *bunny)
 
 /* ---------------------------------------------------------------- 5 */
 
-/* A sphere of 20 4^levels triangles: an icosahedron whose triangles are
- * each cut into four, levels times, with its vertices pushed out to a bumpy
- * surface, radius 1 + 0.1 sin(5x) sin(7y) sin(6z) + a finer ripple, so
- * that the triangles are neither all alike nor evenly spread. */
+/* A sphere of 20 4^levels triangles: the unit icosphere (ch08_rays.h) with
+ * its vertices pushed out to a bumpy surface, radius 1 + 0.1 sin(5x)
+ * sin(7y) sin(6z) + a finer ripple, so that the triangles are neither all
+ * alike nor evenly spread. */
 static mesh bumpy_sphere(int levels)
 {
-    mesh m = {0};
-    int faces = 20, vertices = 12;
-    for (int l = 0; l < levels; l++)
-        vertices += faces * 3, faces *= 4;
-    m.vertices = malloc((size_t)vertices * sizeof *m.vertices);
-    m.triangles = malloc((size_t)faces * sizeof *m.triangles);
-    double g = (1 + sqrt(5.0)) / 2;
-    const double corners[12][3] = {{-1, g, 0}, {1, g, 0}, {-1, -g, 0}, {1, -g, 0},
-                                   {0, -1, g}, {0, 1, g}, {0, -1, -g}, {0, 1, -g},
-                                   {g, 0, -1}, {g, 0, 1}, {-g, 0, -1}, {-g, 0, 1}};
-    const int ico[20][3] = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
-                            {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
-                            {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
-                            {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
-    for (int k = 0; k < 12; k++)
-        m.vertices[k] = vec3_normalize((vec3){corners[k][0], corners[k][1], corners[k][2]});
-    for (int f = 0; f < 20; f++)
-        m.triangles[f] = (mesh_triangle){{ico[f][0], ico[f][1], ico[f][2]}};
-    m.vertex_count = 12, m.triangle_count = 20;
-    for (int l = 0; l < levels; l++) {
-        int n = m.triangle_count;
-        for (int f = 0; f < n; f++) { /* each triangle makes its own midpoints:
-                                         equal sums, so equal points */
-            const int *v = m.triangles[f].v;
-            int mid[3];
-            for (int e = 0; e < 3; e++) {
-                vec3 a = m.vertices[v[e]], b = m.vertices[v[(e + 1) % 3]];
-                m.vertices[m.vertex_count] = vec3_normalize(vec3_add(a, b));
-                mid[e] = m.vertex_count++;
-            }
-            int a = v[0], b = v[1], c = v[2];
-            m.triangles[f] = (mesh_triangle){{a, mid[0], mid[2]}};
-            m.triangles[m.triangle_count++] = (mesh_triangle){{mid[0], b, mid[1]}};
-            m.triangles[m.triangle_count++] = (mesh_triangle){{mid[2], mid[1], c}};
-            m.triangles[m.triangle_count++] = (mesh_triangle){{mid[0], mid[1], mid[2]}};
-        }
-    }
+    mesh m = unit_icosphere(levels);
     for (int k = 0; k < m.vertex_count; k++) {
         vec3 p = m.vertices[k];
         double r = 1 + 0.1 * sin(5 * p.x) * sin(7 * p.y) * sin(6 * p.z) +

@@ -7,6 +7,7 @@
 # does for the scenes. A program that exits non-zero, because its naive half
 # no longer shows the failure, fails the check too.
 set -u
+. "$(dirname "$0")/committed_figure.sh"
 pngdiff=$1 programs=$2
 shift 2
 out=build/failcheck
@@ -17,14 +18,7 @@ for fig in "$@"; do
   chapter=${name%%-failure-*}
   program="$programs/${chapter}_$(echo "${name#*-failure-}" | tr - _)"
   committed="$out/$name.committed.png"
-  if git cat-file -e "HEAD:$fig" 2>/dev/null; then
-    git show "HEAD:$fig" > "$committed"
-  elif [ -f "$fig" ]; then
-    cp "$fig" "$committed"
-  else
-    echo "$fig: error: no committed figure (run make failures and commit it)"
-    status=1; continue
-  fi
+  committed_figure "$fig" "$committed" failures || { status=1; continue; }
   "$program" "$out/$name.png" >/dev/null ||
     { echo "$fig: error: $program failed"; status=1; continue; }
   # Two 8-bit codes of slack absorb libm differences between machines.

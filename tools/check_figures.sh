@@ -6,6 +6,7 @@
 # figures/chNN-default.png is the binary's embedded scene; any other
 # figures/chNN-NAME.png is TANGLE_DIR/scenes/chNN-NAME.scene.
 set -u
+. "$(dirname "$0")/committed_figure.sh"
 bin=$1 pngdiff=$2 tangled=$3
 shift 3
 out=build/figcheck
@@ -14,14 +15,7 @@ status=0
 for fig in "$@"; do
   name=$(basename "$fig" .png)
   committed="$out/$name.committed.png"
-  if git cat-file -e "HEAD:$fig" 2>/dev/null; then
-    git show "HEAD:$fig" > "$committed"
-  elif [ -f "$fig" ]; then
-    cp "$fig" "$committed"
-  else
-    echo "$fig: error: no committed figure (run make figures and commit it)"
-    status=1; continue
-  fi
+  committed_figure "$fig" "$committed" figures || { status=1; continue; }
   case "$name" in
     *-default) "$bin" -o "$out/$name.png" ;;
     *) "$bin" "$tangled/scenes/$name.scene" -o "$out/$name.png" ;;
