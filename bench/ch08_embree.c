@@ -80,19 +80,16 @@ typedef struct {
 } trace_ctx;
 
 /* Ray k through our kd-tree: its distance (in double), or infinity. */
-static double kdtree_ray(const trace_ctx *c, long k)
+static double kdtree_ray(const trace_ctx *c, long k, render_stats *stats)
 {
-    render_stats stats = {0};
     mesh_ray mr = mesh_ray_of(ray_of(&c->rays[k]));
     triangle_hit th;
-    return mesh_nearest(c->m, &mr, 0, INFINITY, &th, &stats) >= 0 ? th.t : INFINITY;
+    return mesh_nearest(c->m, &mr, 0, INFINITY, &th, stats) >= 0 ? th.t : INFINITY;
 }
 
 /* Ray k through Embree's scene: its distance, or infinity. */
-static double embree_ray(const trace_ctx *c, long k)
+static double embree_ray(const trace_ctx *c, long k, struct RTCIntersectContext *context)
 {
-    struct RTCIntersectContext context;
-    rtcInitIntersectContext(&context);
     struct RTCRayHit rh;
     const float_ray *r = &c->rays[k];
     rh.ray.org_x = r->o[0], rh.ray.org_y = r->o[1], rh.ray.org_z = r->o[2];
@@ -100,24 +97,27 @@ static double embree_ray(const trace_ctx *c, long k)
     rh.ray.tnear = 0, rh.ray.tfar = INFINITY;
     rh.ray.mask = 0xffffffffu, rh.ray.flags = 0, rh.ray.time = 0;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(c->scene, &context, &rh);
+    rtcIntersect1(c->scene, context, &rh);
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : INFINITY;
 }
 
 /* reps rays, whole passes over the rays (the harness's cycle). */
 static void run_kdtree(void *ctx, long reps)
 {
+    render_stats stats = {0}; /* once a batch, as the renderer's once a band */
     double sum = 0;
     for (long k = 0; k < reps; k++)
-        sum += kdtree_ray(ctx, k % N_RAYS) < INFINITY;
+        sum += kdtree_ray(ctx, k % N_RAYS, &stats) < INFINITY;
     bench_sink += sum;
 }
 
 static void run_embree(void *ctx, long reps)
 {
+    struct RTCIntersectContext context; /* once a batch */
+    rtcInitIntersectContext(&context);
     double sum = 0;
     for (long k = 0; k < reps; k++)
-        sum += embree_ray(ctx, k % N_RAYS) < INFINITY;
+        sum += embree_ray(ctx, k % N_RAYS, &context) < INFINITY;
     bench_sink += sum;
 }
 
@@ -184,8 +184,11 @@ static void print_agreement(const trace_ctx *c, const char *name)
     double sum_a = 0, sum_b = 0;
     if (!a || !b)
         exit(1);
+    render_stats stats = {0};
+    struct RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
     for (long k = 0; k < N_RAYS; k++) {
-        double ta = kdtree_ray(c, k), tb = embree_ray(c, k);
+        double ta = kdtree_ray(c, k, &stats), tb = embree_ray(c, k, &context);
         a[k] = (float)ta, b[k] = (float)tb; /* compared in float, as Embree's */
         hits_a += ta < INFINITY, hits_b += tb < INFINITY;
         sum_a += ta < INFINITY ? ta : 0, sum_b += tb < INFINITY ? tb : 0;

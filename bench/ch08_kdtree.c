@@ -263,7 +263,7 @@ typedef struct {
     const mesh *m;
     camera_view view;
     int side, steps;
-    long next;
+    long next; /* the next pixel */
 } fixed_case;
 
 static void fixed_run(void *ctx, long reps)
@@ -272,6 +272,9 @@ static void fixed_run(void *ctx, long reps)
     render_stats stats = {0};
     double sum = 0;
     for (long r = 0; r < reps; r++) {
+        /* row by row, as the renderer goes (with a row and a column
+           counter instead, the camera's ray alone measured 12.8 ns, not 5.7:
+           the steps' shares move with the loop around them) */
         int px = (int)(j->next % j->side), py = (int)(j->next / j->side);
         j->next = (j->next + 1) % ((long)j->side * j->side);
         ray ray = camera_view_ray(&j->view, px, py);
