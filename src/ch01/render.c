@@ -1,4 +1,4 @@
-/* render.c: rendering a scene into an image (chapter 1). */
+/* render.c: rendering a scene into an image, band by band (chapter 1). */
 #include "render.h"
 
 
@@ -19,4 +19,17 @@ void render_rows(const scene *s, image *img, int first, int last,
 void render(const scene *s, image *img, render_stats *stats)
 {
     render_rows(s, img, 0, img->height, stats);
+}
+
+/* <<rendering in bands>> ch01 */
+void render_in_bands(const scene *s, image *img, const render_settings *how,
+                     render_stats *stats)
+{
+    for (int first = 0; first < img->height; first += BAND_ROWS) {
+        int last = first + BAND_ROWS < img->height ? first + BAND_ROWS
+                                                   : img->height;
+        render_rows(s, img, first, last, stats);
+        if (how->progress != NULL)
+            how->progress(how->progress_context, last, img->height);
+    }
 }
