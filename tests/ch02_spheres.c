@@ -298,12 +298,12 @@ END_TEST
 
 START_TEST(test_sphere_statement_rejects_bad_radii)
 {
-    expect_parse_error("sphere radius 0", 1, 15, "radius between 1e-50 and 1e50, found '0'");
+    expect_parse_error("sphere radius 0", 1, 15, "radius from 1e-50 to 1e50, found '0'");
     expect_parse_error("sphere radius -1", 1, 15, "found '-1'");
     expect_parse_error("sphere radius nan", 1, 15, "finite");
     expect_parse_error("sphere radius inf", 1, 15, "finite");
-    expect_parse_error("sphere radius 1e-60", 1, 15, "between 1e-50");
-    expect_parse_error("sphere radius 1e60", 1, 15, "between 1e-50");
+    expect_parse_error("sphere radius 1e-60", 1, 15, "from 1e-50 to 1e50");
+    expect_parse_error("sphere radius 1e60", 1, 15, "from 1e-50 to 1e50");
     expect_parse_error("sphere radius", 1, 14, "found end of line");
 }
 END_TEST

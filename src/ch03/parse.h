@@ -76,6 +76,15 @@ bool parse_color(parser *p, const char *what, vec3 *out);
  * most 1e6 keeps any sum of products far from overflowing to infinity. */
 #define PARSE_MAX_INTENSITY 1e6
 
+/* The next token as a number from lo to hi, a number from lo up to but
+ * not including hi, or a whole number from lo to hi; else "expected WHAT
+ * from LO to HI". */
+bool parse_number_in(parser *p, const char *what, double lo, double hi,
+                     double *out);
+bool parse_number_below(parser *p, const char *what, double lo, double hi,
+                        double *out);
+bool parse_int_in(parser *p, const char *what, long lo, long hi, long *out);
+
 typedef bool (*line_parser)(parser *p, void *target);
 
 /* Calls parse_line on every line of text[0..length), stopping at the first

@@ -160,6 +160,58 @@ bool parse_color(parser *p, const char *what, vec3 *out)
     *out = (vec3){c[0], c[1], c[2]};
     return true;
 }
+
+/* x as %g writes it, less the exponent's '+' and leading zeros: 1e50. */
+static const char *bound_text(double x, char text[32])
+{
+    snprintf(text, 32, "%g", x);
+    char *e = strchr(text, 'e');
+    if (e != NULL) {
+        char *digits = e + 1 + (e[1] == '-'), *from = digits;
+        while (*from == '+' || *from == '0')
+            from++;
+        memmove(digits, from, strlen(from) + 1);
+    }
+    return text;
+}
+
+static bool number_in(parser *p, const char *what, double lo, double hi,
+                      bool open_hi, double *out)
+{
+    double x;
+    char a[32], b[32];
+    if (!parse_number(p, what, &x))
+        return false;
+    if (!(x >= lo && (open_hi ? x < hi : x <= hi)))
+        return parse_expected(p, "expected %s from %s to %s%s", what,
+                              bound_text(lo, a), bound_text(hi, b),
+                              open_hi ? " (not included)" : "");
+    *out = x;
+    return true;
+}
+
+bool parse_number_in(parser *p, const char *what, double lo, double hi,
+                     double *out)
+{
+    return number_in(p, what, lo, hi, false, out);
+}
+
+bool parse_number_below(parser *p, const char *what, double lo, double hi,
+                        double *out)
+{
+    return number_in(p, what, lo, hi, true, out);
+}
+
+bool parse_int_in(parser *p, const char *what, long lo, long hi, long *out)
+{
+    long n;
+    if (!parse_int(p, what, &n))
+        return false;
+    if (n < lo || n > hi)
+        return parse_expected(p, "expected %s from %ld to %ld", what, lo, hi);
+    *out = n;
+    return true;
+}
 /* <<numbers and colours>> += ch02 */
 
 bool parse_point(parser *p, const char *what, vec3 *out)
