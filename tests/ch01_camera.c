@@ -504,9 +504,25 @@ END_TEST
 
 START_TEST(test_cli_help_succeeds)
 {
-    char errors[256];
+    /* The help goes to standard output, whole, and nothing to stderr. */
+    char errors[256], text[4096] = "";
+    char out[192];
+    snprintf(out, sizeof out, "%s", tmp_path("help.txt"));
     const char *help[] = {"--help", NULL};
-    ck_assert_int_eq(run_bin(help, errors, sizeof errors), 0);
+    ck_assert_int_eq(run_bin_limited(help, errors, sizeof errors,
+                                     (run_limits){.stdout_path = out}),
+                     0);
+    FILE *f = fopen(out, "r");
+    ck_assert_ptr_nonnull(f);
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = '\0';
+    ck_assert_msg(strncmp(text, "usage: ", 7) == 0, "stdout: %s", text);
+    const char *options[] = {"-o FILE", "--size WxH", "--stats", "--help"};
+    for (int k = 0; k < 4; k++)
+        ck_assert_msg(strstr(text, options[k]) != NULL, "no %s in: %s",
+                      options[k], text);
+    ck_assert_str_eq(errors, "");
 }
 END_TEST
 
