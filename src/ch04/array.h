@@ -2,6 +2,7 @@
 #ifndef ARRAY_H
 #define ARRAY_H
 
+#include <assert.h>
 #include <stdlib.h>
 
 /* The capacity a full array of capacity grows to: twice as much (at least
@@ -17,6 +18,7 @@ static inline int array_next_capacity(int capacity, int max)
 static inline void *array_grow(void *items, int count, int *capacity, int max,
                                size_t size)
 {
+    assert(0 <= count && count <= *capacity); /* else memory is overrun */
     if (count < *capacity)
         return items;
     if (*capacity >= max)

@@ -1,12 +1,16 @@
 /* render.c: rendering a scene into an image, band by band (chapter 1). */
 #include "render.h"
 
+#include <assert.h>
 /* <<render includes>> ch03 */
 #include "shade.h"
 
 void render_rows(const scene *s, image *img, int first, int last,
                  render_stats *stats)
 {
+    /* the contract, checked: a caller's mistake, not bad input */
+    assert(img->width == s->cam.width && img->height == s->cam.height);
+    assert(0 <= first && first <= last && last <= img->height);
     camera_view view = camera_view_of(&s->cam);
     for (int j = first; j < last; j++) {
         for (int i = 0; i < img->width; i++) {

@@ -11,6 +11,7 @@
 #ifndef KDTREE_H
 #define KDTREE_H
 
+#include <assert.h>
 #include <stdbool.h>
 #include <stdint.h>
 #include "box.h"
@@ -57,6 +58,8 @@ typedef struct {
     };
     uint32_t bits;
 } kdtree_node;
+
+_Static_assert(sizeof(kdtree_node) == 16, "a node is sixteen bytes");
 
 typedef struct kdtree {
     kdtree_node *nodes; /* node 0 is the root */
@@ -148,6 +151,7 @@ static inline void kdtree_walk_start(kdtree_walk *w, const kdtree *t,
                                      vec3 origin, vec3 inv, double t_min,
                                      double t_max)
 {
+    assert(t->depth <= KDTREE_MAX_DEPTH); /* the stack has room */
     w->nodes = t->nodes;
     for (int k = 0; k < 3; k++) {
         w->low[k] = vec3_axis(origin, k) - t->thickness;
