@@ -192,7 +192,7 @@ bool mat4_inverse(mat4 a, mat4 *out)
         int pivot = col;
         for (int r = col + 1; r < 4; r++)
             if (fabs(a.m[r][col]) > fabs(a.m[pivot][col]))
-                pivot = r; /* the largest: multipliers stay within 1 */
+                pivot = r; /* the largest: multipliers below it within 1 */
         if (a.m[pivot][col] == 0)
             return false; /* the column is zero from here down: singular */
         swap_rows(&a, col, pivot), swap_rows(&inv, col, pivot);

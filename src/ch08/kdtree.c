@@ -229,7 +229,8 @@ static bool radix_sort_events(event *list, int n)
 }
 
 /* Sorts list by position, then type: by insertion when it is short (most
- * are), by radix, one byte of the position at a time, when it is long. */
+ * are), by qsort up to 255, by radix, one byte of the position at a time,
+ * when it is longer. */
 static void sort_events(event *list, int n)
 {
     if (n >= 256 && radix_sort_events(list, n))
