@@ -19,6 +19,7 @@
 #include "mesh.h"
 #include "obj.h"
 #include "scene.h"
+#include "search.h"
 #include "test_util.h"
 
 /* ------------------------------------------------------------ helpers */
