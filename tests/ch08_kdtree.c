@@ -699,6 +699,62 @@ START_TEST(test_the_objects_tree_agrees_with_the_list_for_placed_objects)
 }
 END_TEST
 
+/* ------------------------------------------------------------ shadow rays */
+
+/* An OBJ grid of 2 n^2 triangles over [-1, 1]^2 in the plane z = 0. */
+static void write_grid_obj(const char *name, int n)
+{
+    static char text[1 << 14];
+    size_t used = 0;
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++)
+            used += (size_t)snprintf(text + used, sizeof text - used, "v %g %g 0\n",
+                                     -1 + 2.0 * i / n, -1 + 2.0 * j / n);
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1;
+            used += (size_t)snprintf(text + used, sizeof text - used, "f %d %d %d\nf %d %d %d\n",
+                                     a, b, d, a, d, c);
+        }
+    write_file(name, text);
+}
+
+/* count instances of the grid, one behind the other along +z from z = 5:
+ * a shadow ray along +z through all of them is blocked by the first it
+ * tests, which is asked for any hit, and no other is taken into its own
+ * space. */
+static void expect_shadow_ray_stops_at_its_first_occluder(int count)
+{
+    write_grid_obj("grid.obj", 4);
+    static char text[64 * 64];
+    size_t used = 0;
+    for (int k = 0; k < count; k++)
+        used += (size_t)snprintf(text + used, sizeof text - used,
+                                 "mesh file grid.obj transform translate 0 0 %d\n", 5 + k);
+    char path[192];
+    snprintf(path, sizeof path, "%s", tmp_path("instances.scene"));
+    scene s;
+    scene_error err;
+    ck_assert_msg(parse_named(&s, text, used, path, &err), "%s", err.message);
+    ck_assert_int_eq(s.object_count, count);
+    ck_assert_int_eq(s.object_tree.node_count > 0, count >= SCENE_TREE_MIN_OBJECTS);
+    render_stats stats = {0};
+    ray r = {{0.1, 0.2, 0}, {0, 0, 1}};
+    ck_assert(scene_occluded(&s, r, 0, 100, &stats));
+    ck_assert_int_eq(stats.object_space_rays, 1);
+    ck_assert_int_eq(stats.mesh_occlusion_tests, 1);
+    if (count < SCENE_TREE_MIN_OBJECTS) /* a list: every other one is skipped */
+        ck_assert_int_eq(stats.shadow_objects_skipped, count - 1);
+    scene_free(&s);
+}
+
+START_TEST(test_a_shadow_ray_through_instances_stops_at_its_first_occluder)
+{
+    expect_shadow_ray_stops_at_its_first_occluder(5);  /* a list of objects */
+    expect_shadow_ray_stops_at_its_first_occluder(40); /* the objects' tree */
+}
+END_TEST
+
 /* ------------------------------------------------------------ command line */
 
 /* Writes a scene with the teapot, and a link to meshes/ beside it. */
@@ -871,6 +927,10 @@ Suite *ch08_kdtree_suite(void)
     tcase_add_test(edges, test_degenerate_input_keeps_depth_and_memory_bounded);
     tcase_add_test(edges, test_a_ray_through_a_shared_vertex_tests_every_triangle);
     suite_add_tcase(s, edges);
+    TCase *shadows = tcase_create("shadow rays");
+    tcase_add_checked_fixture(shadows, make_tmpdir, remove_tmpdir);
+    tcase_add_test(shadows, test_a_shadow_ray_through_instances_stops_at_its_first_occluder);
+    suite_add_tcase(s, shadows);
     TCase *bad = tcase_create("bad input and the command line");
     tcase_add_checked_fixture(bad, make_tmpdir, remove_tmpdir);
     tcase_set_timeout(bad, 120);

@@ -93,14 +93,16 @@ static void shape_intersect(const object *o, scene_search *q)
 
 static void object_intersect(const object *o, scene_search *q)
 {
+    /* <<a shadow ray's shortcuts>> ch06 */
+    if (q->any_hit && q->best.object != NULL) {
+        q->stats->shadow_objects_skipped++;
+        return; /* an occluder is found: no other object can change that */
+    }
     /* <<search an object in its own space>> ch05 */
     if (o->transform != 0) {
         search_placed_object(o, q);
         return;
     }
-    /* <<a shadow ray's shortcuts>> ch06 */
-    if (q->any_hit && q->best.object != NULL)
-        return; /* an occluder is found: no other object can change that */
     shape_intersect(o, q);
 }
 

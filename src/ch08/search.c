@@ -61,6 +61,14 @@ static void search_placed_object(const object *o, scene_search *q)
  * nearer than q->best.t. */
 static void shape_intersect(const object *o, scene_search *q)
 {
+    /* <<a shadow ray's test of a shape>> ch08 */
+    if (q->any_hit && o->kind == SHAPE_MESH) {
+        q->stats->mesh_occlusion_tests++;
+        if (mesh_occluded(&q->scene->meshes[o->mesh], prepared_ray(q), q->t_min,
+                          q->best.t, q->stats))
+            q->best.object = o; /* any hit settles a shadow ray */
+        return;
+    }
     double t;
     switch (o->kind) {
     case SHAPE_SPHERE:
@@ -93,19 +101,14 @@ static void shape_intersect(const object *o, scene_search *q)
 
 static void object_intersect(const object *o, scene_search *q)
 {
+    /* <<a shadow ray's shortcuts>> ch06 */
+    if (q->any_hit && q->best.object != NULL) {
+        q->stats->shadow_objects_skipped++;
+        return; /* an occluder is found: no other object can change that */
+    }
     /* <<search an object in its own space>> ch05 */
     if (o->transform != 0) {
         search_placed_object(o, q);
-        return;
-    }
-    /* <<a shadow ray's shortcuts>> ch06 */
-    if (q->any_hit && q->best.object != NULL)
-        return; /* an occluder is found: no other object can change that */
-    /* <<a shadow ray's shortcuts>> += ch08 */
-    if (q->any_hit && o->kind == SHAPE_MESH) {
-        if (mesh_occluded(&q->scene->meshes[o->mesh], prepared_ray(q), q->t_min,
-                          q->best.t, q->stats))
-            q->best.object = o; /* any hit settles a shadow ray */
         return;
     }
     shape_intersect(o, q);
