@@ -699,6 +699,64 @@ START_TEST(test_the_objects_tree_agrees_with_the_list_for_placed_objects)
 }
 END_TEST
 
+/* A triangle whose coordinates are near 1e9 in its own space, rotated and
+ * moved back by a translation that cancels them, so that it lies near the
+ * world's origin, 1.5 wide; and 30 small spheres far away, so that the
+ * scene has an objects' tree. The sums of M p lose about 1e-7 to
+ * cancellation: the world box must still hold the triangle. */
+static void placed_far_triangle_scene(scene *s, long double corners[3][2])
+{
+    const long double a = 0.8L, b = 0.6L;
+    const double X = 312345678.25, Y = 712345678.5, side = 1.5;
+    const double object[3][2] = {{X, Y}, {X + side, Y}, {X, Y + side}};
+    long double tx = -(a * X + b * Y), ty = -(-b * X + a * Y);
+    for (int k = 0; k < 3; k++) {
+        corners[k][0] = a * object[k][0] + b * object[k][1] + tx;
+        corners[k][1] = -b * object[k][0] + a * object[k][1] + ty;
+    }
+    static char text[8192];
+    size_t used = (size_t)snprintf(text, sizeof text,
+                                   "triangle a %.17g %.17g 0 b %.17g %.17g 0 c %.17g %.17g 0 "
+                                   "transform matrix 0.8 0.6 0 %.17Lg -0.6 0.8 0 %.17Lg 0 0 1 5\n",
+                                   object[0][0], object[0][1], object[1][0], object[1][1],
+                                   object[2][0], object[2][1], tx, ty);
+    for (int k = 0; k < 30; k++)
+        used += (size_t)snprintf(text + used, sizeof text - used,
+                                 "sphere center %d 20 30 radius 0.1\n", k - 15);
+    scene_error err;
+    ck_assert_msg(parse_named(s, text, used, "far.scene", &err), "%d:%d %s", err.line, err.col,
+                  err.message);
+    ck_assert(s->object_tree.node_count > 0);
+}
+
+START_TEST(test_a_ray_grazing_a_placed_object_far_from_its_origin_finds_it_in_the_tree)
+{
+    scene with;
+    long double w[3][2];
+    placed_far_triangle_scene(&with, w);
+    scene without = with;
+    without.object_tree = (kdtree){0};
+    seed(31);
+    int hits = 0;
+    for (int n = 0; n < 30000; n++) {
+        /* a point within 2e-7 of a corner, where the triangle touches its box */
+        const long double *c = w[n % 3];
+        long double x = c[0] + 4e-7L * (uniform01() - 0.5), y = c[1] + 4e-7L * (uniform01() - 0.5);
+        ray r = {{0, 0, 0}, vec3_normalize((vec3){(double)x, (double)y, 5})};
+        hit a, b;
+        render_stats stats = {0};
+        bool in_list = scene_intersect(&without, r, 0, INFINITY, &b, &stats);
+        ck_assert_msg(scene_intersect(&with, r, 0, INFINITY, &a, &stats) == in_list,
+                      "ray %d: the list %s the triangle, the tree does not", n,
+                      in_list ? "hits" : "misses");
+        hits += in_list;
+    }
+    ck_assert_int_gt(hits, 3000); /* the rays graze it: many hit, many miss */
+    ck_assert_int_lt(hits, 27000);
+    scene_free(&with);
+}
+END_TEST
+
 /* ------------------------------------------------------------ shadow rays */
 
 /* An OBJ grid of 2 n^2 triangles over [-1, 1]^2 in the plane z = 0. */
@@ -917,6 +975,7 @@ Suite *ch08_kdtree_suite(void)
     tcase_add_test(agree, test_any_hit_agrees_with_the_closest_hit);
     tcase_add_test(agree, test_the_objects_tree_agrees_with_the_list);
     tcase_add_test(agree, test_the_objects_tree_agrees_with_the_list_for_placed_objects);
+    tcase_add_test(agree, test_a_ray_grazing_a_placed_object_far_from_its_origin_finds_it_in_the_tree);
     suite_add_tcase(s, agree);
     TCase *edges = tcase_create("edge cases");
     tcase_set_timeout(edges, 120);

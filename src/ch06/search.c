@@ -139,7 +139,7 @@ static void place_hit_point(const transform *t, vec3 p, vec3 e, hit *h)
             carried += fabs(m[i][j]) * ec[j];
             product += fabs(m[i][j] * pc[j]);
         }
-        bound[i] = (1 + gamma_bound(3)) * carried + gamma_bound(3) * product;
+        bound[i] = (1 + gamma_bound(4)) * carried + gamma_bound(4) * product;
     }
     h->point = mat4_mul_point(t->m, p);
     h->error = (vec3){bound[0], bound[1], bound[2]};

@@ -7,9 +7,11 @@
 
 /* <<moving a box into the world>> ch08 */
 /* The world box around b's eight corners moved by t, widened by the
- * rounding of the move. */
+ * rounding of the move: gamma_4 times the sum of the magnitudes of the
+ * terms mat4_mul_point adds, at the largest coordinates of b. */
 static box box_to_world(const transform *t, box b)
 {
+    const double(*m)[4] = t->m.m;
     vec3 lo = {INFINITY, INFINITY, INFINITY}, hi = vec3_scale(lo, -1);
     for (int k = 0; k < 8; k++) {
         vec3 p = mat4_mul_point(t->m, (vec3){k & 1 ? b.hi.x : b.lo.x,
@@ -17,9 +19,14 @@ static box box_to_world(const transform *t, box b)
                                              k & 4 ? b.hi.z : b.lo.z});
         lo = vec3_min(lo, p), hi = vec3_max(hi, p);
     }
-    vec3 reach = vec3_max(vec3_abs(lo), vec3_abs(hi));
-    vec3 pad = vec3_scale(reach, gamma_bound(3));
-    return (box){vec3_sub(lo, pad), vec3_add(hi, pad)};
+    vec3 far = vec3_max(vec3_abs(b.lo), vec3_abs(b.hi)); /* |p_j| at most */
+    double pad[3];
+    for (int i = 0; i < 3; i++)
+        pad[i] = gamma_bound(4) * (fabs(m[i][0]) * far.x +
+                                   fabs(m[i][1]) * far.y +
+                                   fabs(m[i][2]) * far.z + fabs(m[i][3]));
+    vec3 d = {pad[0], pad[1], pad[2]};
+    return (box){vec3_sub(lo, d), vec3_add(hi, d)};
 }
 
 /* <<the object's box in the world>> ch08 */
