@@ -76,8 +76,8 @@ static double nearest_t(const mesh *m, ray r, walk_kind walk, int *triangle)
 }
 
 /* How many of the rays get a different nearest hit through the tree of m
- * than by brute force. A different triangle at exactly the same t is a
- * tie, not a difference. */
+ * than by brute force: another t, or another triangle at the same t (the
+ * tie rule gives a tie to the lower index, in every search). */
 static int disagreements(const mesh *m, const ray *rays, int n, walk_kind walk)
 {
     mesh b = brute(m);
@@ -86,7 +86,7 @@ static int disagreements(const mesh *m, const ray *rays, int n, walk_kind walk)
         int tri_tree, tri_brute;
         double t_tree = nearest_t(m, rays[k], walk, &tri_tree);
         double t_brute = nearest_t(&b, rays[k], WALK_ITERATIVE, &tri_brute);
-        if (!(t_tree == t_brute))
+        if (!(t_tree == t_brute) || tri_tree != tri_brute)
             differ++;
     }
     return differ;
@@ -839,6 +839,142 @@ static char *read_all(const char *path, size_t *length)
     return data;
 }
 
+/* The program of the chapter before this one: $CHAPTER_BIN with its
+ * chapter number lowered by one (bin/ch08 -> bin/ch07). */
+static const char *previous_bin(void)
+{
+    static char path[256];
+    const char *bin = getenv("CHAPTER_BIN");
+    ck_assert_ptr_nonnull(bin);
+    snprintf(path, sizeof path, "%s", bin);
+    char *number = strrchr(path, 'h'); /* ...chNN */
+    ck_assert(number != NULL && strlen(number) == 3);
+    int n = atoi(number + 1) - 1;
+    snprintf(number + 1, 3, "%02d", n);
+    return path;
+}
+
+#define TIE_W 48
+#define TIE_H 36
+#define TIE_FANS 63 /* cones, each with its apex on a pixel's ray */
+#define TIE_SIDES 16
+
+/* Cones whose apexes lie exactly on pixel rays (4 times the ray's unit
+ * direction: a power of two, so exact), their triangles listed in a
+ * shuffled order. corners[f][k] is triangle k of fan f's three corners. */
+static void tie_fans(vec3 corners[TIE_FANS][TIE_SIDES][3])
+{
+    scene s;
+    scene_init(&s);
+    s.cam.width = TIE_W, s.cam.height = TIE_H;
+    int f = 0;
+    for (int j = 2; j < TIE_H && f < TIE_FANS; j += 5)
+        for (int i = 2; i < TIE_W && f < TIE_FANS; i += 5, f++) {
+            vec3 apex = vec3_scale(camera_ray(&s.cam, i, j).dir, 4);
+            vec3 rim[TIE_SIDES];
+            for (int k = 0; k < TIE_SIDES; k++) {
+                double a = 2 * M_PI * (k + 0.3 * (f % 3)) / TIE_SIDES;
+                rim[k] = vec3_add(apex, (vec3){0.2 * cos(a), 0.2 * sin(a), 0.25});
+            }
+            for (int k = 0; k < TIE_SIDES; k++) {
+                corners[f][k][0] = apex;
+                corners[f][k][1] = rim[k];
+                corners[f][k][2] = rim[(k + 1) % TIE_SIDES];
+            }
+        }
+    ck_assert_int_eq(f, TIE_FANS);
+    scene_free(&s);
+}
+
+/* The order in which the files list the triangles: shuffled. */
+static void tie_order(int order[TIE_FANS * TIE_SIDES])
+{
+    int n = TIE_FANS * TIE_SIDES;
+    for (int k = 0; k < n; k++)
+        order[k] = k;
+    seed(8);
+    for (int k = n - 1; k > 0; k--) {
+        int j = (int)(uniform01() * (k + 1)), swap = order[k];
+        order[k] = order[j], order[j] = swap;
+    }
+}
+
+/* What bin renders of scene_path, with extra arguments (or NULL). */
+static char *render_bytes(const char *bin, const char *scene_path, const char *threads,
+                          size_t *length)
+{
+    char errors[4096];
+    const char *args[] = {scene_path, "-o", tmp_path("tie.png"), threads ? "--threads" : NULL,
+                          threads, NULL};
+    const char *saved = getenv("CHAPTER_BIN");
+    char chapter[256];
+    snprintf(chapter, sizeof chapter, "%s", saved);
+    setenv("CHAPTER_BIN", bin, 1);
+    int status = run_bin(args, errors, sizeof errors);
+    setenv("CHAPTER_BIN", chapter, 1);
+    ck_assert_msg(status == 0, "%s: %s", bin, errors);
+    return read_all(tmp_path("tie.png"), length);
+}
+
+/* Chapter 7's program (brute force) and chapter 8's (the trees, with one
+ * thread or three) draw scene_path byte for byte alike. */
+static void expect_same_bytes(const char *scene_path)
+{
+    size_t n7, n8, n8t;
+    char *seven = render_bytes(previous_bin(), scene_path, NULL, &n7);
+    char *eight = render_bytes(getenv("CHAPTER_BIN"), scene_path, "1", &n8);
+    char *threads = render_bytes(getenv("CHAPTER_BIN"), scene_path, "3", &n8t);
+    ck_assert_msg(n7 == n8 && memcmp(seven, eight, n7) == 0, "%s: ch07 and ch08 differ",
+                  scene_path);
+    ck_assert_msg(n8 == n8t && memcmp(eight, threads, n8) == 0, "%s: 1 and 3 threads differ",
+                  scene_path);
+    free(seven), free(eight), free(threads);
+}
+
+START_TEST(test_chapters_7_and_8_draw_ties_alike)
+{
+    static vec3 c[TIE_FANS][TIE_SIDES][3];
+    static int order[TIE_FANS * TIE_SIDES];
+    static char obj[1 << 18], lone[1 << 19];
+    tie_fans(c);
+    tie_order(order);
+    /* the fans as one mesh, which chapter 8 gives a tree, its vertices
+     * shared; and as lone triangles, objects that chapter 8 puts in the
+     * objects' tree, each of its own colour */
+    size_t vo = 0, lo = (size_t)snprintf(lone, sizeof lone, "image %d %d\n", TIE_W, TIE_H);
+    for (int f = 0; f < TIE_FANS; f++) {
+        const vec3 *p = c[f][0];
+        vo += (size_t)snprintf(obj + vo, sizeof obj - vo, "v %.17g %.17g %.17g\n", p[0].x,
+                               p[0].y, p[0].z);
+        for (int k = 0; k < TIE_SIDES; k++)
+            vo += (size_t)snprintf(obj + vo, sizeof obj - vo, "v %.17g %.17g %.17g\n",
+                                   c[f][k][1].x, c[f][k][1].y, c[f][k][1].z);
+    }
+    for (int n = 0; n < TIE_FANS * TIE_SIDES; n++) {
+        int f = order[n] / TIE_SIDES, k = order[n] % TIE_SIDES;
+        int apex = f * (TIE_SIDES + 1) + 1;
+        vo += (size_t)snprintf(obj + vo, sizeof obj - vo, "f %d %d %d\n", apex, apex + 1 + k,
+                               apex + 1 + (k + 1) % TIE_SIDES);
+        const vec3 *p = c[f][k];
+        lo += (size_t)snprintf(lone + lo, sizeof lone - lo,
+                               "triangle a %.17g %.17g %.17g b %.17g %.17g %.17g "
+                               "c %.17g %.17g %.17g color %.2f %.2f %.2f\n",
+                               p[0].x, p[0].y, p[0].z, p[1].x, p[1].y, p[1].z, p[2].x, p[2].y,
+                               p[2].z, 0.2 + 0.8 * uniform01(), 0.2 + 0.8 * uniform01(),
+                               0.2 + 0.8 * uniform01());
+    }
+    write_file("fans.obj", obj);
+    char mesh_text[128];
+    snprintf(mesh_text, sizeof mesh_text, "image %d %d\nmesh file fans.obj color 0.9 0.7 0.4\n",
+             TIE_W, TIE_H);
+    char mesh_path[192], lone_path[192];
+    snprintf(mesh_path, sizeof mesh_path, "%s", write_file("mesh.scene", mesh_text));
+    snprintf(lone_path, sizeof lone_path, "%s", write_file("lone.scene", lone));
+    expect_same_bytes(mesh_path);
+    expect_same_bytes(lone_path);
+}
+END_TEST
+
 START_TEST(test_thread_count_does_not_change_the_image)
 {
     char scene_path[192], out[3][192], errors[2048];
@@ -994,6 +1130,7 @@ Suite *ch08_kdtree_suite(void)
     tcase_add_checked_fixture(bad, make_tmpdir, remove_tmpdir);
     tcase_set_timeout(bad, 120);
     tcase_add_test(bad, test_thread_count_does_not_change_the_image);
+    tcase_add_test(bad, test_chapters_7_and_8_draw_ties_alike);
     tcase_add_test(bad, test_statistics_add_up_whatever_the_thread_count);
     tcase_add_test(bad, test_bad_thread_counts_are_usage_errors);
     tcase_add_test(bad, test_stats_hint_an_over_fine_mesh);

@@ -26,11 +26,11 @@ typedef struct {
  * nearer than q->best.t. */
 static void shape_intersect(const object *o, scene_search *q)
 {
-    double t;
+    double t, t_max = q->best.t; /* only a nearer hit counts */
     switch (o->kind) {
     case SHAPE_SPHERE:
         q->stats->sphere_tests++;
-        if (sphere_hit_t(&o->sphere, q->r, q->t_min, q->best.t, &t))
+        if (sphere_hit_t(&o->sphere, q->r, q->t_min, t_max, &t))
             q->best = (nearest_hit){.object = o, .t = t, .r = q->r};
         break;
     }

@@ -37,11 +37,11 @@ static const mesh_ray *prepared_ray(scene_search *q)
  * nearer than q->best.t. */
 static void shape_intersect(const object *o, scene_search *q)
 {
-    double t;
+    double t, t_max = q->best.t; /* only a nearer hit counts */
     switch (o->kind) {
     case SHAPE_SPHERE:
         q->stats->sphere_tests++;
-        if (sphere_hit_t(&o->sphere, q->r, q->t_min, q->best.t, &t))
+        if (sphere_hit_t(&o->sphere, q->r, q->t_min, t_max, &t))
             q->best = (nearest_hit){.object = o, .t = t, .r = q->r};
         break;
     /* <<intersect the other shapes>> ch04 */
@@ -50,7 +50,7 @@ static void shape_intersect(const object *o, scene_search *q)
         q->stats->triangle_tests++;
         const vec3 *c = o->corners;
         if (triangle_hit_prepared(&prepared_ray(q)->shear, c[0], c[1], c[2],
-                                  q->t_min, q->best.t, &th))
+                                  q->t_min, t_max, &th))
             q->best = (nearest_hit){o, th.t, 0, {th.b[0], th.b[1], th.b[2]},
                                     q->r};
         break;
@@ -58,7 +58,7 @@ static void shape_intersect(const object *o, scene_search *q)
     case SHAPE_MESH: {
         triangle_hit th = {0}; /* filled whenever k >= 0 */
         int k = mesh_nearest(&q->scene->meshes[o->mesh], prepared_ray(q),
-                             q->t_min, q->best.t, &th, q->stats);
+                             q->t_min, t_max, &th, q->stats);
         if (k >= 0)
             q->best = (nearest_hit){o, th.t, k, {th.b[0], th.b[1], th.b[2]},
                                     q->r};

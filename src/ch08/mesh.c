@@ -246,23 +246,24 @@ bool mesh_intersect(const mesh *m, ray r, double t_min, double t_max, hit *h,
 }
 /* <<intersecting a mesh>> += ch08 */
 
-/* The nearest hit in node's subtree, the ray in [t0, t1] inside its cell;
- * *t_max is the nearest hit so far. */
-static int nearest_in(const mesh *m, const mesh_ray *mr, int node,
-                      double t0, double t1, double t_min, double *t_max,
-                      triangle_hit *out, render_stats *stats)
+/* Narrows *t_max and *found, the nearest hit so far and its triangle (-1:
+ * none), by node's subtree, the ray in [t0, t1] inside its cell. */
+static void nearest_in(const mesh *m, const mesh_ray *mr, int node,
+                       double t0, double t1, double t_min, double *t_max,
+                       int *found, triangle_hit *out, render_stats *stats)
 {
     const kdtree_node *n = &m->tree.nodes[node];
-    int axis = (int)(n->bits & 3), nearest = -1;
+    int axis = (int)(n->bits & 3);
     stats->kd_nodes++;
     if (axis == 3) {
         int first = (int)n->first, count = (int)(n->bits >> 2);
         stats->triangle_tests += count;
-        int k = triangle_nearest_corners(&mr->shear, m->leaf_corners + first,
-                                         count, t_min, *t_max, out);
+        int k = triangle_nearest_of_leaf(&mr->shear, m->leaf_corners + first,
+                                         m->tree.items + first, count, t_min,
+                                         *t_max, *found, out);
         if (k >= 0)
-            *t_max = out->t, nearest = m->tree.items[first + k];
-        return nearest;
+            *t_max = out->t, *found = m->tree.items[first + k];
+        return;
     }
     kdtree_todo next[2];
     double o = vec3_axis(mr->r.origin, axis), thick = m->tree.thickness;
@@ -271,11 +272,9 @@ static int nearest_in(const mesh *m, const mesh_ray *mr, int node,
     for (int c = 0; c < 2 && next[c].node >= 0; c++) {
         if (next[c].t_min > *t_max * (1 + KDTREE_SLACK))
             break; /* a hit nearer than this cell is already found */
-        int k = nearest_in(m, mr, next[c].node, next[c].t_min,
-                           next[c].t_max, t_min, t_max, out, stats);
-        nearest = k >= 0 ? k : nearest;
+        nearest_in(m, mr, next[c].node, next[c].t_min, next[c].t_max, t_min,
+                   t_max, found, out, stats);
     }
-    return nearest;
 }
 
 int mesh_nearest_recursive(const mesh *m, const mesh_ray *mr, double t_min,
@@ -286,7 +285,9 @@ int mesh_nearest_recursive(const mesh *m, const mesh_ray *mr, double t_min,
     if (m->tree.node_count == 0 ||
         !box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
         return mesh_nearest(m, mr, t_min, t_max, out, stats);
-    return nearest_in(m, mr, 0, near, far, t_min, &t_max, out, stats);
+    int found = -1;
+    nearest_in(m, mr, 0, near, far, t_min, &t_max, &found, out, stats);
+    return found;
 }
 
 /* <<clipping a polygon>> ch08 */
@@ -394,9 +395,10 @@ int mesh_search_tree(const mesh *m, const mesh_ray *mr, double near,
         int k = out == NULL ? (triangle_any_corners(&mr->shear, corners,
                                                     leaf.count, t_min, t_max)
                                    ? 0 : -1)
-                            : triangle_nearest_corners(&mr->shear, corners,
-                                                       leaf.count, t_min,
-                                                       t_max, out);
+                            : triangle_nearest_of_leaf(
+                                  &mr->shear, corners,
+                                  m->tree.items + leaf.first, leaf.count,
+                                  t_min, t_max, found, out);
         if (k >= 0)
             found = m->tree.items[leaf.first + k], t_max = out ? out->t : t_max;
         if (k >= 0 && out == NULL)
