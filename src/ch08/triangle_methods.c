@@ -239,14 +239,15 @@ int triangle_nearest_of_leaf(const watertight_ray *w,
 {
     sheared_ray s = sheared_from(w);
     int nearest = -1;
+    double reach = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
     for (int k = 0; k < count; k++) {
         const vec3 *p = triangles[k].p;
         triangle_hit th;
-        /* up to t_max itself, where a tie goes to the lower index */
-        if (hit_sheared(&s, p[0], p[1], p[2], t_min,
-                        nextafter(t_max, INFINITY), &th) &&
-            (th.t < t_max || items[k] < best))
+        if (hit_sheared(&s, p[0], p[1], p[2], t_min, reach, &th) &&
+            (th.t < t_max || items[k] < best)) { /* a tie: the lower index */
             *out = th, t_max = th.t, best = items[k], nearest = k;
+            reach = nextafter(t_max, INFINITY);
+        }
     }
     return nearest;
 }
