@@ -143,7 +143,8 @@ $(B)/test/ch$(1): $$(O$(1))/tests/runner.o $$(patsubst tests/%.c,$$(O$(1))/tests
 	@mkdir -p $$(@D)
 	$$(CC) $$(ALL_CFLAGS) $$(LTO_LINK) -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
 
-test-ch$(1): deps $(B)/test/ch$(1) $(BIN)/ch$(1)
+# a suite may compare the program with the previous chapter's (ties, ch08)
+test-ch$(1): deps $(B)/test/ch$(1) $(BIN)/ch$(1) $(if $(call previous,$(1)),$(BIN)/ch$(call previous,$(1)))
 	@echo "== suites 01..$(1) against the program of chapter $(1)"
 	CHAPTER_BIN=$(BIN)/ch$(1) CK_DEFAULT_TIMEOUT=60 $(B)/test/ch$(1)
 

@@ -74,6 +74,7 @@
 #include "rng.h"
 #include "camera.h"
 #include "scene.h"
+#include "search.h"
 #include "ch08_rays.h"
 #include "timing.h"
 

@@ -11,6 +11,7 @@
 
 #include "render.h"
 #include "scene.h"
+#include "search.h"
 #include "test_util.h"
 #include "sphere.h"
 #include "../bench/rng.h"

@@ -15,6 +15,7 @@
 #include "obj.h"
 #include "render.h"
 #include "scene.h"
+#include "search.h"
 #include "triangle.h"
 #include "test_util.h"
 

@@ -17,6 +17,7 @@
 #include "render.h"
 #include "scene.h"
 #include "scene_file.h"
+#include "search.h"
 #include "test_util.h"
 
 #define U (DBL_EPSILON / 2) /* the unit roundoff of double, 2^-53 */

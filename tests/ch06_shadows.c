@@ -9,7 +9,9 @@
 #include <string.h>
 
 #include "render.h"
+#include "sample.h"
 #include "scene.h"
+#include "search.h"
 #include "shade.h"
 #include "test_util.h"
 

@@ -3,6 +3,13 @@
 
 #include <assert.h>
 
+/* What the pixel whose primary ray is r shows. */
+static vec3 pixel_color(const scene *s, ray r, render_stats *stats)
+{
+    vec3 c = trace(s, r, 0, stats);
+    return c;
+}
+
 void render_rows(const scene *s, image *img, int first, int last,
                  render_stats *stats)
 {
@@ -14,8 +21,7 @@ void render_rows(const scene *s, image *img, int first, int last,
         for (int i = 0; i < img->width; i++) {
             ray r = camera_view_ray(&view, i, j);
             stats->primary_rays++;
-            vec3 c = trace(s, r, 0, stats);
-            image_set(img, i, j, c);
+            image_set(img, i, j, pixel_color(s, r, stats));
         }
     }
 }

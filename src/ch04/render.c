@@ -5,6 +5,18 @@
 /* <<render includes>> ch03 */
 #include "shade.h"
 
+/* What the pixel whose primary ray is r shows. */
+static vec3 pixel_color(const scene *s, ray r, render_stats *stats)
+{
+    vec3 c = trace(s, r, 0, stats);
+    /* <<map the pixel's light for display>> ch03 */
+    if (s->tone.alpha != 1 || s->tone.beta != 1) /* the defaults only clip */
+        c = (vec3){tone_map(c.x, s->tone.alpha, s->tone.beta),
+                   tone_map(c.y, s->tone.alpha, s->tone.beta),
+                   tone_map(c.z, s->tone.alpha, s->tone.beta)};
+    return c;
+}
+
 void render_rows(const scene *s, image *img, int first, int last,
                  render_stats *stats)
 {
@@ -16,13 +28,7 @@ void render_rows(const scene *s, image *img, int first, int last,
         for (int i = 0; i < img->width; i++) {
             ray r = camera_view_ray(&view, i, j);
             stats->primary_rays++;
-            vec3 c = trace(s, r, 0, stats);
-            /* <<map the pixel's light for display>> ch03 */
-            if (s->tone.alpha != 1 || s->tone.beta != 1) /* the defaults only clip */
-                c = (vec3){tone_map(c.x, s->tone.alpha, s->tone.beta),
-                           tone_map(c.y, s->tone.alpha, s->tone.beta),
-                           tone_map(c.z, s->tone.alpha, s->tone.beta)};
-            image_set(img, i, j, c);
+            image_set(img, i, j, pixel_color(s, r, stats));
         }
     }
 }

@@ -1,5 +1,8 @@
 /* shade.c: the Phong model, lights and tone mapping (chapter 3). */
 #include "shade.h"
+/* <<shade.c includes>> ch06 */
+#include "search.h"
+#include "sample.h"
 
 /* <<highlights>> ch03 */
 double phong_cosine(vec3 n, vec3 l, vec3 v)

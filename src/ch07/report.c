@@ -27,6 +27,8 @@ void report_stats(const render_stats *st, const moment at[4])
             "to block,\n                   %lld nothing that could block\n",
             st->light_tests - facing, st->shadow_skipped_dark,
             st->shadow_skipped_alone);
+    fprintf(stderr, "  objects skipped  %lld, the ray blocked already\n",
+            st->shadow_objects_skipped);
     fprintf(stderr, "reflection rays    %lld\n", st->reflection_rays);
     fprintf(stderr, "  not traced       %lld at the depth limit, %lld below "
                     "the cutoff\n",

@@ -1,12 +1,36 @@
 /* trace.c: what a ray sees (chapter 1). See trace.h. */
 #include "trace.h"
 
-/* <<trace includes>> ch03 */
+/* <<trace includes>> ch02 */
+#include "search.h"
+/* <<trace includes>> += ch03 */
 #include "shade.h"
 
 /* <<trace helpers>> ch06 */
 static vec3 trace_path(const scene *s, ray r, int depth, double weight,
                        render_stats *stats);
+
+/* Where --stats counts one kind of secondary ray. */
+typedef struct {
+    long long *traced, *too_deep, *too_light;
+} ray_counters;
+
+/* Is a secondary ray of weight w, after depth bounces, worth tracing?
+ * Counts the answer in counts. */
+static bool branch_is_traced(const scene *s, int depth, double w,
+                             ray_counters counts)
+{
+    if (depth >= s->max_depth) {
+        (*counts.too_deep)++;
+        return false;
+    }
+    if (w < s->cutoff) {
+        (*counts.too_light)++;
+        return false;
+    }
+    (*counts.traced)++;
+    return true;
+}
 
 /* color mixed with what the mirror at h reflects, when it is a mirror and
  * the reflected ray is worth tracing; color alone otherwise. */
@@ -16,15 +40,11 @@ static vec3 add_reflection(const scene *s, const hit *h, ray r, int depth,
     double alpha = scene_material(s, h->material)->reflect;
     if (alpha == 0)
         return color; /* not a mirror: no ray, nothing counted */
-    if (depth >= s->max_depth) {
-        stats->reflection_skipped_depth++;
+    ray_counters mirror = {&stats->reflection_rays,
+                           &stats->reflection_skipped_depth,
+                           &stats->reflection_skipped_weight};
+    if (!branch_is_traced(s, depth, weight * alpha, mirror))
         return color;
-    }
-    if (weight * alpha < s->cutoff) {
-        stats->reflection_skipped_weight++;
-        return color;
-    }
-    stats->reflection_rays++;
     vec3 dir = vec3_reflect(r.dir, h->normal);
     vec3 seen = trace_path(s, ray_leaving(h, dir), depth + 1,
                            weight * alpha, stats);
@@ -58,11 +78,6 @@ static crossing crossing_at(const hit *h, const material *m, vec3 dir)
     return (crossing){n, eta1, eta2};
 }
 
-/* Where --stats counts one kind of secondary ray. */
-typedef struct {
-    long long *traced, *too_deep, *too_light;
-} ray_counters;
-
 /* What a secondary ray of weight w leaving h along dir sees, or fallback
  * when it has no share of the light or is not worth tracing. */
 static vec3 trace_branch(const scene *s, const hit *h, vec3 dir, int depth,
@@ -71,15 +86,8 @@ static vec3 trace_branch(const scene *s, const hit *h, vec3 dir, int depth,
 {
     if (!(w > 0))
         return fallback; /* no share of the light: not a ray at all */
-    if (depth >= s->max_depth) {
-        (*counts.too_deep)++;
+    if (!branch_is_traced(s, depth, w, counts))
         return fallback;
-    }
-    if (w < s->cutoff) {
-        (*counts.too_light)++;
-        return fallback;
-    }
-    (*counts.traced)++;
     return trace_path(s, ray_leaving(h, dir), depth + 1, w, stats);
 }
 

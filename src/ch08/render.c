@@ -5,11 +5,33 @@
 /* <<render includes>> ch03 */
 #include "shade.h"
 /* <<render includes>> += ch08 */
+#include "search.h"
 #include <pthread.h>
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+
+/* What the pixel whose primary ray is r shows. */
+static vec3 pixel_color(const scene *s, ray r, render_stats *stats)
+{
+    /* <<show something other than light>> ch08 */
+    if (s->heatmap > 0) { /* the kdtree statement's heat map: work, not light */
+        long long before = stats->kd_nodes;
+        hit h;
+        scene_intersect(s, r, 0, INFINITY, &h, stats);
+        double x = fmin((double)(stats->kd_nodes - before) / s->heatmap, 1);
+        return (vec3){fmin(3 * x, 1), fmin(fmax(3 * x - 1, 0), 1),
+                      fmax(3 * x - 2, 0)}; /* black, red, yellow, white */
+    }
+    vec3 c = trace(s, r, 0, stats);
+    /* <<map the pixel's light for display>> ch03 */
+    if (s->tone.alpha != 1 || s->tone.beta != 1) /* the defaults only clip */
+        c = (vec3){tone_map(c.x, s->tone.alpha, s->tone.beta),
+                   tone_map(c.y, s->tone.alpha, s->tone.beta),
+                   tone_map(c.z, s->tone.alpha, s->tone.beta)};
+    return c;
+}
 
 void render_rows(const scene *s, image *img, int first, int last,
                  render_stats *stats)
@@ -22,22 +44,7 @@ void render_rows(const scene *s, image *img, int first, int last,
         for (int i = 0; i < img->width; i++) {
             ray r = camera_view_ray(&view, i, j);
             stats->primary_rays++;
-            vec3 c = trace(s, r, 0, stats);
-            /* <<map the pixel's light for display>> ch03 */
-            if (s->tone.alpha != 1 || s->tone.beta != 1) /* the defaults only clip */
-                c = (vec3){tone_map(c.x, s->tone.alpha, s->tone.beta),
-                           tone_map(c.y, s->tone.alpha, s->tone.beta),
-                           tone_map(c.z, s->tone.alpha, s->tone.beta)};
-            /* <<map the pixel's light for display>> += ch08 */
-            if (s->heatmap > 0) { /* the kdtree statement's heat map: work, not light */
-                render_stats work = {0};
-                hit h;
-                scene_intersect(s, r, 0, INFINITY, &h, &work);
-                double x = fmin((double)work.kd_nodes / s->heatmap, 1);
-                c = (vec3){fmin(3 * x, 1), fmin(fmax(3 * x - 1, 0), 1),
-                           fmax(3 * x - 2, 0)}; /* black, red, yellow, white */
-            }
-            image_set(img, i, j, c);
+            image_set(img, i, j, pixel_color(s, r, stats));
         }
     }
 }

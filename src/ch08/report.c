@@ -27,6 +27,8 @@ void report_stats(const render_stats *st, const moment at[4])
             "to block,\n                   %lld nothing that could block\n",
             st->light_tests - facing, st->shadow_skipped_dark,
             st->shadow_skipped_alone);
+    fprintf(stderr, "  objects skipped  %lld, the ray blocked already\n",
+            st->shadow_objects_skipped);
     fprintf(stderr, "reflection rays    %lld\n", st->reflection_rays);
     fprintf(stderr, "  not traced       %lld at the depth limit, %lld below "
                     "the cutoff\n",
@@ -41,6 +43,7 @@ void report_stats(const render_stats *st, const moment at[4])
     /* <<print statistics>> += ch08 */
     fprintf(stderr, "kd-tree nodes      %lld (%.1f a primary ray)\n", st->kd_nodes,
             (double)st->kd_nodes / (st->primary_rays ? st->primary_rays : 1));
+    fprintf(stderr, "any-hit mesh tests %lld\n", st->mesh_occlusion_tests);
     double render_s = at[2].wall - at[1].wall;
     if (render_s > 0)
         fprintf(stderr, "primary rays/s     %.3g\n",

@@ -22,6 +22,7 @@ typedef struct {
     long long shadow_rays_blocked;  /* of those, the ones that hit something */
     long long shadow_skipped_dark;  /* the light arrives with no intensity */
     long long shadow_skipped_alone; /* nothing in the scene could block it */
+    long long shadow_objects_skipped; /* untested: the ray was blocked already */
     long long reflection_rays;
     long long reflection_skipped_depth;  /* at the depth limit */
     long long reflection_skipped_weight; /* below the contribution cutoff */
@@ -32,6 +33,7 @@ typedef struct {
     long long total_reflections; /* glass hits with no refracted ray at all */
     /* <<statistics counters>> += ch08 */
     long long kd_nodes; /* kd-tree nodes visited */
+    long long mesh_occlusion_tests; /* meshes asked for any hit, not nearest */
 } render_stats;
 
 #endif
