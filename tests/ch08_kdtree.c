@@ -20,6 +20,7 @@
 #include "obj.h"
 #include "scene.h"
 #include "search.h"
+#include "trees.h"
 #include "test_util.h"
 
 /* ------------------------------------------------------------ helpers */
@@ -665,7 +666,7 @@ START_TEST(test_the_objects_tree_agrees_with_the_list)
                 o.corners[i] = vec3_add(c, vec3_scale(bench_rng_unit_vector(&rng, 1e-3), 0.5));
         ck_assert(scene_add_object(&with, o));
     }
-    ck_assert(scene_build_trees(&with));
+    ck_assert(scene_build_trees(&with, NULL));
     ck_assert(with.object_tree.node_count > 0);
     expect_tree_agrees_with_list(&with);
 }
@@ -693,7 +694,7 @@ START_TEST(test_the_objects_tree_agrees_with_the_list_for_placed_objects)
     scene_init(&with);
     ck_assert_msg(scene_parse(&with, text, used, "placed.scene", &err), "%d:%d %s", err.line,
                   err.col, err.message);
-    ck_assert(scene_build_trees(&with));
+    ck_assert(scene_build_trees(&with, NULL));
     ck_assert(with.object_tree.node_count > 0);
     expect_tree_agrees_with_list(&with);
 }
@@ -1097,6 +1098,55 @@ START_TEST(test_kdtree_statement_rejects_bad_settings)
 }
 END_TEST
 
+/* Parses text as the scene file budget.scene (its meshes relative to the
+ * current folder) with the geometry budget set to bytes; the total after. */
+static bool parse_within(const char *text, long long bytes, scene_error *err,
+                         long long *total)
+{
+    scene s;
+    scene_init(&s);
+    s.geometry_budget = bytes;
+    bool ok = scene_parse(&s, text, strlen(text), "budget.scene", err);
+    *total = s.geometry_total;
+    scene_free(&s);
+    return ok;
+}
+
+START_TEST(test_the_trees_count_against_the_geometry_budget)
+{
+    scene_error err;
+    long long mesh_only, with_tree, total;
+    const char *teapot = "image 8 6\nmesh file meshes/teapot-8.obj\n";
+    const char *no_tree = "image 8 6\nkdtree build none\n"
+                          "mesh file meshes/teapot-8.obj\n";
+    ck_assert_msg(parse_within(no_tree, SCENE_MAX_GEOMETRY_BYTES, &err, &mesh_only),
+                  "%s", err.message);
+    ck_assert_msg(parse_within(teapot, SCENE_MAX_GEOMETRY_BYTES, &err, &with_tree),
+                  "%s", err.message);
+    ck_assert_msg(with_tree > mesh_only, "the tree took no bytes: %lld", with_tree);
+    /* Room for the mesh and 100 bytes: not for its tree, which the mesh
+     * statement on line 2 asked for. */
+    ck_assert(!parse_within(teapot, mesh_only + 100, &err, &total));
+    expect_error_at(&err, "budget.scene", 2, 1,
+                    "the kd-tree of mesh file 'meshes/teapot-8.obj' would pass "
+                    "the scene's budget of", teapot);
+    ck_assert_int_eq(err.kind, PARSE_OVER_BUDGET);
+    ck_assert_int_le(total, mesh_only + 100);
+    /* The objects' tree belongs to the whole file. */
+    char spheres[2048] = "";
+    for (int k = 0; k < 40; k++)
+        snprintf(spheres + strlen(spheres), sizeof spheres - strlen(spheres),
+                 "sphere center %d 0 9 radius 0.4\n", k - 20);
+    ck_assert_msg(parse_within(spheres, SCENE_MAX_GEOMETRY_BYTES, &err, &total),
+                  "%s", err.message);
+    ck_assert_int_gt(total, 0);
+    ck_assert(!parse_within(spheres, total - 1, &err, &total));
+    expect_error_at(&err, "budget.scene", 0, 0, "the objects' kd-tree would pass",
+                    spheres);
+    ck_assert_int_eq(err.kind, PARSE_OVER_BUDGET);
+}
+END_TEST
+
 Suite *ch08_kdtree_suite(void)
 {
     Suite *s = suite_create("ch08 kdtree");
@@ -1136,6 +1186,7 @@ Suite *ch08_kdtree_suite(void)
     tcase_add_test(bad, test_stats_hint_an_over_fine_mesh);
     tcase_add_test(bad, test_kdtree_statement_sets_the_parameters);
     tcase_add_test(bad, test_kdtree_statement_rejects_bad_settings);
+    tcase_add_test(bad, test_the_trees_count_against_the_geometry_budget);
     suite_add_tcase(s, bad);
     return s;
 }

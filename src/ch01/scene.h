@@ -30,5 +30,4 @@ void scene_free(scene *s);
 
 
 
-
 #endif

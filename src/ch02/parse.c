@@ -52,6 +52,19 @@ bool parse_fail_with(parser *p, parse_error_kind kind, const char *at,
     return false;
 }
 
+bool parse_fail_on_line(parse_error *err, const char *name, int line,
+                        parse_error_kind kind, const char *format, ...)
+{
+    parser p = {.name = name, .line_number = line, .err = err};
+    va_list args;
+    va_start(args, format);
+    fail(&p, kind, p.line, format, args); /* p.line: column 1 */
+    va_end(args);
+    if (line == 0)
+        err->col = 0;
+    return false;
+}
+
 bool parse_expected(parser *p, const char *format, ...)
 {
     char what[160];

@@ -55,5 +55,4 @@ void scene_free(scene *s);
 bool scene_add_object(scene *s, object o);
 
 
-
 #endif

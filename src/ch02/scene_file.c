@@ -134,6 +134,7 @@ static bool parse_statement(parser *p, void *target)
     return parse_expected(p, "expected a statement keyword");
 }
 
+
 bool scene_parse(scene *s, const char *text, size_t length, const char *name,
                  scene_error *err)
 {

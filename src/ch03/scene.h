@@ -81,5 +81,4 @@ bool scene_add_material(scene *s, material m);
 bool scene_add_light(scene *s, light L);
 
 
-
 #endif

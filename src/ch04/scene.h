@@ -109,5 +109,4 @@ int scene_add_mesh(scene *s, mesh m);
 int scene_find_mesh(const scene *s, const mesh_source *source);
 
 
-
 #endif

@@ -129,5 +129,4 @@ const transform *scene_transform(const scene *s, int k);
 void scene_count_triangles(const scene *s, long long *stored,
                            long long *instanced);
 
-
 #endif

@@ -310,7 +310,7 @@ static bool parse_mesh(parser *p, scene *s)
         return false;
     if (!resolve_path(p, m.file, m.file_length, path, sizeof path))
         return parse_fail_at(p, m.file, "the mesh file's path is too long");
-    mesh_source source = {path, m.scale, m.offset, m.smooth};
+    mesh_source source = {path, m.scale, m.offset, m.smooth, p->line_number};
     o.mesh = scene_find_mesh(s, &source); /* the file, read already? */
     if (o.mesh < 0 && (o.mesh = mesh_load_into(p, s, m.file, &source)) < 0)
         return false;
@@ -358,6 +358,7 @@ static bool parse_statement(parser *p, void *target)
     }
     return parse_expected(p, "expected a statement keyword");
 }
+
 
 bool scene_parse(scene *s, const char *text, size_t length, const char *name,
                  scene_error *err)

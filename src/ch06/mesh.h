@@ -15,12 +15,14 @@
 #define MESH_MAX_TRIANGLES (1 << 23) /* 8.4 million */
 
 /* Where a mesh was read from and how it was placed: two meshes that agree
- * on all of it are the same mesh. path is NULL for a mesh made in code. */
+ * on all of it but the line are the same mesh. path is NULL for a mesh
+ * made in code. */
 typedef struct {
     char *path; /* owned by the mesh */
     double scale;
     vec3 offset;
     bool smooth;
+    int line; /* of the scene statement that first named it, for errors */
 } mesh_source;
 
 typedef struct {

@@ -54,6 +54,11 @@ bool parse_expected(parser *p, const char *format, ...);
 bool parse_no_room(parser *p, const char *at, int count, int max,
                    const char *plural);
 
+/* An error found once the parse is over, about line `line` of the file
+ * called name (0: the file as a whole), at its first column; false. */
+bool parse_fail_on_line(parse_error *err, const char *name, int line,
+                        parse_error_kind kind, const char *format, ...);
+
 /* Copies name into to[size], ending it in "..." when it does not fit. */
 void parse_copy_name(char *to, size_t size, const char *name);
 

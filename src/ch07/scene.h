@@ -144,5 +144,4 @@ void scene_count_triangles(const scene *s, long long *stored,
  * lone triangle, which cannot shadow themselves. */
 bool scene_can_shadow(const scene *s, const hit *h);
 
-
 #endif

@@ -4,6 +4,7 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "array.h"
 
 /* <<kd-tree storage>> ch08 */
 kdtree_params kdtree_default_params(void)
@@ -21,16 +22,24 @@ void kdtree_free(kdtree *t)
     *t = (kdtree){0};
 }
 
+/* A node's 30 upper bits index its child above, or count its items. */
+#define KDTREE_MAX_NODES (1 << 30)
+
+long long kdtree_bytes(const kdtree *t)
+{
+    return (long long)t->node_capacity * sizeof *t->nodes +
+           (long long)t->item_capacity * sizeof *t->items;
+}
+
 /* Appends n; its index, or -1 when out of memory. */
 static int add_node(kdtree *t, kdtree_node n)
 {
-    if (t->node_count == t->node_capacity) {
-        int wanted = t->node_capacity ? 2 * t->node_capacity : 256;
-        kdtree_node *grown = realloc(t->nodes, (size_t)wanted * sizeof n);
-        if (grown == NULL)
-            return -1;
-        t->nodes = grown, t->node_capacity = wanted;
-    }
+    kdtree_node *grown = array_grow(t->nodes, t->node_count,
+                                    &t->node_capacity, KDTREE_MAX_NODES,
+                                    sizeof n);
+    if (grown == NULL)
+        return -1;
+    t->nodes = grown;
     t->nodes[t->node_count] = n;
     return t->node_count++;
 }
@@ -38,19 +47,17 @@ static int add_node(kdtree *t, kdtree_node n)
 /* Appends a leaf of the count items; false when out of memory. */
 static bool add_leaf(kdtree *t, const int *items, int count, int depth)
 {
-    if (t->item_count + count > t->item_capacity) {
-        int wanted = t->item_capacity ? 2 * t->item_capacity : 1024;
-        while (wanted < t->item_count + count)
-            wanted *= 2;
-        int *grown = realloc(t->items, (size_t)wanted * sizeof *grown);
+    if (count > 0) { /* an empty leaf may come before any storage */
+        int *grown = array_reserve(t->items, t->item_count + count,
+                                   &t->item_capacity, KDTREE_MAX_NODES,
+                                   sizeof *grown);
         if (grown == NULL)
             return false;
-        t->items = grown, t->item_capacity = wanted;
+        t->items = grown;
+        memcpy(t->items + t->item_count, items, (size_t)count * sizeof *items);
     }
     kdtree_node leaf = {.first = (uint32_t)t->item_count,
                         .bits = (uint32_t)count << 2 | 3};
-    if (count > 0) /* an empty leaf may come before any storage */
-        memcpy(t->items + t->item_count, items, (size_t)count * sizeof *items);
     t->item_count += count;
     t->leaf_count++;
     t->depth = depth > t->depth ? depth : t->depth;

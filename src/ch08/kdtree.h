@@ -87,6 +87,9 @@ typedef bool (*kdtree_clip)(const void *context, int item, const box *cell,
 bool kdtree_build(kdtree *t, int count, const box *bounds, kdtree_clip clip,
                   const void *context, const kdtree_params *p);
 
+/* The bytes t holds: its nodes and its items, as allocated. */
+long long kdtree_bytes(const kdtree *t);
+
 /* <<kd-tree walking>> ch08 */
 /* How far the walk's comparisons of t lean towards going on: relative,
  * and far above the rounding of any t it compares. */

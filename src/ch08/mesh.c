@@ -15,8 +15,7 @@ void mesh_free(mesh *m)
     free(m->triangle_normals);
     free(m->source.path);
     /* <<free mesh members>> ch08 */
-    kdtree_free(&m->tree);
-    free(m->leaf_corners);
+    mesh_free_tree(m);
     *m = (mesh){0};
 }
 
@@ -357,11 +356,22 @@ static bool copy_leaf_corners(mesh *m)
     return true;
 }
 
-bool mesh_build_tree(mesh *m, const kdtree_params *p)
+void mesh_free_tree(mesh *m)
 {
     kdtree_free(&m->tree);
     free(m->leaf_corners);
     m->leaf_corners = NULL;
+}
+
+long long mesh_tree_bytes(const mesh *m)
+{
+    long long corners = m->leaf_corners ? m->tree.item_count : 0;
+    return kdtree_bytes(&m->tree) + corners * (long long)sizeof *m->leaf_corners;
+}
+
+bool mesh_build_tree(mesh *m, const kdtree_params *p)
+{
+    mesh_free_tree(m);
     kdtree_params q = *p;
     q.min_items = q.min_items > 0 ? q.min_items : MESH_TREE_MIN_TRIANGLES;
     box *bounds = malloc(((size_t)m->triangle_count + 1) * sizeof *bounds);

@@ -17,12 +17,14 @@
 #define MESH_MAX_TRIANGLES (1 << 23) /* 8.4 million */
 
 /* Where a mesh was read from and how it was placed: two meshes that agree
- * on all of it are the same mesh. path is NULL for a mesh made in code. */
+ * on all of it but the line are the same mesh. path is NULL for a mesh
+ * made in code. */
 typedef struct {
     char *path; /* owned by the mesh */
     double scale;
     vec3 offset;
     bool smooth;
+    int line; /* of the scene statement that first named it, for errors */
 } mesh_source;
 
 typedef struct {
@@ -116,6 +118,13 @@ void triangle_refine_hit(vec3 a, vec3 b, vec3 c, const double w[3], hit *h);
 /* Builds m's tree with p (none for fewer than MESH_TREE_MIN_TRIANGLES);
  * false when out of memory, and then m has no tree. */
 bool mesh_build_tree(mesh *m, const kdtree_params *p);
+
+/* Frees m's tree, if it has one; m stays a mesh, searched by brute force. */
+void mesh_free_tree(mesh *m);
+
+/* The bytes m's tree holds: its nodes and items, and the corners copied
+ * leaf by leaf. */
+long long mesh_tree_bytes(const mesh *m);
 
 /* Below this many triangles a mesh is searched by brute force: the
  * crossover of the chapter's chart. */

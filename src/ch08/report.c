@@ -2,6 +2,8 @@
 #include "report.h"
 
 #include <stdio.h>
+/* <<report includes>> ch08 */
+#include "trees.h"
 
 /* <<the statistics report>> ch01 */
 void report_stats(const render_stats *st, const moment at[4])

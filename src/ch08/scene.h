@@ -150,25 +150,4 @@ void scene_count_triangles(const scene *s, long long *stored,
  * lone triangle, which cannot shadow themselves. */
 bool scene_can_shadow(const scene *s, const hit *h);
 
-/* <<scene tree declarations>> ch08 */
-/* Builds every mesh's tree and the tree over the objects by
- * s->tree_params; false when out of memory. In trees.c. */
-bool scene_build_trees(scene *s);
-
-/* Below this many objects a scene keeps them in a list: the crossover of
- * the chapter's chart. */
-#define SCENE_TREE_MIN_OBJECTS 26
-
-/* What the scene's trees hold, for --stats. */
-typedef struct {
-    int trees, depth;
-    long long nodes, leaves, items, references;
-} scene_tree_summary;
-
-scene_tree_summary scene_trees(const scene *s);
-
-/* How many pixels of the image the box around object o covers at most:
- * camera_box_pixels of its box in the world. */
-double scene_object_pixels(const scene *s, const object *o);
-
 #endif

@@ -12,6 +12,8 @@
 #include "mesh_load.h"
 /* <<scene file includes>> += ch05 */
 #include "transform_parse.h"
+/* <<scene file includes>> += ch08 */
+#include "trees.h"
 
 /* <<readers of settings>> ch03 */
 
@@ -320,7 +322,7 @@ static bool parse_mesh(parser *p, scene *s)
         return false;
     if (!resolve_path(p, m.file, m.file_length, path, sizeof path))
         return parse_fail_at(p, m.file, "the mesh file's path is too long");
-    mesh_source source = {path, m.scale, m.offset, m.smooth};
+    mesh_source source = {path, m.scale, m.offset, m.smooth, p->line_number};
     o.mesh = scene_find_mesh(s, &source); /* the file, read already? */
     if (o.mesh < 0 && (o.mesh = mesh_load_into(p, s, m.file, &source)) < 0)
         return false;
@@ -465,19 +467,37 @@ static bool parse_statement(parser *p, void *target)
     return parse_expected(p, "expected a statement keyword");
 }
 
+/* <<what the scene needs once it is read>> ch08 */
+
+/* The error of a failed build of the trees, in err; false. */
+static bool tree_error(const scene *s, const char *name,
+                       const scene_tree_failure *why, scene_error *err)
+{
+    parse_error_kind kind = why->over_budget ? PARSE_OVER_BUDGET
+                                             : PARSE_NO_MEMORY;
+    const char *problem = why->over_budget
+                              ? "would pass the scene's budget of"
+                              : "ran out of memory within the budget of";
+    if (why->mesh < 0)
+        return parse_fail_on_line(err, name, 0, kind, "the objects' kd-tree "
+                                  "%s %lld bytes of geometry", problem,
+                                  s->geometry_budget);
+    const mesh_source *m = &s->meshes[why->mesh].source;
+    return parse_fail_on_line(err, name, m->line, kind,
+                              "the kd-tree of mesh file '%s' %s %lld bytes "
+                              "of geometry", m->path, problem,
+                              s->geometry_budget);
+}
+
 bool scene_parse(scene *s, const char *text, size_t length, const char *name,
                  scene_error *err)
 {
     if (!parse_lines(text, length, name, err, parse_statement, s))
         return false;
     /* <<finish the scene>> ch08 */
-    if (!scene_build_trees(s)) {
-        snprintf(err->file, sizeof err->file, "%s", name);
-        err->line = err->col = 0;
-        snprintf(err->message, sizeof err->message,
-                 "out of memory for the kd-trees");
-        return false;
-    }
+    scene_tree_failure why;
+    if (!scene_build_trees(s, &why))
+        return tree_error(s, name, &why, err);
     return true;
 }
 

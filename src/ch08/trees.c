@@ -1,6 +1,6 @@
-/* trees.c: the scene's kd-trees: built once the scene is read, timed, and
- * summed up for --stats (chapter 8). See scene.h. */
-#include "scene.h"
+/* trees.c: the scene's kd-trees: built once the scene is read, within its
+ * budget, timed, and summed up for --stats (chapter 8). */
+#include "trees.h"
 
 #include <stdlib.h>
 #include <time.h>
@@ -82,14 +82,46 @@ static bool build_object_tree(scene *s)
 }
 
 /* <<building the scene's trees>> ch08 */
-bool scene_build_trees(scene *s)
+/* Adds bytes to the scene's geometry; false when that passes the budget. */
+static bool count_tree(scene *s, long long bytes)
+{
+    s->geometry_total += bytes;
+    return s->geometry_total <= s->geometry_budget;
+}
+
+/* Builds the trees, stopping at the first that fails, the failure in why. */
+static bool build_all(scene *s, scene_tree_failure *why)
+{
+    for (int k = 0; k < s->mesh_count; k++) {
+        mesh *m = &s->meshes[k];
+        *why = (scene_tree_failure){.mesh = k};
+        if (!mesh_build_tree(m, &s->tree_params))
+            return false;
+        if (!count_tree(s, mesh_tree_bytes(m)))
+            return why->over_budget = true, false;
+    }
+    *why = (scene_tree_failure){.mesh = -1};
+    if (!build_object_tree(s))
+        return false;
+    return count_tree(s, kdtree_bytes(&s->object_tree)) ||
+           (why->over_budget = true, false);
+}
+
+bool scene_build_trees(scene *s, scene_tree_failure *why)
 {
     struct timespec start, end;
+    scene_tree_failure failure;
     clock_gettime(CLOCK_MONOTONIC, &start);
-    bool ok = true;
-    for (int k = 0; ok && k < s->mesh_count; k++)
-        ok = mesh_build_tree(&s->meshes[k], &s->tree_params);
-    ok = ok && build_object_tree(s);
+    long long before = s->geometry_total;
+    bool ok = build_all(s, &failure);
+    if (!ok) { /* no trees: the scene is as it was before */
+        for (int k = 0; k < s->mesh_count; k++)
+            mesh_free_tree(&s->meshes[k]);
+        kdtree_free(&s->object_tree);
+        s->geometry_total = before;
+        if (why != NULL)
+            *why = failure;
+    }
     clock_gettime(CLOCK_MONOTONIC, &end);
     s->tree_seconds = (double)(end.tv_sec - start.tv_sec) +
                       1e-9 * (double)(end.tv_nsec - start.tv_nsec);
