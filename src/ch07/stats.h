@@ -25,6 +25,7 @@ typedef struct {
     long long reflection_rays;
     long long reflection_skipped_depth;  /* at the depth limit */
     long long reflection_skipped_weight; /* below the contribution cutoff */
+    long long ray_trees_cut; /* trees of rays that ran out of budget */
     /* <<statistics counters>> += ch07 */
     long long refraction_rays;
     long long refraction_skipped_depth;  /* at the depth limit */
