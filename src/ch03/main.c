@@ -3,6 +3,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
 #include "render.h"
@@ -118,8 +119,10 @@ static bool option_error(const char *program, const char *message,
 static bool parse_size(const char *text, int *width, int *height)
 {
     char *x, *end;
+    if (text[0] < '0' || text[0] > '9')
+        return false; /* strtol would take blanks and a sign */
     long w = strtol(text, &x, 10);
-    if (x == text || *x != 'x' || x[1] < '0' || x[1] > '9')
+    if (*x != 'x' || x[1] < '0' || x[1] > '9')
         return false;
     long h = strtol(x + 1, &end, 10);
     if (*end != '\0' || w < 1 || h < 1 || w > IMAGE_MAX_SIDE ||
@@ -242,6 +245,27 @@ static void close_output(png_output *out)
     has_temporary = 0;
 }
 
+/* <<the output may not be an input>> ch01 */
+/* Does path name the file whose status is out? */
+static bool is_same_file(const char *path, const struct stat *out)
+{
+    struct stat in;
+    return path != NULL && stat(path, &in) == 0 &&
+           in.st_dev == out->st_dev && in.st_ino == out->st_ino;
+}
+
+/* The file the scene was read from that -o names too, or NULL. */
+static const char *input_named_by_output(const options *opt, const scene *s)
+{
+    struct stat out;
+    (void)s; /* its files are named from chapter 4 on */
+    if (strcmp(opt->output, "-") == 0 || stat(opt->output, &out) != 0)
+        return NULL; /* standard output, or a new file */
+    if (is_same_file(opt->scene_path, &out))
+        return opt->scene_path;
+    return NULL;
+}
+
 /* <<timing>> ch01 */
 static double seconds_now(void)
 {
@@ -334,6 +358,12 @@ int main(int argc, char **argv)
     int status = 1;
     if (!load_scene(&opt, &s))
         goto done;
+    const char *input = input_named_by_output(&opt, &s);
+    if (input != NULL) {
+        snprintf(why, sizeof why, "the output is an input: %s", input);
+        print_error(opt.output, 0, 0, why);
+        goto done;
+    }
     if (!open_output(opt.output, &out, why, sizeof why)) {
         print_error(opt.output, 0, 0, why);
         goto done;
