@@ -200,10 +200,10 @@ bool parse_direction(parser *p, const char *what, vec3 *out)
         return false;
     while (parse_is_blank(*first))
         first++;
-    if (!(vec3_dot(*out, *out) > 0)) /* also too short to square */
+    if (!vec3_is_direction(*out))
         return parse_fail_at(p, first, "expected %s of non-zero length",
                              what);
-    *out = vec3_normalize(*out);
+    *out = vec3_normalize_scaled(*out); /* however short or long */
     return true;
 }
 
