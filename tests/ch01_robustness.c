@@ -610,6 +610,59 @@ START_TEST(test_a_usage_error_is_two_documented_lines)
 }
 END_TEST
 
+
+/* Holds the running binary pid still for ms milliseconds: its clock goes
+ * on, so that the render seems to have taken that much longer. */
+static void pause_bin(pid_t pid, long ms)
+{
+    ck_assert_int_eq(kill(pid, SIGSTOP), 0);
+    struct timespec t = {ms / 1000, (ms % 1000) * 1000000};
+    nanosleep(&t, NULL);
+    ck_assert_int_eq(kill(pid, SIGCONT), 0);
+}
+
+/* How many newlines tmpdir/stderr.txt holds so far. */
+static int stderr_lines(void)
+{
+    char text[4096];
+    size_t n = read_bytes(tmp_path("stderr.txt"), text, sizeof text);
+    int lines = 0;
+    for (size_t k = 0; k < n; k++)
+        lines += text[k] == '\n';
+    return lines;
+}
+
+START_TEST(test_a_long_render_shows_progress_lines_in_a_log)
+{
+    /* stderr is a file here, not a terminal. The render is held still for
+     * 1.2 s as soon as it starts: it has then taken over a second, and a
+     * line must follow. Held again for 1.2 s, it may not write another:
+     * lines come at most every 10 s. */
+    char folder[192], out[192], errors[4096];
+    snprintf(folder, sizeof folder, "%s", tmp_path("log"));
+    ck_assert_int_eq(mkdir(folder, 0755), 0);
+    snprintf(out, sizeof out, "%s/out.png", folder);
+    const char *args[] = {"-o", out, "--size", "4096x4096", NULL};
+    pid_t pid = start_bin(args, (run_limits){.alarm_seconds = 120});
+    struct timespec ms = {0, 1000000};
+    int waited = 0;
+    while (!has_entry_starting(folder, "out.png.tmp-") && waited++ < 60000)
+        nanosleep(&ms, NULL); /* the output is opened just before the render */
+    pause_bin(pid, 1200);
+    for (waited = 0; stderr_lines() == 0 && waited < 30000; waited++)
+        nanosleep(&ms, NULL);
+    pause_bin(pid, 1200);
+    struct timespec band = {0, 200000000}; /* many bands, were it per band */
+    nanosleep(&band, NULL);
+    kill(pid, SIGTERM);
+    int status = finish_bin(pid, errors, sizeof errors);
+    ck_assert_msg(status == 0 || status == 128 + SIGTERM, "status %d", status);
+    ck_assert_msg(strchr(errors, '\r') == NULL, "a terminal's redrawn line: %s", errors);
+    ck_assert_msg(stderr_lines() == 1, "%d lines: %s", stderr_lines(), errors);
+    ck_assert_msg(strstr(errors, "rendering: row ") || strstr(errors, "% "), "%s", errors);
+}
+END_TEST
+
 Suite *ch01_robustness_suite(void)
 {
     Suite *s = suite_create("ch01 robustness");
@@ -639,6 +692,7 @@ Suite *ch01_robustness_suite(void)
     tcase_add_test(where, test_a_replaced_file_keeps_its_mode);
     tcase_add_test(where, test_a_read_only_file_is_not_replaced);
     tcase_add_test(where, test_a_signal_leaves_no_temporary_file);
+    tcase_add_test(where, test_a_long_render_shows_progress_lines_in_a_log);
     suite_add_tcase(s, where);
 
     TCase *input = tcase_create("hostile input files");

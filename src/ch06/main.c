@@ -349,6 +349,8 @@ static void print_stats(const render_stats *st, const moment at[4])
                     "the cutoff\n",
             st->reflection_skipped_depth, st->reflection_skipped_weight);
     fprintf(stderr, "ray trees cut      %lld at the budget\n", st->ray_trees_cut);
+    fprintf(stderr, "light samples cut  %lld at the shadow-ray budget\n",
+            st->light_samples_cut);
     double render_s = at[2].wall - at[1].wall;
     if (render_s > 0)
         fprintf(stderr, "primary rays/s     %.3g\n",
@@ -367,14 +369,23 @@ static void print_stats(const render_stats *st, const moment at[4])
 enum { BAND_ROWS = 8 }; /* small enough for smooth progress, large enough to
                            cost nothing */
 
-/* "rendering: row j of h" on a terminal, once the render has taken 1 s. */
+/* "rendering: row j of h" once the render has taken 1 s: redrawn on a
+ * terminal, elsewhere a line of its own every 10 s at most. */
 static void show_progress(double start, int rows_done, int rows)
 {
-    if (seconds_now() - start < 1.0 || !isatty(STDERR_FILENO))
+    static double next_line = 1.0; /* not a terminal: the next line's time */
+    double elapsed = seconds_now() - start;
+    if (elapsed < 1.0)
         return;
-    fprintf(stderr, "\rrendering: row %d of %d", rows_done, rows);
-    if (rows_done == rows)
-        fputc('\n', stderr);
+    if (isatty(STDERR_FILENO)) {
+        fprintf(stderr, "\rrendering: row %d of %d", rows_done, rows);
+        if (rows_done == rows)
+            fputc('\n', stderr);
+    } else if (elapsed >= next_line && rows_done < rows) {
+        fprintf(stderr, "rendering: row %d of %d, %.0f s\n", rows_done, rows,
+                elapsed);
+        next_line = elapsed + 10;
+    }
 }
 
 static void render_in_bands(const scene *s, image *img, render_stats *stats)

@@ -372,6 +372,8 @@ static void print_stats(const render_stats *st, const moment at[4])
                     "the cutoff\n",
             st->reflection_skipped_depth, st->reflection_skipped_weight);
     fprintf(stderr, "ray trees cut      %lld at the budget\n", st->ray_trees_cut);
+    fprintf(stderr, "light samples cut  %lld at the shadow-ray budget\n",
+            st->light_samples_cut);
     /* <<print statistics>> += ch07 */
     fprintf(stderr, "refraction rays    %lld\n", st->refraction_rays);
     fprintf(stderr,
@@ -490,19 +492,25 @@ static void *band_thread(void *worker)
 
 /* <<progress on a terminal>> ch08 */
 /* "[#####     ]  50%  2.31 Mrays/s  3 s left" on a terminal, once the
- * render has taken a second. */
+ * render has taken a second; elsewhere a line every 10 s at most. */
 static void show_progress(double start, int rows_done, int rows, int width)
 {
+    static double next_line = 1.0; /* not a terminal: the next line's time */
     double elapsed = seconds_now() - start;
-    if (elapsed < 1.0 || !isatty(STDERR_FILENO))
+    bool terminal = isatty(STDERR_FILENO);
+    if (elapsed < 1.0 || (!terminal && (elapsed < next_line ||
+                                        rows_done == rows)))
         return;
     static const char bar[] = "##############################"; /* 30 */
     int filled = 30 * rows_done / rows;
     double left = rows_done ? elapsed * (rows - rows_done) / rows_done : 0;
-    fprintf(stderr, "\r[%.*s%*s] %3d%%  %.2f Mrays/s  %.0f s left ", filled,
-            bar, 30 - filled, "", 100 * rows_done / rows,
-            1e-6 * rows_done * (double)width / elapsed, left);
-    if (rows_done == rows)
+    fprintf(stderr, "%s[%.*s%*s] %3d%%  %.2f Mrays/s  %.0f s left%s",
+            terminal ? "\r" : "", filled, bar, 30 - filled, "",
+            100 * rows_done / rows,
+            1e-6 * rows_done * (double)width / elapsed, left,
+            terminal ? " " : "\n");
+    next_line = elapsed + 10;
+    if (terminal && rows_done == rows)
         fputc('\n', stderr);
 }
 

@@ -251,6 +251,30 @@ static bool parse_area_light(parser *p, scene *s, light L)
                              SCENE_MAX_LIGHTS);
     return true;
 }
+
+/* One shaded point's shadow rays, over all lights: one for each light a
+ * scene may have, so that every light keeps one. */
+#define SCENE_SHADOW_RAY_BUDGET SCENE_MAX_LIGHTS
+
+/* Cuts the area lights' samples in proportion until one shaded point asks
+ * for no more than SCENE_SHADOW_RAY_BUDGET shadow rays. */
+static void fit_shadow_budget(scene *s)
+{
+    long long lights = s->light_count, asked = 0;
+    for (int k = 0; k < s->light_count; k++)
+        asked += s->lights[k].kind == LIGHT_AREA ? s->lights[k].samples : 1;
+    if (asked <= SCENE_SHADOW_RAY_BUDGET)
+        return;
+    long long spare = SCENE_SHADOW_RAY_BUDGET - lights; /* beyond one each */
+    for (int k = 0; k < s->light_count; k++) {
+        light *L = &s->lights[k];
+        if (L->kind != LIGHT_AREA)
+            continue;
+        int kept = 1 + (int)((L->samples - 1) * spare / (asked - lights));
+        L->samples_cut += L->samples - kept;
+        L->samples = kept;
+    }
+}
 /* <<statement helpers>> += ch07 */
 
 static bool read_ior(parser *p, double *ior)
@@ -1031,6 +1055,8 @@ bool scene_parse(scene *s, const char *text, size_t length, const char *name,
     s->cam.is_placed = s->camera_placed_on > 0;
     if (s->cam.is_placed && !check_camera_frame(s, name, err))
         return false;
+    /* <<finish the scene>> += ch06 */
+    fit_shadow_budget(s);
     /* <<finish the scene>> += ch08 */
     if (!scene_build_trees(s)) {
         snprintf(err->file, sizeof err->file, "%s", name);
