@@ -39,8 +39,10 @@ static bool option_error(const char *program, const char *message,
 static bool parse_size(const char *text, int *width, int *height)
 {
     char *x, *end;
+    if (text[0] < '0' || text[0] > '9')
+        return false; /* strtol would take blanks and a sign */
     long w = strtol(text, &x, 10);
-    if (x == text || *x != 'x' || x[1] < '0' || x[1] > '9')
+    if (*x != 'x' || x[1] < '0' || x[1] > '9')
         return false;
     long h = strtol(x + 1, &end, 10);
     if (*end != '\0' || w < 1 || h < 1 || w > IMAGE_MAX_SIDE ||

@@ -3,8 +3,9 @@
 #define PROGRESS_H
 
 typedef struct {
-    double start; /* when the render began, on the monotonic clock */
-    int width;    /* pixels a row: the rate of primary rays follows */
+    double start;     /* when the render began, on the monotonic clock */
+    int width;        /* pixels a row: the rate of primary rays follows */
+    double next_line; /* not on a terminal: when the next line is due */
 } progress;
 
 /* A render of rows width pixels wide begins now. */

@@ -1,6 +1,8 @@
 /* main.c: the renderer's phases in order: options, scene, output, render,
  * report (chapter 1). */
 #include <stdio.h>
+#include <string.h>
+#include <sys/stat.h>
 #include "message.h"
 #include "moment.h"
 #include "options.h"
@@ -60,6 +62,27 @@ static bool load_scene(const options *opt, scene *s)
     return true;
 }
 
+/* <<the output may not be an input>> ch01 */
+/* Does path name the file whose status is out? */
+static bool is_same_file(const char *path, const struct stat *out)
+{
+    struct stat in;
+    return path != NULL && stat(path, &in) == 0 &&
+           in.st_dev == out->st_dev && in.st_ino == out->st_ino;
+}
+
+/* The file the scene was read from that -o names too, or NULL. */
+static const char *input_named_by_output(const options *opt, const scene *s)
+{
+    struct stat out;
+    (void)s; /* its files are named from chapter 4 on */
+    if (strcmp(opt->output, "-") == 0 || stat(opt->output, &out) != 0)
+        return NULL; /* standard output, or a new file */
+    if (is_same_file(opt->scene_path, &out))
+        return opt->scene_path;
+    return NULL;
+}
+
 /* <<main>> ch01 */
 int main(int argc, char **argv)
 {
@@ -83,6 +106,12 @@ int main(int argc, char **argv)
     int status = 1;
     if (!load_scene(&opt, &s))
         goto done;
+    const char *input = input_named_by_output(&opt, &s);
+    if (input != NULL) {
+        snprintf(why, sizeof why, "the output is an input: %s", input);
+        message_print_error(opt.output, 0, 0, why);
+        goto done;
+    }
     if (!output_open(opt.output, &out, why, sizeof why)) {
         message_print_error(opt.output, 0, 0, why);
         goto done;

@@ -265,10 +265,10 @@ bool parse_direction(parser *p, const char *what, vec3 *out)
         return false;
     while (parse_is_blank(*first))
         first++;
-    if (!(vec3_dot(*out, *out) > 0)) /* also too short to square */
+    if (!vec3_is_direction(*out))
         return parse_fail_at(p, first, "expected %s of non-zero length",
                              what);
-    *out = vec3_normalize(*out);
+    *out = vec3_normalize_scaled(*out); /* however short or long */
     return true;
 }
 
@@ -335,11 +335,16 @@ static bool grow_buffer(char **text, size_t *capacity, size_t max,
     return true;
 }
 
-/* Reads fd to its end into *text, starting with room for size bytes. */
+enum { READ_PIECE = 1 << 20 }; /* bytes read, and checked, at a time */
+
+/* Reads fd to its end, or to its first NUL byte, into *text, starting with
+ * room for size bytes. */
 static bool read_all(int fd, size_t size, size_t max, char **text,
                      size_t *length, const char *path, parse_error *err)
 {
     size_t capacity = size < max ? size : max; /* the first read's room */
+    if (capacity > READ_PIECE)
+        capacity = READ_PIECE; /* a wrong size costs no more than this */
     if ((*text = malloc(capacity + 2)) == NULL)
         return file_error(err, PARSE_NO_MEMORY, path, "out of memory");
     capacity++; /* a byte more than the size, to read the end at once */
@@ -347,13 +352,17 @@ static bool read_all(int fd, size_t size, size_t max, char **text,
         if (*length == capacity && !grow_buffer(text, &capacity, max, path,
                                                 err))
             return false;
-        ssize_t n = read(fd, *text + *length, capacity - *length);
+        size_t room = capacity - *length;
+        char *piece = *text + *length;
+        ssize_t n = read(fd, piece, room < READ_PIECE ? room : READ_PIECE);
         if (n == 0)
             break;
         if (n < 0 && errno != EINTR)
             return file_error(err, PARSE_CANNOT_READ, path, "%s",
                               strerror(errno));
         *length += n > 0 ? (size_t)n : 0;
+        if (n > 0 && memchr(piece, '\0', (size_t)n) != NULL)
+            break; /* not text: the parser reports the NUL where it is */
     }
     (*text)[*length] = '\0'; /* there is room: a byte beyond capacity */
     return true;

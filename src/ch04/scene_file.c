@@ -250,6 +250,8 @@ static bool parse_mesh(parser *p, scene *s)
     o.mesh = scene_find_mesh(s, &source); /* the file, read already? */
     if (o.mesh < 0 && (o.mesh = mesh_load_into(p, s, m.file, &source)) < 0)
         return false;
+    if (s->meshes[o.mesh].triangle_count == 0)
+        return true; /* nothing to see: no object, no box to test */
     if (!scene_add_object(s, o))
         return parse_no_room(p, p->line, s->object_count, SCENE_MAX_OBJECTS,
                              "objects");

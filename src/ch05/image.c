@@ -4,6 +4,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h> /* NAME_MAX */
 #include <png.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -125,14 +126,27 @@ static bool explain(char *why, size_t why_size, const char *format, ...)
 }
 
 /* <<open the output>> ch01 */
+#define TEMPORARY_SUFFIX ".tmp-XXXXXX" /* mkstemp's X's make it unique */
+
+/* target's name with the suffix, the name cut short so that it stays
+ * within NAME_MAX bytes whenever target's own name does. */
+static void temporary_name(char *out, const char *target)
+{
+    const char *name = strrchr(target, '/');
+    name = name != NULL ? name + 1 : target;
+    size_t keep = strlen(name), room = NAME_MAX - strlen(TEMPORARY_SUFFIX);
+    sprintf(out, "%.*s%.*s" TEMPORARY_SUFFIX, (int)(name - target), target,
+            (int)(keep < room ? keep : room), name);
+}
+
 static bool open_temporary(png_output *o, const char *target, mode_t mode,
                            char *why, size_t why_size)
 {
     o->target = strdup(target);
-    o->temporary = malloc(strlen(target) + sizeof ".tmp-XXXXXX");
+    o->temporary = malloc(strlen(target) + sizeof TEMPORARY_SUFFIX);
     if (o->target == NULL || o->temporary == NULL)
         return explain(why, why_size, "out of memory");
-    sprintf(o->temporary, "%s.tmp-XXXXXX", target);
+    temporary_name(o->temporary, target);
     int fd = mkstemp(o->temporary);
     if (fd < 0) {
         explain(why, why_size, "cannot create %s: %s", o->temporary,

@@ -77,6 +77,8 @@ typedef struct {
     /* <<scene members>> += ch05 */
     transform *transforms;
     int transform_count, transform_capacity;
+    int camera_placed_on; /* the line of the last statement that placed the
+                             camera; 0: none did */
 } scene;
 
 void scene_init(scene *s);

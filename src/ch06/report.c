@@ -33,6 +33,9 @@ void report_stats(const render_stats *st, const moment at[4])
     fprintf(stderr, "  not traced       %lld at the depth limit, %lld below "
                     "the cutoff\n",
             st->reflection_skipped_depth, st->reflection_skipped_weight);
+    fprintf(stderr, "ray trees cut      %lld at the budget\n", st->ray_trees_cut);
+    fprintf(stderr, "light samples cut  %lld at the shadow-ray budget\n",
+            st->light_samples_cut);
     double render_s = at[2].wall - at[1].wall;
     if (render_s > 0)
         fprintf(stderr, "primary rays/s     %.3g\n",

@@ -79,6 +79,8 @@ typedef struct {
     /* <<scene members>> += ch05 */
     transform *transforms;
     int transform_count, transform_capacity;
+    int camera_placed_on; /* the line of the last statement that placed the
+                             camera; 0: none did */
     /* <<scene members>> += ch06 */
     int max_depth; /* reflections deeper than this are not traced */
     double cutoff; /* nor those whose weight would fall below this */

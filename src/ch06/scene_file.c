@@ -25,19 +25,25 @@ static bool read_material_name(parser *p, const scene *s, int *material)
 }
 /* <<readers of settings>> += ch05 */
 
-/* The camera's position, look_at and up make a frame; else the error is
- * reported at the start of the statement, which may have set any of them. */
-static bool check_camera_frame(parser *p, const camera *cam)
+/* false, with err at the start of the camera statement that placed the
+ * camera last, when its position, look_at and up make no frame. */
+static bool check_camera_frame(const scene *s, const char *name,
+                               scene_error *err)
 {
     mat4 frame;
-    vec3 view = vec3_sub(cam->look_at, cam->position);
-    if (!(vec3_length(view) > 0))
-        return parse_fail_at(p, p->line, "the camera's look_at point is its "
-                                         "position: no direction to look in");
-    if (!mat4_look_at(cam->position, cam->look_at, cam->up, &frame))
-        return parse_fail_at(p, p->line, "the camera's up is (nearly) along "
-                                         "its view: up cannot be told");
-    return true;
+    const camera *cam = &s->cam;
+    const char *why = "the camera's up is (nearly) along its view: up "
+                      "cannot be told";
+    if (!vec3_is_direction(vec3_sub(cam->look_at, cam->position)))
+        why = "the camera's look_at point is its position: no direction "
+              "to look in";
+    else if (mat4_look_at(cam->position, cam->look_at, cam->up, &frame))
+        return true;
+    parse_copy_name(err->file, sizeof err->file, name);
+    err->line = s->camera_placed_on, err->col = 1;
+    err->kind = PARSE_BAD_INPUT;
+    snprintf(err->message, sizeof err->message, "%s", why);
+    return false;
 }
 
 /* Stores t as the object's transform: a new one, or its own, replaced. */
@@ -81,25 +87,22 @@ static bool parse_camera(parser *p, scene *s)
         else if (parse_token_is(p, "position")) {
             if (!parse_point(p, "a camera position coordinate", &s->cam.position))
                 return false;
-            s->cam.is_placed = true;
+            s->camera_placed_on = p->line_number;
         }
         else if (parse_token_is(p, "look_at")) {
             if (!parse_point(p, "a look_at coordinate", &s->cam.look_at))
                 return false;
-            s->cam.is_placed = true;
+            s->camera_placed_on = p->line_number;
         }
         else if (parse_token_is(p, "up")) {
             if (!parse_direction(p, "an up direction", &s->cam.up))
                 return false;
-            s->cam.is_placed = true;
+            s->camera_placed_on = p->line_number;
         }
         else
             return parse_expected(p, "expected a camera setting such as "
                                      "'fov'");
     } while (parse_next_token(p));
-    /* <<check the camera statement>> ch05 */
-    if (s->cam.is_placed && !check_camera_frame(p, &s->cam))
-        return false;
     return true;
 }
 
@@ -314,6 +317,8 @@ static bool parse_mesh(parser *p, scene *s)
     o.mesh = scene_find_mesh(s, &source); /* the file, read already? */
     if (o.mesh < 0 && (o.mesh = mesh_load_into(p, s, m.file, &source)) < 0)
         return false;
+    if (s->meshes[o.mesh].triangle_count == 0)
+        return true; /* nothing to see: no object, no box to test */
     if (!scene_add_object(s, o))
         return parse_no_room(p, p->line, s->object_count, SCENE_MAX_OBJECTS,
                              "objects");
@@ -387,12 +392,43 @@ static bool parse_statement(parser *p, void *target)
     return parse_expected(p, "expected a statement keyword");
 }
 
+/* <<what the scene needs once it is read>> ch06 */
+
+/* One shaded point's shadow rays, over all lights: one for each light a
+ * scene may have, so that every light keeps one. */
+#define SCENE_SHADOW_RAY_BUDGET SCENE_MAX_LIGHTS
+
+/* Cuts the area lights' samples in proportion until one shaded point asks
+ * for no more than SCENE_SHADOW_RAY_BUDGET shadow rays. */
+static void fit_shadow_budget(scene *s)
+{
+    long long lights = s->light_count, asked = 0;
+    for (int k = 0; k < s->light_count; k++)
+        asked += s->lights[k].kind == LIGHT_AREA ? s->lights[k].samples : 1;
+    if (asked <= SCENE_SHADOW_RAY_BUDGET)
+        return;
+    long long spare = SCENE_SHADOW_RAY_BUDGET - lights; /* beyond one each */
+    for (int k = 0; k < s->light_count; k++) {
+        light *L = &s->lights[k];
+        if (L->kind != LIGHT_AREA)
+            continue;
+        int kept = 1 + (int)((L->samples - 1) * spare / (asked - lights));
+        L->samples_cut += L->samples - kept;
+        L->samples = kept;
+    }
+}
 
 bool scene_parse(scene *s, const char *text, size_t length, const char *name,
                  scene_error *err)
 {
     if (!parse_lines(text, length, name, err, parse_statement, s))
         return false;
+    /* <<finish the scene>> ch05 */
+    s->cam.is_placed = s->camera_placed_on > 0;
+    if (s->cam.is_placed && !check_camera_frame(s, name, err))
+        return false;
+    /* <<finish the scene>> += ch06 */
+    fit_shadow_budget(s);
     return true;
 }
 

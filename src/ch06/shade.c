@@ -123,6 +123,7 @@ static vec3 direct_light(const scene *s, const material *m, const hit *h,
             light point = area_light_point(L, k, &g);
             sum = vec3_add(sum, direct_light(s, m, h, n, v, &point, stats));
         }
+        stats->light_samples_cut += L->samples_cut;
         return sum;
     }
     stats->light_tests++;

@@ -44,3 +44,11 @@ void message_print_error(const char *name, int line, int col,
     message_print_escaped(message);
     fputc('\n', stderr);
 }
+
+void message_print_warning(const char *name, const char *message)
+{
+    message_print_escaped(name);
+    fputs(": warning: ", stderr);
+    message_print_escaped(message);
+    fputc('\n', stderr);
+}

@@ -98,8 +98,10 @@ bool parse_lines(const char *text, size_t length, const char *name,
                  parse_error *err, line_parser parse_line, void *target);
 
 /* The whole regular file at path, at most max_bytes, in a malloc'ed *text
- * that is NUL-terminated; false with err filled (line 0) when it cannot be
- * read, is not a regular file, or is too large. */
+ * that is NUL-terminated (only up to its first NUL byte, if it holds one:
+ * it is then no text, and parse_lines says where); false with err filled
+ * (line 0) when it cannot be read, is not a regular file, or is too
+ * large. */
 bool parse_read_file(const char *path, long max_bytes, char **text,
                      size_t *length, parse_error *err);
 /* <<parser declarations>> += ch02 */

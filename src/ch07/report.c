@@ -33,6 +33,9 @@ void report_stats(const render_stats *st, const moment at[4])
     fprintf(stderr, "  not traced       %lld at the depth limit, %lld below "
                     "the cutoff\n",
             st->reflection_skipped_depth, st->reflection_skipped_weight);
+    fprintf(stderr, "ray trees cut      %lld at the budget\n", st->ray_trees_cut);
+    fprintf(stderr, "light samples cut  %lld at the shadow-ray budget\n",
+            st->light_samples_cut);
     /* <<print statistics>> += ch07 */
     fprintf(stderr, "refraction rays    %lld\n", st->refraction_rays);
     fprintf(stderr,

@@ -26,6 +26,8 @@ typedef struct {
     long long reflection_rays;
     long long reflection_skipped_depth;  /* at the depth limit */
     long long reflection_skipped_weight; /* below the contribution cutoff */
+    long long ray_trees_cut; /* trees of rays that ran out of budget */
+    long long light_samples_cut; /* area light samples the budget took away */
     /* <<statistics counters>> += ch07 */
     long long refraction_rays;
     long long refraction_skipped_depth;  /* at the depth limit */

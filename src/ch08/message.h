@@ -10,4 +10,7 @@ void message_print_escaped(const char *text);
 void message_print_error(const char *name, int line, int col,
                          const char *message);
 
+/* "NAME: warning: MESSAGE": valid input that is most likely a mistake. */
+void message_print_warning(const char *name, const char *message);
+
 #endif

@@ -45,8 +45,10 @@ static bool option_error(const char *program, const char *message,
 static bool parse_size(const char *text, int *width, int *height)
 {
     char *x, *end;
+    if (text[0] < '0' || text[0] > '9')
+        return false; /* strtol would take blanks and a sign */
     long w = strtol(text, &x, 10);
-    if (x == text || *x != 'x' || x[1] < '0' || x[1] > '9')
+    if (*x != 'x' || x[1] < '0' || x[1] > '9')
         return false;
     long h = strtol(x + 1, &end, 10);
     if (*end != '\0' || w < 1 || h < 1 || w > IMAGE_MAX_SIDE ||
@@ -89,7 +91,8 @@ bool options_parse(int argc, char **argv, options *opt)
             char *end;
             const char *value = argv[++k];
             long n = strtol(value, &end, 10);
-            if (end == value || *end != '\0' || n < 1 || n > 256)
+            bool digits = value[0] >= '0' && value[0] <= '9'; /* no blank, sign */
+            if (!digits || *end != '\0' || n < 1 || n > 256)
                 return option_error(argv[0], "--threads expects a whole number "
                                              "from 1 to 256", value);
             opt->threads = (int)n;

@@ -35,6 +35,9 @@ void report_stats(const render_stats *st, const moment at[4])
     fprintf(stderr, "  not traced       %lld at the depth limit, %lld below "
                     "the cutoff\n",
             st->reflection_skipped_depth, st->reflection_skipped_weight);
+    fprintf(stderr, "ray trees cut      %lld at the budget\n", st->ray_trees_cut);
+    fprintf(stderr, "light samples cut  %lld at the shadow-ray budget\n",
+            st->light_samples_cut);
     /* <<print statistics>> += ch07 */
     fprintf(stderr, "refraction rays    %lld\n", st->refraction_rays);
     fprintf(stderr,
@@ -81,11 +84,14 @@ void report_mesh_hints(const scene *s)
         if (o->kind != SHAPE_MESH)
             continue;
         double pixels = scene_object_pixels(s, o);
+        if (pixels > 0 && pixels < 1)
+            pixels = 1; /* what shows at all takes a whole pixel */
         int triangles = s->meshes[o->mesh].triangle_count;
         if (pixels > 0 && triangles > MESH_HINT_TRIANGLES_PER_PIXEL * pixels)
             fprintf(stderr, "hint: object %d, a mesh of %d triangles, covers "
-                            "at most %.0f pixels: %.0f triangles a pixel, "
+                            "at most %.0f pixel%s: %.0f triangles a pixel, "
                             "finer than the image can show\n",
-                    k + 1, triangles, pixels, triangles / pixels);
+                    k + 1, triangles, pixels, pixels == 1 ? "" : "s",
+                    triangles / pixels);
     }
 }
