@@ -116,6 +116,7 @@ int main(int argc, char **argv)
         message_print_error(opt.output, 0, 0, why);
         goto done;
     }
+    shown = progress_start(s.cam.width); /* the image is made, then drawn */
     if (!image_init(&img, s.cam.width, s.cam.height)) {
         snprintf(size, sizeof size, "no memory for a %dx%d image",
                  s.cam.width, s.cam.height);
@@ -123,7 +124,6 @@ int main(int argc, char **argv)
         goto done;
     }
     at[1] = moment_now();
-    shown = progress_start(img.width);
     render_in_bands(&s, &img, &how, &stats);
     at[2] = moment_now();
     if (!png_output_finish(&out, &img, why, sizeof why)) {

@@ -64,32 +64,6 @@ static bool add_leaf(kdtree *t, const int *items, int count, int depth)
     return add_node(t, leaf) >= 0;
 }
 
-/* <<cells>> ch08 */
-static double box_area(const box *b)
-{
-    vec3 e = vec3_sub(b->hi, b->lo);
-    return 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
-}
-
-static bool is_box(const box *b)
-{
-    return b->lo.x <= b->hi.x && b->lo.y <= b->hi.y && b->lo.z <= b->hi.z;
-}
-
-/* a cut to the box b (empty when they do not meet: see is_box). */
-static box box_cut(const box *a, const box *b)
-{
-    return (box){vec3_max(a->lo, b->lo), vec3_min(a->hi, b->hi)};
-}
-
-/* The cell below (side 0) or above (side 1) the plane x on the axis. */
-static box child_cell(const box *cell, int axis, double x, int side)
-{
-    box c = *cell;
-    vec3_set_axis(side == 0 ? &c.hi : &c.lo, axis, x);
-    return c;
-}
-
 /* <<the builder>> ch08 */
 /* What every node of one build shares. */
 typedef struct {
@@ -110,7 +84,7 @@ static bool clip_item(const builder *b, int item, const box *cell, box *out)
     if (!b->clip(b->context, item, cell, out))
         return false;
     *out = box_cut(out, cell); /* rounding must not carry it outside */
-    return is_box(out);
+    return box_is_valid(out);
 }
 
 static int compare_ints(const void *a, const void *b)
@@ -503,7 +477,7 @@ static bool split_events(builder *b, const event_lists *l, const box *cell,
     bool ok = both != NULL && alloc_events(below, 2 * (l->count + n)) &&
               alloc_events(above, 2 * (l->count + n));
     for (int side = 0; ok && side < 2; side++) {
-        box c = child_cell(cell, s.axis, s.position, side);
+        box c = box_child(cell, s.axis, s.position, side);
         ok = cut_events(b, both, n, &c, &cut[side]);
     }
     if (ok)
@@ -532,11 +506,11 @@ static bool build_sweep(builder *b, event_lists *l, box cell, int depth)
     b->references += below.count + above.count - l->count;
     int node = add_node(b->tree, (kdtree_node){.split = s.position,
                                                .bits = (uint32_t)s.axis});
-    ok = node >= 0 && build_sweep(b, &below, child_cell(&cell, s.axis,
+    ok = node >= 0 && build_sweep(b, &below, box_child(&cell, s.axis,
                                   s.position, 0), depth + 1);
     if (ok)
         b->tree->nodes[node].bits |= (uint32_t)b->tree->node_count << 2;
-    ok = ok && build_sweep(b, &above, child_cell(&cell, s.axis, s.position,
+    ok = ok && build_sweep(b, &above, box_child(&cell, s.axis, s.position,
                                                 1), depth + 1);
     free_events(&below), free_events(&above); /* on failure, what is left */
     return ok;
@@ -591,8 +565,8 @@ static void add_item(builder *b, item_list *to, int item, const box *bx,
 static bool split_items(builder *b, const item_list *l, const box *cell,
                         split s, item_list *below, item_list *above)
 {
-    box under = child_cell(cell, s.axis, s.position, 0);
-    box over = child_cell(cell, s.axis, s.position, 1);
+    box under = box_child(cell, s.axis, s.position, 0);
+    box over = box_child(cell, s.axis, s.position, 1);
     if (!alloc_items(below, l->count))
         return false;
     if (!alloc_items(above, l->count))
@@ -622,11 +596,11 @@ static bool split_node(builder *b, item_list *l, box cell, int depth,
         return false;
     int node = add_node(b->tree, (kdtree_node){.split = s.position,
                                                .bits = (uint32_t)s.axis});
-    ok = node >= 0 && build(b, &below, child_cell(&cell, s.axis, s.position,
+    ok = node >= 0 && build(b, &below, box_child(&cell, s.axis, s.position,
                                                   0), depth + 1);
     if (ok)
         b->tree->nodes[node].bits |= (uint32_t)b->tree->node_count << 2;
-    ok = ok && build(b, &above, child_cell(&cell, s.axis, s.position, 1),
+    ok = ok && build(b, &above, box_child(&cell, s.axis, s.position, 1),
                      depth + 1);
     free_items(&below), free_items(&above);
     return ok;
@@ -724,10 +698,10 @@ static bool root_cell(const box *bounds, int count, box *root)
     *root = (box){{INFINITY, INFINITY, INFINITY},
                   {-INFINITY, -INFINITY, -INFINITY}};
     for (int i = 0; i < count; i++)
-        if (is_box(&bounds[i]))
+        if (box_is_valid(&bounds[i]))
             *root = (box){vec3_min(root->lo, bounds[i].lo),
                           vec3_max(root->hi, bounds[i].hi)};
-    return is_box(root);
+    return box_is_valid(root);
 }
 
 /* The plane thickness for the walk: see KDTREE_THICKNESS. */
@@ -748,7 +722,7 @@ static bool start_sweep(builder *b, const box *bounds, int count,
     if (!alloc_events(&l, 2 * count))
         return false;
     for (int i = 0; i < count; i++) {
-        if (!is_box(&bounds[i]))
+        if (!box_is_valid(&bounds[i]))
             continue;
         for (int k = 0; k < 3; k++)
             l.n[k] = add_events(l.e[k], l.n[k], &bounds[i], k, i);
@@ -768,7 +742,7 @@ static bool start_items(builder *b, const box *bounds, int count,
     if (!alloc_items(&l, count))
         return false;
     for (int i = 0; i < count; i++)
-        if (is_box(&bounds[i])) {
+        if (box_is_valid(&bounds[i])) {
             l.items[l.count] = i;
             l.boxes[l.count++] = bounds[i];
         }
