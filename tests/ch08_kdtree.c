@@ -19,6 +19,7 @@
 #include "mesh.h"
 #include "obj.h"
 #include "scene.h"
+#include "memory.h"
 #include "search.h"
 #include "trees.h"
 #include "test_util.h"
@@ -1147,6 +1148,49 @@ START_TEST(test_the_trees_count_against_the_geometry_budget)
 }
 END_TEST
 
+START_TEST(test_running_out_of_memory_anywhere_in_a_load_is_reported)
+{
+    /* A cube of 12 triangles (a tree of its own), placed twice, and 30
+     * spheres (a tree over the objects): the load fails at its first,
+     * second, ... allocation in turn, and each failure must be reported as
+     * running out of memory, at a place in the file, and leave nothing
+     * behind (the sanitizer build checks for leaks). */
+    write_file("cube.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                           "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                           "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\n"
+                           "f 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n");
+    char text[4096] = "material shiny specular 0.5\n"
+                      "light area position 0 5 5 samples 4\n"
+                      "mesh file cube.obj transform rotate y 30\n"
+                      "mesh file cube.obj smooth transform translate 2 0 9\n";
+    for (int k = 0; k < 30; k++)
+        snprintf(text + strlen(text), sizeof text - strlen(text),
+                 "sphere center %d 0 9 radius 0.4 material shiny\n", k - 15);
+    char path[192];
+    snprintf(path, sizeof path, "%s", write_file("oom.scene", text));
+    int failures = 0;
+    for (long n = 0;; n++) {
+        scene s;
+        scene_error err;
+        scene_init(&s);
+        memory_fail_after(n);
+        bool ok = scene_load(&s, path, &err);
+        memory_fail_after(-1);
+        scene_free(&s);
+        if (ok)
+            break;
+        failures++;
+        ck_assert_msg(err.kind == PARSE_NO_MEMORY,
+                      "allocation %ld: kind %d: %s:%d: %s", n, err.kind,
+                      err.file, err.line, err.message);
+        ck_assert_msg(strstr(err.message, "out of memory") != NULL,
+                      "allocation %ld: %s", n, err.message);
+        ck_assert_msg(n < 100000, "the load never succeeds");
+    }
+    ck_assert_int_gt(failures, 20); /* every array, the trees' nodes, ... */
+}
+END_TEST
+
 Suite *ch08_kdtree_suite(void)
 {
     Suite *s = suite_create("ch08 kdtree");
@@ -1187,6 +1231,7 @@ Suite *ch08_kdtree_suite(void)
     tcase_add_test(bad, test_kdtree_statement_sets_the_parameters);
     tcase_add_test(bad, test_kdtree_statement_rejects_bad_settings);
     tcase_add_test(bad, test_the_trees_count_against_the_geometry_budget);
+    tcase_add_test(bad, test_running_out_of_memory_anywhere_in_a_load_is_reported);
     suite_add_tcase(s, bad);
     return s;
 }

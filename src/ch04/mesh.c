@@ -3,6 +3,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include "memory.h"
 
 /* <<mesh storage>> ch04 */
 void mesh_free(mesh *m)
@@ -88,7 +89,7 @@ bool mesh_index_reserve(mesh_index *x, const mesh *meshes, int count)
     if (2 * (count + 1) < x->size)
         return true;
     int size = x->size ? 2 * x->size : 64;
-    int *slots = calloc((size_t)size, sizeof *slots);
+    int *slots = memory_alloc_zeroed((size_t)size, sizeof *slots);
     if (slots == NULL)
         return false;
     free(x->slots);
@@ -135,8 +136,8 @@ bool mesh_smooth_normals(mesh *m)
 {
     size_t count = (size_t)m->vertex_count + 1,
            faces = (size_t)m->triangle_count;
-    vec3 *normals = calloc(count, sizeof *normals);
-    mesh_triangle *corners = malloc((faces + 1) * sizeof *corners);
+    vec3 *normals = memory_alloc_zeroed(count, sizeof *normals);
+    mesh_triangle *corners = memory_alloc(faces, sizeof *corners);
     if (normals == NULL || corners == NULL) {
         free(normals), free(corners);
         return false;
