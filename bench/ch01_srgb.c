@@ -19,7 +19,7 @@
 #include <string.h>
 
 #include "image.h"
-#include "rng.h"
+#include "../tests/rng.h"
 #include "timing.h"
 
 
@@ -139,9 +139,9 @@ static double inputs[N_INPUTS];
 
 static void fill_inputs(void)
 {
-    bench_rng rng = {0x2545F4914F6CDD1DULL}; /* fixed seed: the same inputs every run */
+    rng_state rng = {0x2545F4914F6CDD1DULL}; /* fixed seed: the same inputs every run */
     for (int k = 0; k < N_INPUTS; k++)
-        inputs[k] = bench_rng_uniform01(&rng);
+        inputs[k] = rng_uniform01(&rng);
 }
 
 /* reps encodings, whole passes over the inputs (the case's cycle). */

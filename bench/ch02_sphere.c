@@ -27,7 +27,7 @@
 #include <stdlib.h>
 
 #include "sphere.h"
-#include "rng.h"
+#include "../tests/rng.h"
 #include "timing.h"
 
 #if defined(__SIZEOF_FLOAT128__) && LDBL_MANT_DIG < 113
@@ -87,11 +87,11 @@ static bool reference_t(vec3 c, double radius, ray r, quad *t)
  * state its generator reached when the timing, which ran first, drew
  * 6 x 4096 rays from the other seed: the rays, and the accuracy numbers the
  * chapter quotes, are those of every earlier version of this benchmark. */
-static bench_rng timing_rng = {0x9E3779B97F4A7C15ULL};
-static bench_rng distance_rng = {0x5F02A0E6D8F53C15ULL};
+static rng_state timing_rng = {0x9E3779B97F4A7C15ULL};
+static rng_state distance_rng = {0x5F02A0E6D8F53C15ULL};
 
 /* Rays from the origin towards a disc of 1.2 radii around a centre at D. */
-static void make_rays(bench_rng *rng, double D, vec3 *center, ray *rays, int n)
+static void make_rays(rng_state *rng, double D, vec3 *center, ray *rays, int n)
 {
     vec3 axis = vec3_normalize((vec3){0.3, 0.4, 1.0});
     vec3 e1 = vec3_normalize((vec3){1.0, 0.0, -0.3});        /* perpendicular to axis */
@@ -99,8 +99,8 @@ static void make_rays(bench_rng *rng, double D, vec3 *center, ray *rays, int n)
                axis.x * e1.y - axis.y * e1.x};               /* axis x e1 */
     *center = vec3_scale(axis, D);
     for (int k = 0; k < n; k++) {
-        double radius = 1.2 * sqrt(bench_rng_uniform01(rng));
-        double angle = 2 * M_PI * bench_rng_uniform01(rng);
+        double radius = 1.2 * sqrt(rng_uniform01(rng));
+        double angle = 2 * M_PI * rng_uniform01(rng);
         vec3 offset = vec3_add(vec3_scale(e1, radius * cos(angle)),
                                vec3_scale(e2, radius * sin(angle)));
         rays[k] = (ray){{0, 0, 0}, vec3_normalize(vec3_add(*center, offset))};

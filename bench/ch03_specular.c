@@ -28,7 +28,7 @@
 #include <stdlib.h>
 
 #include "shade.h"
-#include "rng.h"
+#include "../tests/rng.h"
 #include "timing.h"
 
 #define N_PAIRS 200000
@@ -80,9 +80,9 @@ static NOINLINE double by_blinn_fitted(vec3 n, vec3 l, vec3 v, double k)
 
 static vec3 lights[N_PAIRS], viewers[N_PAIRS];
 static const vec3 NORMAL = {0, 0, 1};
-static bench_rng rng = {0x853C49E6748FEA9BULL}; /* fixed seed */
+static rng_state rng = {0x853C49E6748FEA9BULL}; /* fixed seed */
 
-static double uniform01(void) { return bench_rng_uniform01(&rng); }
+static double uniform01(void) { return rng_uniform01(&rng); }
 
 /* A direction uniform over the hemisphere z > 0. */
 static vec3 hemisphere_direction(void)

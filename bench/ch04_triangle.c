@@ -31,7 +31,7 @@
 
 #include "mesh.h"
 #include "obj.h"
-#include "rng.h"
+#include "../tests/rng.h"
 #include "timing.h"
 
 /* The six methods as chapter 4 lists them: name, precision, function. */
@@ -97,9 +97,9 @@ static void make_icosphere(void)
 /* ---------------------------------------------------------------- the rays */
 
 #define SEED 0xDA3E39CB94B95BDBULL /* fixed seed */
-static bench_rng rng = {SEED};
+static rng_state rng = {SEED};
 
-static double uniform01(void) { return bench_rng_uniform01(&rng); }
+static double uniform01(void) { return rng_uniform01(&rng); }
 
 #define MAX_RAYS 30000
 static ray rays[MAX_RAYS];
@@ -123,7 +123,7 @@ static void faces_around(int a, int b, int list[7])
 static void aim_at(vec3 target, vec3 offset, int a, int b)
 {
     for (int k = 0; k < 4 && n_rays < MAX_RAYS; k++) {
-        vec3 out = bench_rng_near_direction(&rng, vec3_normalize(target));
+        vec3 out = rng_near_direction(&rng, vec3_normalize(target));
         vec3 origin = vec3_add(target, vec3_scale(out, 3 + 2 * uniform01()));
         vec3 o = vec3_add(origin, offset), aim = vec3_add(target, offset);
         faces_around(a, b, touching[n_rays]);

@@ -50,17 +50,17 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "rng.h"
+#include "../tests/rng.h"
 #include "vec.h"
 #include "timing.h"
 
 typedef __float128 quad;
 
-static bench_rng rng = {0x2545F4914F6CDD1DULL}; /* fixed seed */
+static rng_state rng = {0x2545F4914F6CDD1DULL}; /* fixed seed */
 
 static double uniform(double lo, double hi)
 {
-    return bench_rng_uniform(&rng, lo, hi);
+    return rng_uniform(&rng, lo, hi);
 }
 
 /* The angle between a and b in degrees, by atan2 so that tiny angles keep
@@ -172,7 +172,7 @@ static void run_normals(void *ctx, long reps)
 static void measure_normals(void)
 {
     for (int k = 0; k < NORMALS; k++)
-        normals[k] = bench_rng_unit_vector(&rng, 0.1);
+        normals[k] = rng_unit_vector(&rng, 0.1);
     vec3 axis = vec3_normalize((vec3){1, 2, 3});
     transform cases[N_TRANSFORMS] = {
         transform_rotate(axis, 40),
@@ -369,9 +369,9 @@ static void measure_inverses(void)
         double kappa = pow(10, 2 * e), root = sqrt(kappa);
         for (int k = 0; k < TRANSFORMS; k++) {
             test_transform *t = &tests[e][k];
-            t->steps[0] = transform_rotate(bench_rng_unit_vector(&rng, 0.1), uniform(-180, 180));
+            t->steps[0] = transform_rotate(rng_unit_vector(&rng, 0.1), uniform(-180, 180));
             t->steps[1] = transform_scale((vec3){root, 1, 1 / root});
-            t->steps[2] = transform_rotate(bench_rng_unit_vector(&rng, 0.1), uniform(-180, 180));
+            t->steps[2] = transform_rotate(rng_unit_vector(&rng, 0.1), uniform(-180, 180));
             t->steps[3] = transform_translate((vec3){uniform(-10, 10), uniform(-10, 10), uniform(-10, 10)});
             composed[e][k] = compose(t).m;
             qmat product = qmat_of(t->steps[0].m); /* the exact steps, multiplied in 113 bits */

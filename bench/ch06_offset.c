@@ -42,7 +42,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "rng.h"
+#include "../tests/rng.h"
 #include "scene_file.h"
 #include "render.h"
 #include "search.h"
@@ -138,8 +138,8 @@ static void build_scene(scene *s, double scale)
 
 /* ---------------------------------------------------------------- the samples */
 
-static bench_rng rng;
-static double uniform01(void) { return bench_rng_uniform01(&rng); }
+static rng_state rng;
+static double uniform01(void) { return rng_uniform01(&rng); }
 
 typedef struct {
     vec3 origin, target; /* at scale 1 */
@@ -155,19 +155,19 @@ static vec3 light_dir; /* towards the light, unit */
 
 static void add_lit(vec3 target, vec3 normal, int object)
 {
-    vec3 out = bench_rng_near_direction(&rng, normal);
+    vec3 out = rng_near_direction(&rng, normal);
     samples[n_samples++] = (sample){vec3_add(target, vec3_scale(out, 3)), target, object, false};
 }
 
 static void make_samples(void)
 {
-    rng = (bench_rng){0x853C49E6748FEA9BULL}; /* fixed seed: the same samples every run */
+    rng = (rng_state){0x853C49E6748FEA9BULL}; /* fixed seed: the same samples every run */
     light_dir = vec3_normalize((vec3){-0.1, 1, -0.05});
     n_samples = 0;
     for (int k = 0; k < N_EACH; k++) { /* the sphere's top: <n, l> > 0.3 */
         vec3 n;
         do
-            n = bench_rng_near_direction(&rng, light_dir);
+            n = rng_near_direction(&rng, light_dir);
         while (vec3_dot(n, light_dir) < 0.3);
         add_lit(vec3_add(SPHERE_CENTER, n), n, SPHERE);
         add_lit(vec3_add(ICO_CENTER, n), n, ICOSPHERE); /* near the mesh */

@@ -37,7 +37,7 @@
 #include <string.h>
 
 #include "optics.h"
-#include "rng.h"
+#include "../tests/rng.h"
 #include "timing.h"
 
 #define N_FRAMES 2000
@@ -53,9 +53,9 @@ static const struct {
 
 /* ---------------------------------------------------------------- inputs */
 
-static bench_rng rng = {0x2545F4914F6CDD1DULL}; /* fixed seed */
+static rng_state rng = {0x2545F4914F6CDD1DULL}; /* fixed seed */
 
-static double uniform01(void) { return bench_rng_uniform01(&rng); }
+static double uniform01(void) { return rng_uniform01(&rng); }
 
 typedef struct {
     vec3 n, u; /* unit normal, unit tangent */

@@ -71,7 +71,7 @@
  *      time per ray)   fan,KIND,0,ratio,brute_over_tree */
 #include <string.h>
 
-#include "rng.h"
+#include "../tests/rng.h"
 #include "camera.h"
 #include "scene.h"
 #include "search.h"
@@ -205,9 +205,9 @@ static float_ray *shuffled(const float_ray *rays, long n)
     if (copy == NULL)
         exit(1);
     memcpy(copy, rays, (size_t)n * sizeof *copy);
-    bench_rng rng = {0x2545F4914F6CDD1DULL};
+    rng_state rng = {0x2545F4914F6CDD1DULL};
     for (long k = n - 1; k > 0; k--) { /* Fisher-Yates */
-        long j = (long)(bench_rng_uniform01(&rng) * (double)(k + 1));
+        long j = (long)(rng_uniform01(&rng) * (double)(k + 1));
         float_ray swap = copy[k];
         copy[k] = copy[j], copy[j] = swap;
     }
@@ -479,8 +479,8 @@ static void scene_run(void *ctx, long reps)
 /* A pseudo-random number in [0, 1), from a fixed seed. */
 static double uniform01(void)
 {
-    static bench_rng rng = {0x9E3779B97F4A7C15ULL}; /* fixed seed */
-    return bench_rng_uniform01(&rng);
+    static rng_state rng = {0x9E3779B97F4A7C15ULL}; /* fixed seed */
+    return rng_uniform01(&rng);
 }
 
 /* The spheres of one point of the chart: n in the cube [-1, 1]^3 around

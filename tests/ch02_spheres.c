@@ -14,7 +14,7 @@
 #include "search.h"
 #include "test_util.h"
 #include "sphere.h"
-#include "../bench/rng.h"
+#include "rng.h"
 
 typedef int (*roots_fn)(vec3, double, ray, double[2]);
 
@@ -34,9 +34,9 @@ static const struct {
 static const vec3 ORIGIN = {0, 0, 0};
 static const vec3 PLUS_Z = {0, 0, 1};
 
-static bench_rng rng = {12345}; /* fixed seed: the same rays every run */
+static rng_state rng = {12345}; /* fixed seed: the same rays every run */
 
-static double uniform(double lo, double hi) { return bench_rng_uniform(&rng, lo, hi); }
+static double uniform(double lo, double hi) { return rng_uniform(&rng, lo, hi); }
 
 /* ------------------------------------------------------------ roots */
 
@@ -98,9 +98,9 @@ START_TEST(test_roots_are_ordered)
 {
     int two_roots[N_FORMS] = {0};
     for (int k = 0; k < 2000; k++) {
-        vec3 c = vec3_scale(bench_rng_unit_vector(&rng, 1e-3), uniform(0, 20));
-        ray r = {vec3_scale(bench_rng_unit_vector(&rng, 1e-3), uniform(0, 20)),
-                 bench_rng_unit_vector(&rng, 1e-3)};
+        vec3 c = vec3_scale(rng_unit_vector(&rng, 1e-3), uniform(0, 20));
+        ray r = {vec3_scale(rng_unit_vector(&rng, 1e-3), uniform(0, 20)),
+                 rng_unit_vector(&rng, 1e-3)};
         double radius = uniform(0.1, 5);
         for (int f = 0; f < N_FORMS; f++) {
             double t[2];
@@ -249,7 +249,7 @@ START_TEST(test_normals_are_unit_and_outward)
         sphere sp = {.center = vec3_scale(vec3_normalize((vec3){1, 2, 3}), distances[k]),
                      .radius = 1};
         for (int n = 0; n < 500; n++) {
-            vec3 aim = vec3_add(sp.center, vec3_scale(bench_rng_unit_vector(&rng, 1e-3), 0.9));
+            vec3 aim = vec3_add(sp.center, vec3_scale(rng_unit_vector(&rng, 1e-3), 0.9));
             ray r = {ORIGIN, vec3_normalize(aim)};
             double t;
             ck_assert(sphere_hit_t(&sp, r, 0, INFINITY, &t));

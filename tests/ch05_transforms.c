@@ -13,7 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../bench/rng.h"
+#include "rng.h"
 #include "render.h"
 #include "scene.h"
 #include "scene_file.h"
@@ -39,11 +39,11 @@ static void expect_vec3(vec3 got, vec3 want, double tolerance, const char *what)
 
 #define expect_exact(got, want, what) expect_vec3((got), (want), 0, (what))
 
-static bench_rng rng = {0x9E3779B97F4A7C15ULL}; /* fixed seed: the same cases on every run */
+static rng_state rng = {0x9E3779B97F4A7C15ULL}; /* fixed seed: the same cases on every run */
 
 static double uniform(double lo, double hi)
 {
-    return bench_rng_uniform(&rng, lo, hi);
+    return rng_uniform(&rng, lo, hi);
 }
 
 /* A transform of every kind of step: scale, shear, rotation, translation. */
@@ -52,7 +52,7 @@ static transform random_transform(double largest_scale)
     transform t = transform_scale((vec3){uniform(1, largest_scale), uniform(0.5, 2),
                                          -uniform(1 / largest_scale, 1)});
     t = transform_then(t, transform_shear(mat4_shear_xz(uniform(-1, 1), uniform(-1, 1))));
-    t = transform_then(t, transform_rotate(bench_rng_unit_vector(&rng, 0.1), uniform(-180, 180)));
+    t = transform_then(t, transform_rotate(rng_unit_vector(&rng, 0.1), uniform(-180, 180)));
     return transform_then(t, transform_translate((vec3){uniform(-9, 9), uniform(-9, 9), uniform(-9, 9)}));
 }
 
@@ -261,8 +261,8 @@ START_TEST(test_inverse_transpose_keeps_normals_perpendicular)
 {
     for (int k = 0; k < 500; k++) {
         transform t = random_transform(100);
-        vec3 n = bench_rng_unit_vector(&rng, 0.1);
-        vec3 tangent = vec3_cross(n, bench_rng_unit_vector(&rng, 0.1)); /* any vector perpendicular to n */
+        vec3 n = rng_unit_vector(&rng, 0.1);
+        vec3 tangent = vec3_cross(n, rng_unit_vector(&rng, 0.1)); /* any vector perpendicular to n */
         if (vec3_length(tangent) < 0.1)
             continue;
         vec3 moved = mat4_mul_dir(t.m, tangent);
@@ -617,9 +617,9 @@ START_TEST(test_look_at_is_a_rotation_not_a_mirror)
 {
     for (int k = 0; k < 300; k++) {
         vec3 eye = {uniform(-50, 50), uniform(-50, 50), uniform(-50, 50)};
-        vec3 target = vec3_add(eye, vec3_scale(bench_rng_unit_vector(&rng, 0.1), uniform(0.1, 100)));
+        vec3 target = vec3_add(eye, vec3_scale(rng_unit_vector(&rng, 0.1), uniform(0.1, 100)));
         mat4 m;
-        if (!mat4_look_at(eye, target, bench_rng_unit_vector(&rng, 0.1), &m))
+        if (!mat4_look_at(eye, target, rng_unit_vector(&rng, 0.1), &m))
             continue;
         /* det +1 and orthonormal columns, to a few u */
         ck_assert_double_eq_tol(mat4_det3(m), 1, 16 * U);

@@ -18,7 +18,7 @@
 #include "search.h"
 #include "trace.h"
 #include "test_util.h"
-#include "../bench/rng.h"
+#include "rng.h"
 
 #define EPS DBL_EPSILON
 #define DEG (M_PI / 180)
@@ -33,9 +33,9 @@ static const struct {
 
 /* ---------------------------------------------------------------- helpers */
 
-static bench_rng rng = {0x9E3779B97F4A7C15ULL}; /* fixed seed: reproducible */
+static rng_state rng = {0x9E3779B97F4A7C15ULL}; /* fixed seed: reproducible */
 
-static double uniform01(void) { return bench_rng_uniform01(&rng); }
+static double uniform01(void) { return rng_uniform01(&rng); }
 
 /* A unit normal n and a unit vector u along the surface, turned at random. */
 static void random_frame(vec3 *n, vec3 *u)
@@ -693,12 +693,12 @@ END_TEST
 static int lost_in_slab(const scene *s, double top, double bottom, vec3 centre, bool offset)
 {
     int lost = 0;
-    bench_rng g = {2024};
+    rng_state g = {2024};
     for (int k = 0; k < 2000; k++) {
-        double theta = bench_rng_uniform(&g, 0, 80) * DEG, phi = bench_rng_uniform(&g, 0, 2 * M_PI);
+        double theta = rng_uniform(&g, 0, 80) * DEG, phi = rng_uniform(&g, 0, 2 * M_PI);
         vec3 d = {sin(theta) * cos(phi), -cos(theta), sin(theta) * sin(phi)};
-        vec3 aim = vec3_add(centre, (vec3){bench_rng_uniform(&g, -0.5, 0.5), top - centre.y,
-                                           bench_rng_uniform(&g, -0.5, 0.5)});
+        vec3 aim = vec3_add(centre, (vec3){rng_uniform(&g, -0.5, 0.5), top - centre.y,
+                                           rng_uniform(&g, -0.5, 0.5)});
         ray r = {vec3_sub(aim, vec3_scale(d, 3)), d};
         hit h1, h2, h3;
         render_stats st = {0};

@@ -15,7 +15,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../bench/rng.h"
+#include "rng.h"
 #include "mesh.h"
 #include "obj.h"
 #include "scene.h"
@@ -26,14 +26,14 @@
 
 /* ------------------------------------------------------------ helpers */
 
-static bench_rng rng;
+static rng_state rng;
 
-static void seed(uint64_t s) { rng = (bench_rng){s}; }
+static void seed(uint64_t s) { rng = (rng_state){s}; }
 
 /* Uniform in [0, 1), from a fixed seed: the same rays on every run. */
 static double uniform01(void)
 {
-    return bench_rng_uniform01(&rng);
+    return rng_uniform01(&rng);
 }
 
 static mesh load(const char *path)
@@ -101,7 +101,7 @@ static int random_rays(const mesh *m, ray *rays, int n)
     vec3 e = vec3_sub(m->bounds.hi, m->bounds.lo);
     double radius = vec3_length(e) + 1e-9;
     for (int k = 0; k < n; k++) {
-        vec3 o = vec3_add(c, vec3_scale(bench_rng_unit_vector(&rng, 1e-3), radius));
+        vec3 o = vec3_add(c, vec3_scale(rng_unit_vector(&rng, 1e-3), radius));
         vec3 aim = {m->bounds.lo.x + e.x * uniform01(), m->bounds.lo.y + e.y * uniform01(),
                     m->bounds.lo.z + e.z * uniform01()};
         rays[k] = (ray){o, vec3_normalize(vec3_sub(aim, o))};
@@ -137,7 +137,7 @@ static int edge_rays(const mesh *m, ray *rays, int n)
         const int *v = m->triangles[(int)(uniform01() * m->triangle_count)].v;
         vec3 a = m->vertices[v[0]], b = m->vertices[v[1]];
         vec3 target = k % 2 ? a : vec3_lerp(a, b, (double)(k % 7 + 1) / 8);
-        vec3 o = vec3_add(c, vec3_scale(bench_rng_unit_vector(&rng, 1e-3), radius));
+        vec3 o = vec3_add(c, vec3_scale(rng_unit_vector(&rng, 1e-3), radius));
         rays[k] = (ray){o, vec3_normalize(vec3_sub(target, o))};
     }
     return n;
@@ -157,7 +157,7 @@ static int plane_rays(const mesh *m, ray *rays, int n)
         vec3 o = {m->bounds.lo.x + e.x * uniform01(), m->bounds.lo.y + e.y * uniform01(),
                   m->bounds.lo.z + e.z * uniform01()};
         vec3_set_axis(&o, axis, node->split);
-        rays[made++] = (ray){o, bench_rng_unit_vector(&rng, 1e-3)};
+        rays[made++] = (ray){o, rng_unit_vector(&rng, 1e-3)};
     }
     return made;
 }
@@ -285,7 +285,7 @@ START_TEST(test_tree_agrees_with_brute_force_on_huge_and_tiny_triangles)
     for (int k = 0; k < TINY; k++) {
         vec3 c = {200 * uniform01() - 100, 200 * uniform01() - 100, 4 * uniform01() - 2};
         for (int i = 0; i < 3; i++)
-            p[3 + 3 * k + i] = vec3_add(c, vec3_scale(bench_rng_unit_vector(&rng, 1e-3), 1e-3));
+            p[3 + 3 * k + i] = vec3_add(c, vec3_scale(rng_unit_vector(&rng, 1e-3), 1e-3));
         t[1 + k][0] = 3 + 3 * k, t[1 + k][1] = 4 + 3 * k, t[1 + k][2] = 5 + 3 * k;
     }
     mesh m = make_mesh(p, 3 + 3 * TINY, (const int(*)[3])t, 1 + TINY);
@@ -295,7 +295,7 @@ START_TEST(test_tree_agrees_with_brute_force_on_huge_and_tiny_triangles)
     ray rays[400];
     for (int k = 0; k < 400; k++) {
         vec3 target = m.vertices[3 + (k * 7) % (3 * TINY)];
-        vec3 o = vec3_add(target, vec3_scale(bench_rng_unit_vector(&rng, 1e-3), 50));
+        vec3 o = vec3_add(target, vec3_scale(rng_unit_vector(&rng, 1e-3), 50));
         rays[k] = (ray){o, vec3_normalize(vec3_sub(target, o))};
     }
     ck_assert_int_eq(disagreements(&m, rays, 400, WALK_ITERATIVE), 0);
@@ -664,7 +664,7 @@ START_TEST(test_the_objects_tree_agrees_with_the_list)
             o.sphere = (sphere){c, 0.05 + 0.4 * uniform01()};
         else
             for (int i = 0; i < 3; i++)
-                o.corners[i] = vec3_add(c, vec3_scale(bench_rng_unit_vector(&rng, 1e-3), 0.5));
+                o.corners[i] = vec3_add(c, vec3_scale(rng_unit_vector(&rng, 1e-3), 0.5));
         ck_assert(scene_add_object(&with, o));
     }
     ck_assert(scene_build_trees(&with, NULL));
