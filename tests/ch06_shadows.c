@@ -11,6 +11,7 @@
 #include "render.h"
 #include "sample.h"
 #include "scene.h"
+#include "offset.h"
 #include "search.h"
 #include "shade.h"
 #include "test_util.h"

@@ -15,6 +15,7 @@
 #include "optics.h"
 #include "render.h"
 #include "scene.h"
+#include "offset.h"
 #include "search.h"
 #include "trace.h"
 #include "test_util.h"

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <time.h>
 #include "memory.h"
+#include "offset.h"
 
 /* <<moving a box into the world>> ch08 */
 /* The world box around b's eight corners moved by t, widened by the
