@@ -32,7 +32,7 @@ static bool run_renderer(const char *bin, const char *scene, int threads, double
              scene, threads);
     FILE *p = popen(command, "r");
     char line[256];
-    *render = 0;
+    *render = 0, *load = 0;
     while (p != NULL && fgets(line, sizeof line, p) != NULL) {
         const char *at = strstr(line, "render "), *scene_at = strstr(line, "scene ");
         if (strncmp(line, "time ", 5) == 0 && at && scene_at) /* the wall clock's line */
@@ -51,7 +51,7 @@ static int threads(void)
     for (int r = 0; r < THREAD_ROUNDS; r++)
         for (int j = 0; j < 2; j++) {
             int k = (r + j) % 2; /* 1 then 2 threads, then 2 then 1 */
-            double ms, load_ms;
+            double ms = 0, load_ms = 0;
             if (!run_renderer(bin, scene, k + 1, &ms, &load_ms)) {
                 fprintf(stderr, "ch09_threads: cannot run %s %s\n", bin, scene);
                 return 1; /* run from the top of the repository, after make */
