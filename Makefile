@@ -33,7 +33,7 @@ WARN    := -Wall -Wextra $(if $(WERROR),-Werror)
 SANFLAGS := -O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all
 # Link-time optimization inlines across files: a ray's setup (mesh.c), its
 # box test (box.c) and its triangle tests (triangle_methods.c) become one
-# piece of code; chapter 08 measures what that is worth. Inlined across
+# piece of code; chapter 09 measures what that is worth. Inlined across
 # files, GCC's maybe-uninitialized analysis warns of values that are always
 # set before use; that warning keeps its per-file check at compile time.
 LTO     := $(if $(SAN),,-flto=auto)
@@ -237,7 +237,7 @@ failures: deps $(FAILURE_FIGS)
 check-failures: $(FAILURE_BINS) $(B)/tools/pngdiff
 	@sh tools/check_failures.sh $(B)/tools/pngdiff $(B)/failures $(FAILURE_FIGS)
 
-# Chapter 08 compares its kd-tree with Intel Embree 3 where it is installed
+# Chapter 09 compares chapter 08's kd-tree with Intel Embree 3 where it is installed
 # (Debian: libembree-dev); without it that benchmark is not built, and
 # `make charts` draws its chart from this program's rates alone.
 HAVE_EMBREE := $(shell printf '\043include <embree3/rtcore.h>\n' | \
@@ -245,7 +245,7 @@ HAVE_EMBREE := $(shell printf '\043include <embree3/rtcore.h>\n' | \
 ifneq ($(HAVE_EMBREE),yes)
 BENCHES  := $(filter-out %_embree,$(BENCHES))
 endif
-$(B)/bench/ch08_embree: BENCH_LIBS := -lembree3
+$(B)/bench/ch09_embree: BENCH_LIBS := -lembree3
 
 src: $(foreach n,$(NUMS),src-ch$(n))
 figures: $(ALL_FIGS) $(FAILURE_FIGS)
@@ -294,17 +294,17 @@ chart-%: $(B)/bench/% | deps
 
 charts: deps $(BENCHES)
 	@for b in $(notdir $(BENCHES)); do $(MAKE) --no-print-directory chart-$$b || exit 1; done
-	$(if $(filter 08,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
+	$(if $(filter 09,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
 
-# Without Embree, chapter 08's comparison chart shows this program's own
-# rates (from its kd-tree benchmark) and says that Embree was absent.
+# Without Embree, chapter 09's comparison chart shows this program's own
+# rates (from chapter 08's kd-tree benchmark) and says that Embree was absent.
 .PHONY: chart-embree-absent
 chart-embree-absent: figures/ch08-kdtree.csv
 	{ grep '^# machine' figures/ch08-kdtree.csv; \
 	  echo 'method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns'; \
 	  grep -E '^kdtree,[^,]*,[^,]*,[^,]*,mrays_per_s(,|$$)|^kdtree-build,' figures/ch08-kdtree.csv; \
-	  echo 'embree,absent,0,0,absent'; } > figures/ch08-embree.csv
-	gnuplot -e "csv='figures/ch08-embree.csv'; stem='figures/ch08-embree'" bench/ch08_embree.gp
+	  echo 'embree,absent,0,0,absent'; } > figures/ch09-embree.csv
+	gnuplot -e "csv='figures/ch09-embree.csv'; stem='figures/ch09-embree'" bench/ch09_embree.gp
 
 # Can the speed axes be trusted? Every bench run twice: the largest ratio
 # between two runs of a method, and whether an ordering a quoted ratio

@@ -49,12 +49,7 @@
  *    one size interleaved (SLOW_ROUNDS rounds from 327,680 triangles; the
  *    per-node sort is not run at 1,310,720, where one build takes 10 s):
  *      build-sah|build-sorting|build-median,N,ns_per_triangle,ms,build_ms
- * 6. Threads: bin/ch08 renders the chapter's bunny scene with --threads 1
- *    and 2, in turns, THREAD_ROUNDS times each; the phases as --stats
- *    reports them (wall clock), summarised like the harness's rounds:
- *      threads,1|2,ns_per_render,ms,render_ms   threads,2,0,speedup,speedup
- *      scene,bunny,ns_per_load,ms,load_ms (reading the scene, building
- *      its trees; from both kinds of run)
+ * 6. (Chapter 9's bench/ch09_threads.c times the render on one core and on two.)
  * 7. Two 16 MiB OBJ files of one fan face, made in memory and read by
  *    mesh_parse_obj (fan_text): "distinct", as many rim vertices as fit
  *    (f 1 2 3 ... N), and "coincident", three vertices and
@@ -81,7 +76,7 @@
 
 /* SLOW_ROUNDS: the rounds of cases whose one batch takes a tenth of a
  * second or more, where 21 rounds of every such case would take minutes. */
-enum { SIDE = 1024, SLOW_ROUNDS = 5, THREAD_ROUNDS = 7 };
+enum { SIDE = 1024, SLOW_ROUNDS = 5 };
 
 /* ---------------------------------------------------------------- cases */
 
@@ -689,55 +684,6 @@ static void build_scaling(void)
            grow * log2(sizes[0]) / log2(sizes[5]));
 }
 
-/* ---------------------------------------------------------------- 6 */
-
-/* Runs bin/ch08 SCENE --threads N --stats once: the render phase and the
- * scene phase (reading the files, building the trees) as it reports them,
- * in ms of the wall clock; false when the binary or the scene is not
- * there, or it fails. */
-static bool run_renderer(const char *bin, const char *scene, int threads, double *render,
-                         double *load)
-{
-    char command[512];
-    snprintf(command, sizeof command, "%s %s --threads %d --stats -o /dev/null 2>&1", bin,
-             scene, threads);
-    FILE *p = popen(command, "r");
-    char line[256];
-    *render = 0;
-    while (p != NULL && fgets(line, sizeof line, p) != NULL) {
-        const char *at = strstr(line, "render "), *scene_at = strstr(line, "scene ");
-        if (strncmp(line, "time ", 5) == 0 && at && scene_at) /* the wall clock's line */
-            *render = atof(at + 7), *load = atof(scene_at + 6);
-    }
-    return p != NULL && pclose(p) == 0 && *render > 0;
-}
-
-/* The chapter's figure, rendered on one core and on two in turns: the
- * render phase only (the scene's loading and its trees are built on one
- * core), summarised over THREAD_ROUNDS runs of each as the harness does. */
-static void threads(void)
-{
-    const char *bin = "bin/ch08", *scene = "build/tangle/ch08/scenes/ch08-bunny.scene";
-    double render[2][THREAD_ROUNDS], load[2 * THREAD_ROUNDS];
-    for (int r = 0; r < THREAD_ROUNDS; r++)
-        for (int j = 0; j < 2; j++) {
-            int k = (r + j) % 2; /* 1 then 2 threads, then 2 then 1 */
-            double ms, load_ms;
-            if (!run_renderer(bin, scene, k + 1, &ms, &load_ms))
-                return; /* run from the top of the repository, after make */
-            render[k][r] = 1e6 * ms, load[2 * r + k] = 1e6 * load_ms;
-        }
-    bench_timing t[2], loading;
-    for (int k = 0; k < 2; k++) {
-        bench_timing_of_samples(render[k], THREAD_ROUNDS, &t[k]);
-        bench_row("threads", k ? "2" : "1", &t[k], "%.1f", t[k].median / 1e6, "render_ms");
-    }
-    bench_timing_of_samples(load, 2 * THREAD_ROUNDS, &loading);
-    printf("threads,2,0,%.3f,speedup\n", t[0].median / t[1].median);
-    bench_row("scene", "bunny", &loading, "%.1f", loading.median / 1e6, "load_ms");
-    fflush(stdout);
-}
-
 /* ---------------------------------------------------------------- 7 */
 
 enum { FAN_BYTES = 16 << 20, FAN_SIDE = 4 };
@@ -899,7 +845,6 @@ int main(int argc, char **argv)
     tree_builds(meshes, names);
     exact_rays(meshes, names);
     fixed_costs(&meshes[0]);
-    threads();
     crossover_objects();
     sah_parameters(&meshes[0]);
     crossover_meshes(&meshes[0]);

@@ -1,5 +1,5 @@
-/* ch08_kdtree.c: kd-trees, their walks, the tree over the objects, and
- * rendering on all cores (chapter 08).
+/* ch08_kdtree.c: kd-trees, their walks and the tree over the objects
+ * (chapter 08).
  *
  * The reference for every search through a tree is brute force, the test
  * of every triangle (chapter 04's mesh_nearest without a tree): a tree must
@@ -817,20 +817,6 @@ END_TEST
 
 /* ------------------------------------------------------------ command line */
 
-/* Writes a scene with the teapot, and a link to meshes/ beside it. */
-static const char *teapot_scene(void)
-{
-    char target[4096];
-    ck_assert_ptr_nonnull(getcwd(target, sizeof target - 16));
-    strcat(target, "/meshes");
-    ck_assert_int_eq(symlink(target, tmp_path("meshes")), 0);
-    return write_file("teapot.scene",
-                      "image 96 72\n"
-                      "sphere center 0 -1001 6 radius 1000\n"
-                      "mesh file meshes/teapot-8.obj scale 0.5 offset 0 -1 6 smooth\n"
-                      "sphere center 1.5 0 7 radius 0.5\n");
-}
-
 static char *read_all(const char *path, size_t *length)
 {
     FILE *f = fopen(path, "rb");
@@ -901,13 +887,11 @@ static void tie_order(int order[TIE_FANS * TIE_SIDES])
     }
 }
 
-/* What bin renders of scene_path, with extra arguments (or NULL). */
-static char *render_bytes(const char *bin, const char *scene_path, const char *threads,
-                          size_t *length)
+/* What bin renders of scene_path. */
+static char *render_bytes(const char *bin, const char *scene_path, size_t *length)
 {
     char errors[4096];
-    const char *args[] = {scene_path, "-o", tmp_path("tie.png"), threads ? "--threads" : NULL,
-                          threads, NULL};
+    const char *args[] = {scene_path, "-o", tmp_path("tie.png"), NULL};
     const char *saved = getenv("CHAPTER_BIN");
     char chapter[256];
     snprintf(chapter, sizeof chapter, "%s", saved);
@@ -918,53 +902,58 @@ static char *render_bytes(const char *bin, const char *scene_path, const char *t
     return read_all(tmp_path("tie.png"), length);
 }
 
-/* Chapter 7's program (brute force) and chapter 8's (the trees, with one
- * thread or three) draw scene_path byte for byte alike. */
+/* Chapter 7's program (brute force) and chapter 8's (the trees) draw
+ * scene_path byte for byte alike. */
 static void expect_same_bytes(const char *scene_path)
 {
-    size_t n7, n8, n8t;
-    char *seven = render_bytes(previous_bin(), scene_path, NULL, &n7);
-    char *eight = render_bytes(getenv("CHAPTER_BIN"), scene_path, "1", &n8);
-    char *threads = render_bytes(getenv("CHAPTER_BIN"), scene_path, "3", &n8t);
+    size_t n7, n8;
+    char *seven = render_bytes(previous_bin(), scene_path, &n7);
+    char *eight = render_bytes(getenv("CHAPTER_BIN"), scene_path, &n8);
     ck_assert_msg(n7 == n8 && memcmp(seven, eight, n7) == 0, "%s: ch07 and ch08 differ",
                   scene_path);
-    ck_assert_msg(n8 == n8t && memcmp(eight, threads, n8) == 0, "%s: 1 and 3 threads differ",
-                  scene_path);
-    free(seven), free(eight), free(threads);
+    free(seven), free(eight);
 }
 
-START_TEST(test_chapters_7_and_8_draw_ties_alike)
+/* The tie scenes: into obj (obj_size bytes) the fans as one OBJ mesh, which
+ * chapter 8 gives a tree, its vertices shared; into lone (lone_size bytes)
+ * a scene of them as lone triangles, objects that chapter 8 puts in the
+ * objects' tree, each of its own colour. Not static: chapter 9's suite
+ * draws the same scenes on several threads. */
+void tie_scene_texts(char *obj, size_t obj_size, char *lone, size_t lone_size);
+void tie_scene_texts(char *obj, size_t obj_size, char *lone, size_t lone_size)
 {
     static vec3 c[TIE_FANS][TIE_SIDES][3];
     static int order[TIE_FANS * TIE_SIDES];
-    static char obj[1 << 18], lone[1 << 19];
     tie_fans(c);
     tie_order(order);
-    /* the fans as one mesh, which chapter 8 gives a tree, its vertices
-     * shared; and as lone triangles, objects that chapter 8 puts in the
-     * objects' tree, each of its own colour */
-    size_t vo = 0, lo = (size_t)snprintf(lone, sizeof lone, "image %d %d\n", TIE_W, TIE_H);
+    size_t vo = 0, lo = (size_t)snprintf(lone, lone_size, "image %d %d\n", TIE_W, TIE_H);
     for (int f = 0; f < TIE_FANS; f++) {
         const vec3 *p = c[f][0];
-        vo += (size_t)snprintf(obj + vo, sizeof obj - vo, "v %.17g %.17g %.17g\n", p[0].x,
+        vo += (size_t)snprintf(obj + vo, obj_size - vo, "v %.17g %.17g %.17g\n", p[0].x,
                                p[0].y, p[0].z);
         for (int k = 0; k < TIE_SIDES; k++)
-            vo += (size_t)snprintf(obj + vo, sizeof obj - vo, "v %.17g %.17g %.17g\n",
+            vo += (size_t)snprintf(obj + vo, obj_size - vo, "v %.17g %.17g %.17g\n",
                                    c[f][k][1].x, c[f][k][1].y, c[f][k][1].z);
     }
     for (int n = 0; n < TIE_FANS * TIE_SIDES; n++) {
         int f = order[n] / TIE_SIDES, k = order[n] % TIE_SIDES;
         int apex = f * (TIE_SIDES + 1) + 1;
-        vo += (size_t)snprintf(obj + vo, sizeof obj - vo, "f %d %d %d\n", apex, apex + 1 + k,
+        vo += (size_t)snprintf(obj + vo, obj_size - vo, "f %d %d %d\n", apex, apex + 1 + k,
                                apex + 1 + (k + 1) % TIE_SIDES);
         const vec3 *p = c[f][k];
-        lo += (size_t)snprintf(lone + lo, sizeof lone - lo,
+        lo += (size_t)snprintf(lone + lo, lone_size - lo,
                                "triangle a %.17g %.17g %.17g b %.17g %.17g %.17g "
                                "c %.17g %.17g %.17g color %.2f %.2f %.2f\n",
                                p[0].x, p[0].y, p[0].z, p[1].x, p[1].y, p[1].z, p[2].x, p[2].y,
                                p[2].z, 0.2 + 0.8 * uniform01(), 0.2 + 0.8 * uniform01(),
                                0.2 + 0.8 * uniform01());
     }
+}
+
+START_TEST(test_chapters_7_and_8_draw_ties_alike)
+{
+    static char obj[1 << 18], lone[1 << 19];
+    tie_scene_texts(obj, sizeof obj, lone, sizeof lone);
     write_file("fans.obj", obj);
     char mesh_text[128];
     snprintf(mesh_text, sizeof mesh_text, "image %d %d\nmesh file fans.obj color 0.9 0.7 0.4\n",
@@ -974,70 +963,6 @@ START_TEST(test_chapters_7_and_8_draw_ties_alike)
     snprintf(lone_path, sizeof lone_path, "%s", write_file("lone.scene", lone));
     expect_same_bytes(mesh_path);
     expect_same_bytes(lone_path);
-}
-END_TEST
-
-START_TEST(test_thread_count_does_not_change_the_image)
-{
-    char scene_path[192], out[3][192], errors[2048];
-    snprintf(scene_path, sizeof scene_path, "%s", teapot_scene());
-    const char *threads[3] = {"1", "2", "3"};
-    for (int k = 0; k < 3; k++) {
-        snprintf(out[k], sizeof out[k], "%s/out%d.png", tmpdir, k);
-        const char *args[] = {scene_path, "--threads", threads[k], "-o", out[k], NULL};
-        ck_assert_msg(run_bin(args, errors, sizeof errors) == 0, "%s", errors);
-    }
-    size_t n0, n;
-    char *first = read_all(out[0], &n0);
-    for (int k = 1; k < 3; k++) {
-        char *other = read_all(out[k], &n);
-        ck_assert_msg(n == n0 && memcmp(first, other, n) == 0, "--threads %s differs",
-                      threads[k]);
-        free(other);
-    }
-    free(first);
-}
-END_TEST
-
-/* The counts --stats prints (no times, no rates: "time", "rays/s") for
- * --threads n. */
-static void stats_counts(const char *scene_path, const char *n, char *counts, size_t size)
-{
-    char errors[4096];
-    const char *args[] = {scene_path, "--threads", n, "--stats", "-o", tmp_path("s.png"), NULL};
-    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
-    counts[0] = '\0';
-    for (char *line = strtok(errors, "\n"); line; line = strtok(NULL, "\n"))
-        if (!strstr(line, "time") && !strstr(line, "rays/s") && !strstr(line, "built in"))
-            strncat(counts, line, size - strlen(counts) - 2), strcat(counts, "\n");
-}
-
-START_TEST(test_statistics_add_up_whatever_the_thread_count)
-{
-    char scene_path[192], one[2048], three[2048];
-    snprintf(scene_path, sizeof scene_path, "%s", teapot_scene());
-    stats_counts(scene_path, "1", one, sizeof one);
-    stats_counts(scene_path, "3", three, sizeof three);
-    ck_assert_str_eq(one, three);
-    ck_assert_ptr_nonnull(strstr(one, "kd-tree nodes"));
-}
-END_TEST
-
-START_TEST(test_bad_thread_counts_are_usage_errors)
-{
-    const char *bad[] = {"0", "-1", "abc", "2x", "257", "", "1e3"};
-    for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
-        char errors[1024];
-        const char *out = tmp_path("never.png");
-        const char *args[] = {"--threads", bad[k], "-o", out, NULL};
-        ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
-        ck_assert_msg(strstr(errors, "--threads expects a whole number") != NULL, "%s", errors);
-        ck_assert(!file_exists(out));
-    }
-    char errors[1024];
-    const char *args[] = {"--threads", NULL};
-    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
-    ck_assert_ptr_nonnull(strstr(errors, "needs a value"));
 }
 END_TEST
 
@@ -1223,10 +1148,7 @@ Suite *ch08_kdtree_suite(void)
     TCase *bad = tcase_create("bad input and the command line");
     tcase_add_checked_fixture(bad, make_tmpdir, remove_tmpdir);
     tcase_set_timeout(bad, 120);
-    tcase_add_test(bad, test_thread_count_does_not_change_the_image);
     tcase_add_test(bad, test_chapters_7_and_8_draw_ties_alike);
-    tcase_add_test(bad, test_statistics_add_up_whatever_the_thread_count);
-    tcase_add_test(bad, test_bad_thread_counts_are_usage_errors);
     tcase_add_test(bad, test_stats_hint_an_over_fine_mesh);
     tcase_add_test(bad, test_kdtree_statement_sets_the_parameters);
     tcase_add_test(bad, test_kdtree_statement_rejects_bad_settings);

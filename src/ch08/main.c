@@ -127,7 +127,6 @@ int main(int argc, char **argv)
     /* <<once the scene is loaded>> ch04 */
     warn_of_empty_meshes(&s);
     /* <<once the scene is loaded>> += ch08 */
-    how.threads = opt.threads;
     if (opt.stats)
         report_trees(&s);
     if (opt.stats)

@@ -17,8 +17,6 @@ void options_usage(FILE *out, const char *program)
         "  -o FILE      where to write the PNG; - for standard output\n"
         "  --size WxH   image size in pixels, overriding the scene's\n"
         "  --stats      print rays traced and time per phase on stderr\n"
-        /* <<usage of more options>> ch08 */
-        "  --threads N  render on N threads, 1 to 256 (default: one per core)\n"
         "  --help       this text\n",
         program);
     /* <<more help>> ch05 */
@@ -83,19 +81,6 @@ bool options_parse(int argc, char **argv, options *opt)
                     argv[0],
                     "--size expects WIDTHxHEIGHT within the image limits",
                     value);
-        }
-        /* <<more options>> ch08 */
-        else if (strcmp(arg, "--threads") == 0) {
-            if (k + 1 == argc)
-                return option_error(argv[0], "this option needs a value", arg);
-            char *end;
-            const char *value = argv[++k];
-            long n = strtol(value, &end, 10);
-            bool digits = value[0] >= '0' && value[0] <= '9'; /* no blank, sign */
-            if (!digits || *end != '\0' || n < 1 || n > 256)
-                return option_error(argv[0], "--threads expects a whole number "
-                                             "from 1 to 256", value);
-            opt->threads = (int)n;
         }
         else if (arg[0] == '-' && arg[1] != '\0') {
             return option_error(argv[0], "unknown option", arg);

@@ -11,8 +11,6 @@ typedef struct {
     const char *output;
     int width, height;      /* 0: as the scene says */
     bool stats, help;
-    /* <<option members>> ch08 */
-    int threads; /* 0: one per core */
 } options;
 
 /* The help text, on out. */

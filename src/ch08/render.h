@@ -18,8 +18,6 @@ typedef struct {
     /* called on the calling thread after each band it draws; NULL: none */
     void (*progress)(void *context, int rows_done, int rows);
     void *progress_context;
-    /* <<render settings members>> ch08 */
-    int threads; /* 0: one per core */
 } render_settings;
 
 /* Renders the whole image in bands of BAND_ROWS rows, as how says. */

@@ -1,5 +1,5 @@
-# ch08_embree.gp: the chart of bench/ch08_embree.c's CSV.
-#   gnuplot -e "csv='figures/ch08-embree.csv'; stem='figures/ch08-embree'" bench/ch08_embree.gp
+# ch09_embree.gp: the chart of bench/ch09_embree.c's CSV.
+#   gnuplot -e "csv='figures/ch09-embree.csv'; stem='figures/ch09-embree'" bench/ch09_embree.gp
 # stem.svg: left, rays per second of this program's kd-tree and of Embree
 #   on the same rays (bars: the median of interleaved rounds; error bars:
 #   the rates of the time's interquartile range, 1e3/q3 to 1e3/q1), with
@@ -28,7 +28,7 @@ set style fill solid 0.85 noborder
 set boxwidth 0.36
 
 eval machine_label
-set multiplot layout 1,2 title (absent ? "Chapter 8: this program's kd-tree (Embree was absent when this chart was made)" : "Chapter 8: this program's kd-tree against Embree 3, the same rays, one thread each") font ",14"
+set multiplot layout 1,2 title (absent ? "Chapter 9: chapter 8's kd-tree (Embree was absent when this chart was made)" : "Chapter 9: chapter 8's kd-tree against Embree 3, the same rays, one thread each") font ",14"
 set xrange [-0.6:3.6]
 set yrange [0:*]
 set offsets 0, 0, graph 0.25, 0
@@ -36,7 +36,7 @@ set xtics ("bunny\nK = 1" 0, "bunny\nK = 2.5" 1, "teapot\nK = 1" 2, "teapot\nK =
 set ylabel "million closest-hit rays per second (bars: interquartile range)"
 set key top left box opaque font ",10"
 set title "1024 x 1024 rays".ratios("; numbers: our rate / Embree's (medians)") font ",10"
-plot csv using (rate_x("kdtree")):4 with boxes lc rgb ours title "kd-tree, double, watertight (this chapter)", \
+plot csv using (rate_x("kdtree")):4 with boxes lc rgb ours title "kd-tree, double, watertight (chapter 8)", \
      csv using (rate_x("embree")):4 with boxes lc rgb theirs title theirs_title("Embree 3, rtcIntersect1, high-quality BVH"), \
      for [m in "kdtree embree"] csv using (rate_x(m)):(1e3 / $7):(0):(1e3 / $6 - 1e3 / $7) @quartile_bars, \
      csv using (is("ratio","kdtree_over_embree") ? case(strcol(2)) - 0.19 : NaN):(2):(sprintf("%.2f", $4)) with labels font ",11" tc rgb "white" notitle

@@ -1,7 +1,7 @@
-/* ch08_embree.c: this program's kd-tree against Intel Embree 3, on the same
+/* ch09_embree.c: chapter 8's kd-tree against Intel Embree 3, on the same
  * rays, one thread each, timed together.
  *
- *   build/rel/bench/ch08_embree [BUNNY.obj TEAPOT.obj] > figures/ch08-embree.csv
+ *   build/rel/bench/ch09_embree [BUNNY.obj TEAPOT.obj] > figures/ch09-embree.csv
  *
  * Built only where Embree 3 is installed (Debian: libembree-dev); without
  * it, `make charts` draws the chart from this program's own rates and
@@ -161,7 +161,7 @@ static void run_embree_build(void *ctx, long reps)
 static void check_own_thread(const bench_case *c, const bench_timing *t)
 {
     if (t->median < 0.8 * t->wall_median)
-        fprintf(stderr, "ch08_embree: %s,%s: CPU %.0f ns but wall %.0f ns: other threads?\n",
+        fprintf(stderr, "ch09_embree: %s,%s: CPU %.0f ns but wall %.0f ns: other threads?\n",
                 c->method, c->param, t->median, t->wall_median);
 }
 
@@ -258,7 +258,7 @@ int main(int argc, char **argv)
                                    argc > 2 ? argv[2] : "meshes/teapot-8.obj"};
     RTCDevice device = rtcNewDevice("threads=1");
     if (device == NULL) {
-        fprintf(stderr, "ch08_embree: Embree has no device\n");
+        fprintf(stderr, "ch09_embree: Embree has no device\n");
         return 1;
     }
     mesh meshes[N_MESHES];
