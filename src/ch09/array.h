@@ -3,7 +3,7 @@
 #define ARRAY_H
 
 #include <assert.h>
-#include <stdlib.h>
+#include "memory.h"
 
 /* The capacity a full array of capacity grows to: twice as much (at least
  * 8), but never more than max. */
@@ -26,7 +26,7 @@ static inline void *array_reserve(void *items, int needed, int *capacity,
     int wanted = *capacity;
     while (wanted < needed)
         wanted = array_next_capacity(wanted, max);
-    void *grown = realloc(items, (size_t)wanted * size);
+    void *grown = memory_resize(items, (size_t)wanted, size);
     if (grown != NULL)
         *capacity = wanted;
     return grown;

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "array.h"
+#include "memory.h"
 
 /* <<kd-tree storage>> ch08 */
 kdtree_params kdtree_default_params(void)
@@ -191,7 +192,7 @@ static bool radix_sort_events(event *list, int n)
 {
     int start[9][257]; /* 9 kB */
     bool useful[9];
-    event *spare = malloc((size_t)n * sizeof *spare), *from = list;
+    event *spare = memory_alloc((size_t)n, sizeof *spare), *from = list;
     if (spare == NULL)
         return false;
     count_bytes(list, n, start, useful);
@@ -246,7 +247,7 @@ static bool alloc_events(event_lists *l, int n)
 {
     *l = (event_lists){0};
     for (int k = 0; k < 3; k++)
-        l->e[k] = malloc(((size_t)n + 1) * sizeof(event));
+        l->e[k] = memory_alloc((size_t)n, sizeof(event));
     if (l->e[0] && l->e[1] && l->e[2])
         return true;
     free_events(l);
@@ -376,7 +377,7 @@ static void classify(builder *b, const event *e, int n, split s)
 /* Leaf of the items of l: each item has one start or flat event on x. */
 static bool leaf_of_events(builder *b, const event_lists *l, int depth)
 {
-    int *items = malloc(((size_t)l->count + 1) * sizeof *items), n = 0;
+    int *items = memory_alloc((size_t)l->count, sizeof *items), n = 0;
     if (items == NULL)
         return false;
     for (int i = 0; i < l->n[0]; i++)
@@ -391,7 +392,7 @@ static bool leaf_of_events(builder *b, const event_lists *l, int depth)
 /* The items on both sides of the split: the start events on its axis. */
 static int *straddlers(const builder *b, const event *e, int n, int *count)
 {
-    int *items = malloc(((size_t)n + 1) * sizeof *items);
+    int *items = memory_alloc((size_t)n, sizeof *items);
     *count = 0;
     for (int i = 0; items != NULL && i < n; i++)
         if (event_type(e[i]) == EVENT_START &&
@@ -532,8 +533,8 @@ static void free_items(item_list *l)
 
 static bool alloc_items(item_list *l, int n)
 {
-    l->items = malloc(((size_t)n + 1) * sizeof *l->items);
-    l->boxes = malloc(((size_t)n + 1) * sizeof *l->boxes);
+    l->items = memory_alloc((size_t)n, sizeof *l->items);
+    l->boxes = memory_alloc((size_t)n, sizeof *l->boxes);
     l->count = 0;
     if (l->items != NULL && l->boxes != NULL)
         return true;
@@ -764,7 +765,7 @@ bool kdtree_build(kdtree *t, int count, const box *bounds, kdtree_clip clip,
     b.max_depth = b.max_depth < KDTREE_MAX_DEPTH ? b.max_depth
                                                  : KDTREE_MAX_DEPTH;
     b.budget = KDTREE_REFERENCES_PER_ITEM * (long long)count + 64;
-    b.side = malloc((size_t)count);
+    b.side = memory_alloc((size_t)count, 1);
     t->bounds = root;
     t->thickness = thickness_of(&root);
     bool ok = b.side != NULL &&

@@ -55,8 +55,8 @@ static bool parse_area_light(parser *p, scene *s, light L)
         if (!read_area_setting(p, &L))
             return false;
     if (!scene_add_light(s, L))
-        return parse_fail_at(p, p->line, "more than %d lights",
-                             SCENE_MAX_LIGHTS);
+        return parse_no_room(p, p->line, s->light_count, SCENE_MAX_LIGHTS,
+                             "lights");
     return true;
 }
 

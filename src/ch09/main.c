@@ -91,28 +91,14 @@ static void warn_of_empty_meshes(const scene *s)
 }
 
 /* <<the output may not be an input>> ch01 */
-/* Does path name the file whose status is out? */
-static bool is_same_file(const char *path, const struct stat *out)
+/* Does output name the file at path, by any name? Never when output is
+ * standard output or a file that does not exist yet. */
+static bool output_is(const char *output, const char *path)
 {
-    struct stat in;
-    return path != NULL && stat(path, &in) == 0 &&
-           in.st_dev == out->st_dev && in.st_ino == out->st_ino;
-}
-
-/* The file the scene was read from that -o names too, or NULL. */
-static const char *input_named_by_output(const options *opt, const scene *s)
-{
-    struct stat out;
-    (void)s; /* its files are named from chapter 4 on */
-    if (strcmp(opt->output, "-") == 0 || stat(opt->output, &out) != 0)
-        return NULL; /* standard output, or a new file */
-    if (is_same_file(opt->scene_path, &out))
-        return opt->scene_path;
-    /* <<other files the scene read>> ch04 */
-    for (int k = 0; k < s->mesh_count; k++)
-        if (is_same_file(s->meshes[k].source.path, &out))
-            return s->meshes[k].source.path;
-    return NULL;
+    struct stat out, in;
+    return path != NULL && strcmp(output, "-") != 0 &&
+           stat(output, &out) == 0 && stat(path, &in) == 0 &&
+           in.st_dev == out.st_dev && in.st_ino == out.st_ino;
 }
 
 /* <<main>> ch01 */
@@ -147,7 +133,12 @@ int main(int argc, char **argv)
         report_mesh_hints(&s);
     /* <<once the scene is loaded>> += ch09 */
     how.threads = opt.threads;
-    const char *input = input_named_by_output(&opt, &s);
+    const char *input =
+        output_is(opt.output, opt.scene_path) ? opt.scene_path : NULL;
+    /* <<other files the scene read>> ch04 */
+    for (int k = 0; input == NULL && k < s.mesh_count; k++)
+        if (output_is(opt.output, s.meshes[k].source.path))
+            input = s.meshes[k].source.path;
     if (input != NULL) {
         snprintf(why, sizeof why, "the output is an input: %s", input);
         message_print_error(opt.output, 0, 0, why);

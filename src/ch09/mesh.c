@@ -3,6 +3,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include "memory.h"
 /* <<mesh.c includes>> ch06 */
 #include "offset.h"
 
@@ -92,7 +93,7 @@ bool mesh_index_reserve(mesh_index *x, const mesh *meshes, int count)
     if (2 * (count + 1) < x->size)
         return true;
     int size = x->size ? 2 * x->size : 64;
-    int *slots = calloc((size_t)size, sizeof *slots);
+    int *slots = memory_alloc_zeroed((size_t)size, sizeof *slots);
     if (slots == NULL)
         return false;
     free(x->slots);
@@ -139,8 +140,8 @@ bool mesh_smooth_normals(mesh *m)
 {
     size_t count = (size_t)m->vertex_count + 1,
            faces = (size_t)m->triangle_count;
-    vec3 *normals = calloc(count, sizeof *normals);
-    mesh_triangle *corners = malloc((faces + 1) * sizeof *corners);
+    vec3 *normals = memory_alloc_zeroed(count, sizeof *normals);
+    mesh_triangle *corners = memory_alloc(faces, sizeof *corners);
     if (normals == NULL || corners == NULL) {
         free(normals), free(corners);
         return false;
@@ -345,7 +346,7 @@ static bool clip_triangle(const void *context, int item, const box *cell,
 static bool copy_leaf_corners(mesh *m)
 {
     int n = m->tree.item_count;
-    m->leaf_corners = malloc(((size_t)n + 1) * sizeof *m->leaf_corners);
+    m->leaf_corners = memory_alloc((size_t)n, sizeof *m->leaf_corners);
     if (m->leaf_corners == NULL)
         return false;
     for (int i = 0; i < n; i++) {
@@ -375,7 +376,7 @@ bool mesh_build_tree(mesh *m, const kdtree_params *p)
     mesh_free_tree(m);
     kdtree_params q = *p;
     q.min_items = q.min_items > 0 ? q.min_items : MESH_TREE_MIN_TRIANGLES;
-    box *bounds = malloc(((size_t)m->triangle_count + 1) * sizeof *bounds);
+    box *bounds = memory_alloc((size_t)m->triangle_count, sizeof *bounds);
     bool ok = bounds != NULL;
     for (int k = 0; ok && k < m->triangle_count; k++) {
         const int *v = m->triangles[k].v;

@@ -5,6 +5,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
+#include "memory.h"
 #include "obj.h"
 
 /* <<the budget left for a mesh>> ch04 */
@@ -101,7 +102,7 @@ int mesh_load_into(parser *p, scene *s, const char *at,
     if (load_mesh_file(p, s, at, source->path, &m) &&
         place_mesh(p, s, &m, source)) {
         m.source = *source;
-        if ((m.source.path = strdup(source->path)) == NULL)
+        if ((m.source.path = memory_copy_string(source->path)) == NULL)
             parse_fail_with(p, PARSE_NO_MEMORY, p->line, "out of memory");
         else if ((k = scene_add_mesh(s, m)) < 0)
             parse_no_room(p, p->line, s->mesh_count, SCENE_MAX_MESHES,

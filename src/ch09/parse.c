@@ -9,6 +9,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "memory.h"
 
 static int column_of(const parser *p, const char *at)
 {
@@ -120,7 +121,7 @@ static bool token_to_double(const parser *p, double *value, bool *no_memory)
 {
     char small[64];
     size_t n = (size_t)p->token_length;
-    char *text = n < sizeof small ? small : malloc(n + 1);
+    char *text = n < sizeof small ? small : memory_alloc(n + 1, 1);
     if ((*no_memory = text == NULL))
         return false;
     memcpy(text, p->token, n);
@@ -328,7 +329,7 @@ static bool grow_buffer(char **text, size_t *capacity, size_t max,
     if (*capacity > max)
         return too_large(err, path, (long)max); /* it holds max + 1 bytes */
     size_t wanted = *capacity <= max / 2 ? 2 * *capacity : max + 1;
-    char *grown = realloc(*text, wanted + 1);
+    char *grown = memory_resize(*text, wanted + 1, 1);
     if (grown == NULL)
         return file_error(err, PARSE_NO_MEMORY, path, "out of memory");
     *text = grown, *capacity = wanted;
@@ -345,7 +346,7 @@ static bool read_all(int fd, size_t size, size_t max, char **text,
     size_t capacity = size < max ? size : max; /* the first read's room */
     if (capacity > READ_PIECE)
         capacity = READ_PIECE; /* a wrong size costs no more than this */
-    if ((*text = malloc(capacity + 2)) == NULL)
+    if ((*text = memory_alloc(capacity + 2, 1)) == NULL)
         return file_error(err, PARSE_NO_MEMORY, path, "out of memory");
     capacity++; /* a byte more than the size, to read the end at once */
     for (*length = 0;;) {

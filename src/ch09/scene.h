@@ -18,8 +18,6 @@
 #include "material.h"
 /* <<scene includes>> += ch04 */
 #include "mesh.h"
-/* <<scene includes>> += ch06 */
-#include "offset.h"
 
 typedef enum { BACKGROUND_SOLID, BACKGROUND_GRADIENT } background_kind;
 

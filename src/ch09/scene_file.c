@@ -56,8 +56,8 @@ static bool store_transform(parser *p, scene *s, object *o, transform t)
         return true;
     }
     if ((o->transform = scene_add_transform(s, t)) < 0)
-        return parse_fail_at(p, p->line, "more than %d transforms (or out "
-                                         "of memory)", SCENE_MAX_TRANSFORMS);
+        return parse_no_room(p, p->line, s->transform_count,
+                             SCENE_MAX_TRANSFORMS, "transforms");
     return true;
 }
 

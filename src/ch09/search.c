@@ -1,6 +1,8 @@
 /* search.c: the search for what a ray hits, and the hit record of the
  * winner (chapter 2). See search.h. */
 #include "search.h"
+/* <<search.c includes>> ch06 */
+#include "offset.h"
 
 /* <<the search for the nearest hit>> ch02 */
 /* What the search keeps of the nearest hit so far. */

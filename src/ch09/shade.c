@@ -2,6 +2,7 @@
 #include "shade.h"
 /* <<shade.c includes>> ch06 */
 #include "search.h"
+#include "offset.h"
 #include "sample.h"
 
 /* <<highlights>> ch03 */

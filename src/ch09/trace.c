@@ -5,6 +5,8 @@
 #include "search.h"
 /* <<trace includes>> += ch03 */
 #include "shade.h"
+/* <<trace includes>> += ch06 */
+#include "offset.h"
 
 /* <<trace helpers>> ch06 */
 /* 2^16 secondary rays for one primary ray: ten times the 6,400 that the

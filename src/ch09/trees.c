@@ -4,6 +4,8 @@
 
 #include <stdlib.h>
 #include <time.h>
+#include "memory.h"
+#include "offset.h"
 
 /* <<moving a box into the world>> ch08 */
 /* The world box around b's eight corners moved by t, widened by the
@@ -72,7 +74,7 @@ static bool build_object_tree(scene *s)
 {
     kdtree_params p = s->tree_params;
     p.min_items = p.min_items > 0 ? p.min_items : SCENE_TREE_MIN_OBJECTS;
-    box *bounds = malloc(((size_t)s->object_count + 1) * sizeof *bounds);
+    box *bounds = memory_alloc((size_t)s->object_count, sizeof *bounds);
     for (int k = 0; bounds != NULL && k < s->object_count; k++)
         bounds[k] = object_bounds(s, &s->objects[k]);
     bool ok = bounds != NULL && kdtree_build(&s->object_tree, s->object_count,
