@@ -77,7 +77,7 @@ suites_upto = $(foreach n,$(filter $(call nums_upto,$(1)),$(NUMS)),$(wildcard te
 # previous NN: the chapter before NN, empty for the first
 previous = $(lastword $(filter-out $(1),$(filter $(call nums_upto,$(1)),$(NUMS))))
 
-.PHONY: all test deps src figures charts book clean check-src check-figures check-map check-stray \
+.PHONY: all test deps src figures charts book clean check-src check-figures check-map check-stray check-allocations \
         check-book check-lines check-quotes test-tangle tools benches \
         book-check check-book-browser check-code-width check-commands
 
@@ -431,6 +431,13 @@ check-map: check-src
 	@sh tools/check_map.sh --self-test
 	@sh tools/check_map.sh chapters/README.md src/ch$(lastword $(NUMS)) $(CHAPTERS)
 
+# Every allocation of the last chapter's program goes through memory.h.
+check-allocations: check-src
+	@if grep -nE '\<(malloc|calloc|realloc|strdup|aligned_alloc)\(' \
+	    $$(ls src/ch$(lastword $(NUMS))/*.[ch] | grep -v '/memory\.c$$'); then \
+	  echo "allocations outside memory.c: use memory.h"; exit 1; fi
+	@echo "every allocation goes through memory.h: ok"
+
 # No temporary file is tracked (outside a git checkout there is nothing to
 # check).
 check-stray:
@@ -440,7 +447,7 @@ check-stray:
 	  echo "no temporary file is tracked: ok"; fi
 
 test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures \
-      check-failures check-diagrams check-book check-map check-stray \
+      check-failures check-diagrams check-book check-map check-stray check-allocations \
       check-lines check-quotes check-commands check-book-browser
 	@$(MAKE) --no-print-directory check-code-width
 	@echo "make test: all passed"

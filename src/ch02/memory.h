@@ -15,6 +15,10 @@ void *memory_alloc(size_t count, size_t size);
 void *memory_alloc_zeroed(size_t count, size_t size);
 char *memory_copy_string(const char *text);
 
+/* Aligned to alignment, a power of two that is a multiple of
+ * sizeof(void *): for data that must start a cache line. */
+void *memory_alloc_aligned(size_t alignment, size_t count, size_t size);
+
 /* For tests: from now on the first n allocations succeed and every later
  * one fails; n < 0 lets all succeed again. */
 void memory_fail_after(long n);

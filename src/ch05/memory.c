@@ -40,6 +40,17 @@ void *memory_alloc_zeroed(size_t count, size_t size)
     return count > 0 && size > 0 ? calloc(count, size) : calloc(1, 1);
 }
 
+void *memory_alloc_aligned(size_t alignment, size_t count, size_t size)
+{
+    if (!may_allocate(count, size))
+        return NULL;
+    size_t bytes = count * size > 0 ? count * size : 1;
+    if (bytes > SIZE_MAX - alignment)
+        return NULL; /* no room to round it up */
+    bytes = (bytes + alignment - 1) / alignment * alignment; /* C11 asks */
+    return aligned_alloc(alignment, bytes);
+}
+
 char *memory_copy_string(const char *text)
 {
     size_t n = strlen(text) + 1;

@@ -12,6 +12,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+#include "memory.h"
 
 /* What the pixel whose primary ray is r shows. */
 static vec3 pixel_color(const scene *s, ray r, render_stats *stats)
@@ -130,7 +131,7 @@ void render_in_bands(const scene *s, image *img, const render_settings *how,
     int n = how->threads > 0 ? how->threads : cores_online();
     int started = 1, first, last;
     if (n > 1)
-        w = aligned_alloc(64, (size_t)n * sizeof *w);
+        w = memory_alloc_aligned(64, (size_t)n, sizeof *w);
     if (w == NULL)
         w = &one, n = 1; /* out of memory: this thread alone */
     for (int k = 0; k < n; k++)
