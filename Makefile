@@ -313,6 +313,81 @@ charts-check: deps $(BENCHES)
 
 .PHONY: charts-check
 
+# ---------------------------------------------------------------- workbook
+# The reader writes the chunks a chapter marks .exercise (tools/exercises.awk
+# lists them) in workbook/NN-name.md, and the chapters' tests grade them.
+#   make workbook            one file per chapter, stubs that fail their tests;
+#                            a file that exists is never overwritten
+#   make workbook SOLVED=1   the book's own code in each stub, marked done
+#   make grade, grade-chNN   build the program with the started exercises in
+#                            place of the book's chunks, under build/workbook,
+#                            and grade each exercise (tools/grade.sh)
+#   make hint EX=2.1         that exercise's hint
+#   make watch               grade again whenever a workbook file changes
+# WB_DIR and WB_BUILD name another workbook and build folder (the tests).
+WB_DIR   ?= workbook
+WB_BUILD ?= build/workbook
+WB_FILES := $(patsubst chapters/%,$(WB_DIR)/%,$(CHAPTERS))
+# The reader's code is graded, not linted: a stub leaves parameters unused.
+WB_CFLAGS = $(CSTD) -Wall -Wextra -Wno-unused-parameter -Wno-unused-function \
+            -Wno-unused-variable -Wno-unused-but-set-variable -Wno-missing-braces \
+            -O2 -g -pthread -MMD -MP
+LAST     := $(lastword $(NUMS))
+
+.PHONY: workbook grade hint watch $(foreach n,$(NUMS),grade-ch$(n))
+workbook: $(WB_FILES)
+
+# Order-only: a workbook file is the reader's, never remade once it exists.
+$(WB_DIR)/%.md: | chapters/%.md
+	@mkdir -p $(@D)
+	awk -v solved=$(if $(SOLVED),1,0) -f tools/stub.awk -f tools/workbook.awk chapters/$*.md chapters/$*.md > $@
+
+grade: grade-ch$(LAST)
+
+$(foreach n,$(NUMS),grade-ch$(n)): grade-ch%: $(TANGLE)
+	@TANGLE=$(TANGLE) WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) MAKE="$(MAKE)" \
+	  sh tools/grade.sh $* $(call chapters_upto,$*)
+
+hint:
+	@awk -v hint=$(EX) -f tools/exercises.awk $(CHAPTERS)
+
+watch: $(TANGLE)
+	@WB_DIR=$(WB_DIR) sh tools/watch.sh $(MAKE) --no-print-directory grade
+
+# The workbook's program and suites of chapter NN, built from the tangle
+# that tools/grade.sh writes to $(WB_BUILD)/tangle/chNN.
+define workbook_rules
+WT$(1) := $(WB_BUILD)/tangle/ch$(1)
+WO$(1) := $(WB_BUILD)/obj/ch$(1)
+WOBJ$(1) := $$(patsubst %.c,$$(WO$(1))/%.o,$$(SRC$(1)))
+WLIB$(1) := $$(filter-out $$(WO$(1))/main.o,$$(WOBJ$(1)))
+
+$$(WO$(1))/%.o: $$(WT$(1))/%.c | deps
+	@mkdir -p $$(@D)
+	$$(CC) $$(WB_CFLAGS) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
+
+$$(WO$(1))/tests/%.o: tests/%.c | deps
+	@mkdir -p $$(@D)
+	$$(CC) $$(WB_CFLAGS) $$(PNG_CFLAGS) $$(CHECK_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
+
+$$(WO$(1))/tests/runner.o: tests/runner.c $$(SUITES$(1)) | deps
+	@mkdir -p $$(@D)
+	$$(CC) $$(WB_CFLAGS) $$(CHECK_CFLAGS) \
+	  '-DSUITE_LIST=$$(foreach s,$$(SUITES$(1)),X($$(basename $$(notdir $$(s)))))' -c -o $$@ $$<
+
+$(WB_BUILD)/test/ch$(1): $$(WO$(1))/tests/runner.o \
+                      $$(patsubst tests/%.c,$$(WO$(1))/tests/%.o,$$(SUITES$(1))) $$(WLIB$(1))
+	@mkdir -p $$(@D)
+	$$(CC) $$(WB_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
+
+$(WB_BUILD)/bin/ch$(1): $$(WOBJ$(1))
+	@mkdir -p $$(@D)
+	$$(CC) $$(WB_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
+
+-include $$(wildcard $$(WO$(1))/*.d $$(WO$(1))/tests/*.d)
+endef
+$(foreach n,$(NUMS),$(eval $(call workbook_rules,$(n))))
+
 # ---------------------------------------------------------------- fuzzing
 # make fuzz FUZZ_SECONDS=60: each libFuzzer target for that long, built with
 # clang, ASan and UBSan against the latest chapter's program. New inputs go to
