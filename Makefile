@@ -354,6 +354,11 @@ hint:
 watch: $(TANGLE)
 	@WB_DIR=$(WB_DIR) sh tools/watch.sh $(MAKE) --no-print-directory grade
 
+# The workbook's own tests (tools/check_workbook.sh), in build/wbcheck.
+.PHONY: check-workbook
+check-workbook: $(TANGLE)
+	@MAKE="$(MAKE)" sh tools/check_workbook.sh
+
 # The workbook's program and suites of chapter NN, built from the tangle
 # that tools/grade.sh writes to $(WB_BUILD)/tangle/chNN.
 define workbook_rules
@@ -502,7 +507,7 @@ check-quotes:
 
 test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures \
       check-failures check-diagrams check-book \
-      check-lines check-quotes check-commands check-book-browser
+      check-lines check-quotes check-commands check-workbook check-book-browser
 	@$(MAKE) --no-print-directory check-code-width
 	@echo "make test: all passed"
 

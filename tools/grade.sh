@@ -134,7 +134,8 @@ build() {
 }
 
 run_suites() {
-    CK_FORK=yes CK_VERBOSITY=verbose CK_DEFAULT_TIMEOUT=$GRADE_TIMEOUT \
+    CK_FORK=yes CK_VERBOSITY=verbose CK_TIMEOUT_MULTIPLIER=0.1 \
+    CK_DEFAULT_TIMEOUT=$((GRADE_TIMEOUT * 10)) \
     CHAPTER_BIN=$WB_BUILD/bin/ch$target \
         timeout 900 "$WB_BUILD/test/ch$target" > "$work/tests.log" 2>&1
 }
