@@ -354,6 +354,20 @@ hint:
 watch: $(TANGLE)
 	@WB_DIR=$(WB_DIR) sh tools/watch.sh $(MAKE) --no-print-directory grade
 
+# make chart-ch02 WORKBOOK=1: chapter 2's sphere chart with the reader's
+# started forms (exercises 2.1-2.3) as "yours", measured in the same rounds
+# as the book's, under $(WB_BUILD)/charts (tools/chart_ch02_yours.sh).
+.PHONY: chart-ch02
+chart-ch02: $(TANGLE) $(LIB02) $(O02)/bench/timing.o | deps
+	$(if $(WORKBOOK),,$(error make chart-ch02 WORKBOOK=1 charts your forms; the book's chart is chart-ch02_sphere))
+	@GRADE_TANGLE_ONLY=1 TANGLE=$(TANGLE) WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) \
+	  sh tools/grade.sh 02 $(call chapters_upto,02)
+	@$(MAKE) --no-print-directory -s WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) \
+	  $(WO02)/sphere_roots.o $(WO02)/sphere_roots_float.o
+	sh tools/chart_ch02_yours.sh $(WB_BUILD)/ch02/state.tsv $(WB_BUILD)/charts "$(CC)" \
+	  "$(ALL_CFLAGS) $(LTO_LINK) $(PNG_CFLAGS) -Ibuild/tangle/ch02" $(WO02) \
+	  $(O02)/bench/timing.o $(LIB02) $(PNG_LIBS)
+
 # The workbook's own tests (tools/check_workbook.sh), in build/wbcheck.
 .PHONY: check-workbook
 check-workbook: $(TANGLE)

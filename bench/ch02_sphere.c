@@ -38,9 +38,24 @@ typedef long double quad; /* already 128-bit on e.g. aarch64 */
 
 typedef sphere_roots_fn roots_fn;
 
+#ifdef YOURS_FORMS
+/* make chart-ch02 WORKBOOK=1 defines YOURS_FORMS as Y(NAME, PRECISION, FN)
+ * entries: the reader's forms from the workbook (their functions renamed
+ * yours_...), measured and timed in the same rounds as the book's six, as
+ * "yours-NAME". */
+#define Y(name, precision, fn) int fn(vec3 center, double radius, ray r, double t[2]);
+YOURS_FORMS
+#undef Y
+#define Y(name, precision, fn) {"yours-" name, precision, fn},
+static const sphere_roots_method yours[] = {YOURS_FORMS};
+#undef Y
+#define N_FORMS (SPHERE_ROOTS_METHOD_COUNT + (int)(sizeof yours / sizeof yours[0]))
+static sphere_roots_method forms[N_FORMS]; /* the book's six, then yours */
+#else
 /* The six forms as chapter 2 lists them: name, precision, function. */
 #define forms SPHERE_ROOTS_METHODS
 #define N_FORMS SPHERE_ROOTS_METHOD_COUNT
+#endif
 #define N_RAYS 20000
 
 /* ---------------------------------------------------------------- reference */
@@ -201,6 +216,12 @@ int main(void)
     static char names[N_FORMS][32];
     bench_case cases[N_FORMS];
     bench_timing timing[N_FORMS];
+#ifdef YOURS_FORMS
+    for (int f = 0; f < N_FORMS; f++)
+        forms[f] = f < SPHERE_ROOTS_METHOD_COUNT
+                       ? SPHERE_ROOTS_METHODS[f]
+                       : yours[f - SPHERE_ROOTS_METHOD_COUNT];
+#endif
     make_rays(&timing_rng, 100.0, &timed_center, timed_rays, TIMED_RAYS);
     for (int f = 0; f < N_FORMS; f++) {
         fns[f] = forms[f].roots;

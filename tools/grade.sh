@@ -5,7 +5,8 @@
 #     tools/grade.sh NN CHAPTER.md...     (the chapters 01..NN, in order)
 # Environment: TANGLE (the tangler), MAKE, WB_DIR (the workbook, default
 # workbook), WB_BUILD (where it is built, default build/workbook),
-# GRADE_TIMEOUT (seconds a test may take, default 10).
+# GRADE_TIMEOUT (seconds a test may take, default 10), GRADE_TANGLE_ONLY
+# (1: check and tangle the workbook, build and run nothing).
 #
 # For every chapter its workbook file WB_DIR/NN-name.md (make workbook
 # writes them) is checked alone first: one the tangler rejects (a fence
@@ -143,6 +144,13 @@ run_suites() {
 for chapter in "$@"; do
     check_file "$chapter" "$@"
 done
+
+# GRADE_TANGLE_ONLY=1 (make chart-ch02 WORKBOOK=1): the tangle and the state
+# of each exercise, in $work/state.tsv, and nothing else.
+if [ "${GRADE_TANGLE_ONLY:-}" = 1 ]; then
+    tangle_all "$@"
+    exit
+fi
 
 : > "$work/tests.log"
 started=$(awk -F '\t' '$2 == "started"' "$state" | wc -l)
