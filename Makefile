@@ -368,6 +368,24 @@ chart-ch02: $(TANGLE) $(LIB02) $(O02)/bench/timing.o | deps
 	  "$(ALL_CFLAGS) $(LTO_LINK) $(PNG_CFLAGS) -Ibuild/tangle/ch02" $(WO02) \
 	  $(O02)/bench/timing.o $(LIB02) $(PNG_LIBS)
 
+# make handout: build/handout/ and build/handout.tar.gz, the book for
+# students: every exercise's code replaced by its stub, in the chapters and
+# the woven book, with the workbook, tests, tools, meshes and figures; a
+# student can make grade there. check-handout (in make test) builds it
+# without the book and finds no solution line in it (but does in src/).
+.PHONY: handout check-handout
+handout: deps
+	sh tools/handout.sh build/handout
+	sh tools/check_handout.sh build/handout
+	tar -czf build/handout.tar.gz -C build handout
+	@echo "wrote build/handout/ and build/handout.tar.gz"
+
+check-handout:
+	@sh tools/handout.sh build/handoutcheck --no-book > /dev/null
+	@sh tools/check_handout.sh build/handoutcheck
+	@! sh tools/check_handout.sh src > /dev/null || \
+	  { echo "check-handout: the check finds no solution in src/ either"; exit 1; }
+
 # The workbook's own tests (tools/check_workbook.sh), in build/wbcheck.
 .PHONY: check-workbook
 check-workbook: $(TANGLE)
@@ -521,7 +539,8 @@ check-quotes:
 
 test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures \
       check-failures check-diagrams check-book \
-      check-lines check-quotes check-commands check-workbook check-book-browser
+      check-lines check-quotes check-commands check-workbook check-handout \
+      check-book-browser
 	@$(MAKE) --no-print-directory check-code-width
 	@echo "make test: all passed"
 
