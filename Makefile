@@ -19,6 +19,11 @@
 #   make book-check   the book in headless Chromium at 1280x900 (installs it
 #                     as root): nothing wider than the text column, and a
 #                     screenshot build/book-screenshot.png
+#   make workbook     workbook/NN-name.md, the exercises to write (SOLVED=1:
+#                     the book's code); make grade, grade-chNN, hint EX=2.1,
+#                     watch; make chart-ch02 WORKBOOK=1 charts your forms
+#   make handout      build/handout/ and its .tar.gz: no solutions in it
+#   make pdf, epub    the book's and the handout's editions
 #   make SAN=1 test   the same with AddressSanitizer and UBSan
 #   make WERROR=1     warnings are errors (CI)
 
@@ -386,6 +391,38 @@ check-handout:
 	@! sh tools/check_handout.sh src > /dev/null || \
 	  { echo "check-handout: the check finds no solution in src/ either"; exit 1; }
 
+# make pdf, make epub: both editions, the book's (build/book.pdf, .epub) and
+# the handout's (build/handout/book.pdf, .epub). The PDF is headless
+# Chromium's print with the stylesheet's print rules (tools/pdf.sh, which
+# installs Chromium as root), the EPUB pandoc's, MathML kept (tools/epub.sh).
+# make test checks the book's: every chapter starts a page of the PDF (where
+# Chromium and pdftotext are installed), the EPUB is a whole zip whose
+# navigation lists every chapter.
+.PHONY: pdf epub check-pdf check-epub
+pdf: build/book.pdf handout
+	sh tools/pdf.sh build/handout/book.html build/handout/book.pdf
+epub: build/book.epub handout
+	cd build/handout && sh tools/epub.sh book.md book.epub chapters/[0-9][0-9]-*.md
+
+build/book.pdf: build/book.html tools/pdf.sh
+	sh tools/pdf.sh $< $@
+
+build/book.epub: book.md $(CHAPTERS) tools/weave.lua tools/weave_names.lua tools/epub.sh \
+                 tools/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) | deps
+	sh tools/epub.sh book.md $@ $(CHAPTERS)
+
+check-epub: build/book.epub
+	@sh tools/check_epub.sh $< $(CHAPTERS)
+
+HAVE_PDF_TOOLS = $(shell (command -v chromium || command -v chromium-browser || \
+                   command -v google-chrome) >/dev/null 2>&1 && \
+                   command -v pdftotext >/dev/null 2>&1 && echo yes)
+check-pdf:
+	@if [ "$(HAVE_PDF_TOOLS)" = yes ]; then \
+	  $(MAKE) --no-print-directory build/book.pdf >/dev/null && \
+	  sh tools/check_pdf.sh build/book.pdf $(CHAPTERS); \
+	else echo "check-pdf: skipped: no chromium or no pdftotext (make pdf installs Chromium)"; fi
+
 # The workbook's own tests (tools/check_workbook.sh), in build/wbcheck.
 .PHONY: check-workbook
 check-workbook: $(TANGLE)
@@ -540,7 +577,7 @@ check-quotes:
 test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures \
       check-failures check-diagrams check-book \
       check-lines check-quotes check-commands check-workbook check-handout \
-      check-book-browser
+      check-epub check-pdf check-book-browser
 	@$(MAKE) --no-print-directory check-code-width
 	@echo "make test: all passed"
 

@@ -727,7 +727,7 @@ function Pandoc(doc)
   })
   assign_ids()
   warn_about_references()
-  if FORMAT:match("html") then
+  if FORMAT:match("html") or FORMAT:match("epub") then
     doc = doc:walk({ CodeBlock = render_code_block, Div = render_exercise_notes })
     for _, block in ipairs(index_blocks()) do doc.blocks:insert(block) end
     doc.blocks = pandoc.List(with_chapter_navs(doc.blocks))
