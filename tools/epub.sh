@@ -15,10 +15,13 @@ book=$1 out=$2
 shift 2
 tools_dir=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$(dirname "$out")"
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
 pandoc "$book" "$@" --from markdown --to epub3 --mathml --toc --toc-depth=2 \
     --number-sections --epub-chapter-level=1 --resource-path=. \
     --metadata lang=en --css="$tools_dir/book.css" \
-    --lua-filter="$tools_dir/weave.lua" --output="$out.tmp" 2> "$out.log" ||
-    { cat "$out.log" >&2; rm -f "$out.tmp"; exit 1; }
+    --lua-filter="$tools_dir/weave.lua" --output="$out.tmp" 2> "$log" ||
+    { cat "$log" >&2; rm -f "$out.tmp"; exit 1; }
+cat "$log" >&2
 mv "$out.tmp" "$out"
 echo "epub.sh: wrote $out"
