@@ -423,6 +423,11 @@ check-pdf:
 	  sh tools/check_pdf.sh build/book.pdf $(CHAPTERS); \
 	else echo "check-pdf: skipped: no chromium or no pdftotext (make pdf installs Chromium)"; fi
 
+# Each stub alone must fail its tests (minutes: not in make test).
+.PHONY: check-stubs
+check-stubs: $(TANGLE)
+	@MAKE="$(MAKE)" sh tools/check_stubs.sh
+
 # The workbook's own tests (tools/check_workbook.sh), in build/wbcheck.
 .PHONY: check-workbook
 check-workbook: $(TANGLE)
