@@ -350,14 +350,14 @@ $(WB_DIR)/%.md: | chapters/%.md
 grade: grade-ch$(LAST)
 
 $(foreach n,$(NUMS),grade-ch$(n)): grade-ch%: $(TANGLE)
-	@TANGLE=$(TANGLE) WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) MAKE="$(MAKE)" \
+	+@TANGLE=$(TANGLE) WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) MAKE="$(MAKE)" \
 	  sh tools/grade.sh $* $(call chapters_upto,$*)
 
 hint:
 	@awk -v hint=$(EX) -f tools/exercises.awk $(CHAPTERS)
 
 watch: $(TANGLE)
-	@WB_DIR=$(WB_DIR) sh tools/watch.sh $(MAKE) --no-print-directory grade
+	+@WB_DIR=$(WB_DIR) sh tools/watch.sh $(MAKE) --no-print-directory grade
 
 # make chart-ch02 WORKBOOK=1: chapter 2's sphere chart with the reader's
 # started forms (exercises 2.1-2.3) as "yours", measured in the same rounds
@@ -426,12 +426,12 @@ check-pdf:
 # Each stub alone must fail its tests (minutes: not in make test).
 .PHONY: check-stubs
 check-stubs: $(TANGLE)
-	@MAKE="$(MAKE)" sh tools/check_stubs.sh
+	+@MAKE="$(MAKE)" sh tools/check_stubs.sh
 
 # The workbook's own tests (tools/check_workbook.sh), in build/wbcheck.
 .PHONY: check-workbook
 check-workbook: $(TANGLE)
-	@MAKE="$(MAKE)" sh tools/check_workbook.sh
+	+@MAKE="$(MAKE)" sh tools/check_workbook.sh
 
 # The workbook's program and suites of chapter NN, built from the tangle
 # that tools/grade.sh writes to $(WB_BUILD)/tangle/chNN.

@@ -112,11 +112,17 @@ tangle_all() {
     fi
 }
 
+# Two jobs, unless a parent make shares its own (make -j2 grade).
+case ${MAKEFLAGS:-} in
+    *jobserver*) jobs="" ;;
+    *) jobs="-j${GRADE_JOBS:-2}" ;;
+esac
+
 # Builds; a workbook file named by a compiler error is left out, once.
 build() {
     for attempt in 1 2 3; do
         tangle_all "$@" || return 1
-        if $MAKE -j"${GRADE_JOBS:-2}" --no-print-directory -s WB_DIR="$WB_DIR" WB_BUILD="$WB_BUILD" \
+        if $MAKE $jobs --no-print-directory -s WB_DIR="$WB_DIR" WB_BUILD="$WB_BUILD" \
                 "$WB_BUILD/test/ch$target" "$WB_BUILD/bin/ch$target" \
                 > "$work/build.log" 2>&1; then
             return 0
