@@ -22,6 +22,7 @@
 #   make workbook     workbook/NN-name.md, the exercises to write (SOLVED=1:
 #                     the book's code); make grade, grade-chNN, hint EX=2.1,
 #                     watch; make chart-ch02 WORKBOOK=1 charts your forms
+#                     (chapters 1 and 2)
 #   make handout      build/handout/ and its .tar.gz: no solutions in it
 #   make pdf, epub    the book's and the handout's editions
 #   make SAN=1 test   the same with AddressSanitizer and UBSan
@@ -359,37 +360,36 @@ hint:
 watch: $(TANGLE)
 	+@WB_DIR=$(WB_DIR) sh tools/watch.sh $(MAKE) --no-print-directory grade
 
-# make chart-ch02 WORKBOOK=1: chapter 2's sphere chart with the reader's
-# started forms (exercises 2.1-2.3) as "yours", measured in the same rounds
-# as the book's, under $(WB_BUILD)/charts (tools/chart_ch02_yours.sh).
-.PHONY: chart-ch02
-chart-ch02: $(TANGLE) $(LIB02) $(O02)/bench/timing.o | deps
-	$(if $(WORKBOOK),,$(error make chart-ch02 WORKBOOK=1 charts your forms; the book's chart is chart-ch02_sphere))
+# make chart-chNN WORKBOOK=1: chapter NN's charts with the reader's started
+# exercises as "yours", timed in the same rounds as the book's methods, under
+# $(WB_BUILD)/charts (never figures/; tools/chart_yours.sh). A bench takes
+# part with YOURS_<bench> (exercise=macro the bench knows), YOURS_OBJS_<bench>
+# (the workbook objects that hold them) and YOURS_SYMS_<bench> (the functions
+# renamed yours_...).
+YOURS_ch01_srgb      := 1.2=YOURS_SRGB
+YOURS_OBJS_ch01_srgb := image.o
+YOURS_SYMS_ch01_srgb := srgb_encode srgb_to_byte gamma_encode
+YOURS_ch02_sphere      := 2.1=YOURS_GEOMETRIC 2.2=YOURS_QUADRATIC 2.3=YOURS_ROBUST
+YOURS_OBJS_ch02_sphere := sphere_roots.o sphere_roots_float.o
+YOURS_SYMS_ch02_sphere := $(foreach f,geometric quadratic robust,sphere_roots_$(f) sphere_roots_$(f)_float)
+YOURS_BENCHES := $(patsubst YOURS_OBJS_%,%,$(filter YOURS_OBJS_%,$(.VARIABLES)))
+YOURS_NUMS    := $(sort $(foreach b,$(YOURS_BENCHES),$(patsubst ch%,%,$(firstword $(subst _, ,$(b))))))
+
+define yours_chart_rule
+.PHONY: chart-ch$(1)
+chart-ch$(1): $(TANGLE) $$(LIB$(1)) $$(O$(1))/bench/timing.o | deps
+	$$(if $$(WORKBOOK),,$$(error make chart-ch$(1) WORKBOOK=1 charts your methods; the book's charts are chart-ch$(1)_NAME))
 	@GRADE_TANGLE_ONLY=1 TANGLE=$(TANGLE) WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) \
-	  sh tools/grade.sh 02 $(call chapters_upto,02)
+	  sh tools/grade.sh $(1) $$(call chapters_upto,$(1))
 	@$(MAKE) --no-print-directory -s WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) \
-	  $(WO02)/sphere_roots.o $(WO02)/sphere_roots_float.o
-	sh tools/chart_ch02_yours.sh $(WB_BUILD)/ch02/state.tsv $(WB_BUILD)/charts "$(CC)" \
-	  "$(ALL_CFLAGS) $(LTO_LINK) $(PNG_CFLAGS) -Ibuild/tangle/ch02" $(WO02) \
-	  $(O02)/bench/timing.o $(LIB02) $(PNG_LIBS)
-
-# make handout: build/handout/ and build/handout.tar.gz, the book for
-# students: every exercise's code replaced by its stub, in the chapters and
-# the woven book, with the workbook, tests, tools, meshes and figures; a
-# student can make grade there. check-handout (in make test) builds it
-# without the book and finds no solution line in it (but does in src/).
-.PHONY: handout check-handout
-handout: deps
-	sh tools/handout.sh build/handout
-	sh tools/check_handout.sh build/handout
-	tar -czf build/handout.tar.gz -C build handout
-	@echo "wrote build/handout/ and build/handout.tar.gz"
-
-check-handout:
-	@sh tools/handout.sh build/handoutcheck --no-book > /dev/null
-	@sh tools/check_handout.sh build/handoutcheck
-	@! sh tools/check_handout.sh src > /dev/null || \
-	  { echo "check-handout: the check finds no solution in src/ either"; exit 1; }
+	  $$(foreach b,$$(filter ch$(1)_%,$(YOURS_BENCHES)),$$(addprefix $$(WO$(1))/,$$(YOURS_OBJS_$$(b))))
+	$$(foreach b,$$(filter ch$(1)_%,$(YOURS_BENCHES)),sh tools/chart_yours.sh $$(b) \
+	  $(WB_BUILD)/ch$(1)/state.tsv $(WB_BUILD)/charts "$$(YOURS_$$(b))" \
+	  "$$(addprefix $$(WO$(1))/,$$(YOURS_OBJS_$$(b)))" "$$(YOURS_SYMS_$$(b))" "$(CC)" \
+	  "$(ALL_CFLAGS) $(LTO_LINK) $(PNG_CFLAGS) -Ibench -I$$(T$(1))" \
+	  $$(O$(1))/bench/timing.o $$(LIB$(1)) $(PNG_LIBS) &&) true
+endef
+$(foreach n,$(YOURS_NUMS),$(eval $(call yours_chart_rule,$(n))))
 
 # make pdf, make epub: both editions, the book's (build/book.pdf, .epub) and
 # the handout's (build/handout/book.pdf, .epub). The PDF is headless

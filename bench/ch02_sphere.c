@@ -38,16 +38,29 @@ typedef long double quad; /* already 128-bit on e.g. aarch64 */
 
 typedef sphere_roots_fn roots_fn;
 
-#ifdef YOURS_FORMS
-/* make chart-ch02 WORKBOOK=1 defines YOURS_FORMS as Y(NAME, PRECISION, FN)
- * entries: the reader's forms from the workbook (their functions renamed
- * yours_...), measured and timed in the same rounds as the book's six, as
- * "yours-NAME". */
-#define Y(name, precision, fn) int fn(vec3 center, double radius, ray r, double t[2]);
-YOURS_FORMS
+#if defined(YOURS_GEOMETRIC) || defined(YOURS_QUADRATIC) || defined(YOURS_ROBUST)
+/* make chart-ch02 WORKBOOK=1 defines YOURS_NAME for each form the reader has
+ * started (exercises 2.1-2.3): their functions, renamed yours_... in copies
+ * of the workbook's objects, are measured and timed in the same rounds as
+ * the book's six, as "yours-NAME". */
+#define YOURS_FORMS
+#define Y(name) int yours_sphere_roots_##name(vec3, double, ray, double[2]); \
+                int yours_sphere_roots_##name##_float(vec3, double, ray, double[2]);
+Y(geometric) Y(quadratic) Y(robust)
 #undef Y
-#define Y(name, precision, fn) {"yours-" name, precision, fn},
-static const sphere_roots_method yours[] = {YOURS_FORMS};
+#define Y(name) {"yours-" #name, "double", yours_sphere_roots_##name}, \
+                {"yours-" #name, "float", yours_sphere_roots_##name##_float},
+static const sphere_roots_method yours[] = {
+#ifdef YOURS_GEOMETRIC
+    Y(geometric)
+#endif
+#ifdef YOURS_QUADRATIC
+    Y(quadratic)
+#endif
+#ifdef YOURS_ROBUST
+    Y(robust)
+#endif
+};
 #undef Y
 #define N_FORMS (SPHERE_ROOTS_METHOD_COUNT + (int)(sizeof yours / sizeof yours[0]))
 static sphere_roots_method forms[N_FORMS]; /* the book's six, then yours */

@@ -13,14 +13,16 @@ names = "geometric-double quadratic-double robust-double geometric-float quadrat
 labels = "'geometric (sheet), double' 'textbook quadratic, double' 'robust (used), double' 'geometric (sheet), float' 'textbook quadratic, float' 'robust, float'"
 colors = "#d95f02 #7570b3 #1b9e77 #d95f02 #7570b3 #1b9e77"
 points = "7 5 9 6 4 8"
-# make chart-ch02 WORKBOOK=1 adds the reader's forms: yours_names and
-# yours_labels (as many words), drawn in black.
-if (exists("yours_names")) {
-  names = names." ".yours_names
-  labels = labels." ".yours_labels
-  do for [k=1:words(yours_names)] {
-    colors = colors." #000000"
-    points = points." ".(word("1 2 3 12 13 14", k))
+# make chart-ch02 WORKBOOK=1 passes yours (the started exercises, "2.1 2.3"):
+# the reader's forms, in black.
+form_of(id) = id eq "2.1" ? "geometric" : id eq "2.2" ? "quadratic" : "robust"
+if (exists("yours")) {
+  do for [k=1:words(yours)] {
+    f = form_of(word(yours, k))
+    names = names." yours-".f."-double yours-".f."-float"
+    labels = labels." 'yours (".f.", exercise ".word(yours, k)."), double' 'yours (".f."), float'"
+    colors = colors." #000000 #000000"
+    points = points." ".word("1 2 3", k)." ".word("12 13 14", k)
   }
 }
 n = words(names)
