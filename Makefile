@@ -22,7 +22,7 @@
 #   make workbook     workbook/NN-name.md, the exercises to write (SOLVED=1:
 #                     the book's code); make grade, grade-chNN, hint EX=2.1,
 #                     watch; make chart-ch02 WORKBOOK=1 charts your forms
-#                     (chapters 1 and 2)
+#                     (chapters 1, 2 and 3)
 #   make handout      build/handout/ and its .tar.gz: no solutions in it
 #   make pdf, epub    the book's and the handout's editions
 #   make SAN=1 test   the same with AddressSanitizer and UBSan
@@ -372,6 +372,9 @@ YOURS_SYMS_ch01_srgb := srgb_encode srgb_to_byte gamma_encode
 YOURS_ch02_sphere      := 2.1=YOURS_GEOMETRIC 2.2=YOURS_QUADRATIC 2.3=YOURS_ROBUST
 YOURS_OBJS_ch02_sphere := sphere_roots.o sphere_roots_float.o
 YOURS_SYMS_ch02_sphere := $(foreach f,geometric quadratic robust,sphere_roots_$(f) sphere_roots_$(f)_float)
+YOURS_ch03_specular      := 3.1=YOURS_HIGHLIGHTS
+YOURS_OBJS_ch03_specular := shade.o
+YOURS_SYMS_ch03_specular := phong_cosine blinn_cosine specular_phong specular_blinn
 YOURS_BENCHES := $(patsubst YOURS_OBJS_%,%,$(filter YOURS_OBJS_%,$(.VARIABLES)))
 YOURS_NUMS    := $(sort $(foreach b,$(YOURS_BENCHES),$(patsubst ch%,%,$(firstword $(subst _, ,$(b))))))
 
@@ -390,6 +393,24 @@ chart-ch$(1): $(TANGLE) $$(LIB$(1)) $$(O$(1))/bench/timing.o | deps
 	  $$(O$(1))/bench/timing.o $$(LIB$(1)) $(PNG_LIBS) &&) true
 endef
 $(foreach n,$(YOURS_NUMS),$(eval $(call yours_chart_rule,$(n))))
+
+# make handout: build/handout/ and build/handout.tar.gz, the book for
+# students: every exercise's code replaced by its stub, in the chapters and
+# the woven book, with the workbook, tests, tools, meshes and figures; a
+# student can make grade there. check-handout (in make test) builds it
+# without the book and finds no solution line in it (but does in src/).
+.PHONY: handout check-handout
+handout: deps
+	sh tools/handout.sh build/handout
+	sh tools/check_handout.sh build/handout
+	tar -czf build/handout.tar.gz -C build handout
+	@echo "wrote build/handout/ and build/handout.tar.gz"
+
+check-handout:
+	@sh tools/handout.sh build/handoutcheck --no-book > /dev/null
+	@sh tools/check_handout.sh build/handoutcheck
+	@! sh tools/check_handout.sh src > /dev/null || \
+	  { echo "check-handout: the check finds no solution in src/ either"; exit 1; }
 
 # make pdf, make epub: both editions, the book's (build/book.pdf, .epub) and
 # the handout's (build/handout/book.pdf, .epub). The PDF is headless
