@@ -28,7 +28,8 @@ for spec in $specs; do
     ids="$ids $id"
 done
 if [ -z "$ids" ]; then
-    echo "chart: start one of the exercises ${specs} in the workbook first" >&2
+    echo "chart: start one of the exercises $(echo "$specs" | sed 's/=[^ ]*//g')" \
+         "in the workbook first" >&2
     exit 1
 fi
 
