@@ -83,7 +83,7 @@ suites_upto = $(foreach n,$(filter $(call nums_upto,$(1)),$(NUMS)),$(wildcard te
 # previous NN: the chapter before NN, empty for the first
 previous = $(lastword $(filter-out $(1),$(filter $(call nums_upto,$(1)),$(NUMS))))
 
-.PHONY: all test deps src figures charts book clean check-src check-figures \
+.PHONY: all test deps src figures charts book clean check-src check-figures check-map check-stray \
         check-book check-lines check-quotes test-tangle tools benches \
         book-check check-book-browser check-code-width check-commands
 
@@ -149,7 +149,8 @@ $(B)/test/ch$(1): $$(O$(1))/tests/runner.o $$(patsubst tests/%.c,$$(O$(1))/tests
 	@mkdir -p $$(@D)
 	$$(CC) $$(ALL_CFLAGS) $$(LTO_LINK) -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
 
-test-ch$(1): deps $(B)/test/ch$(1) $(BIN)/ch$(1)
+# a suite may compare the program with the previous chapter's (ties, ch08)
+test-ch$(1): deps $(B)/test/ch$(1) $(BIN)/ch$(1) $(if $(call previous,$(1)),$(BIN)/ch$(call previous,$(1)))
 	@echo "== suites 01..$(1) against the program of chapter $(1)"
 	CHAPTER_BIN=$(BIN)/ch$(1) CK_DEFAULT_TIMEOUT=60 $(B)/test/ch$(1)
 
@@ -600,8 +601,21 @@ check-lines: $(TANGLE) | deps
 check-quotes:
 	@sh tools/check_quotes.sh bench/quotes.txt
 
+# chapters/README.md's map of layers and hooks is that of the last chapter.
+check-map: check-src
+	@sh tools/check_map.sh --self-test
+	@sh tools/check_map.sh chapters/README.md src/ch$(lastword $(NUMS)) $(CHAPTERS)
+
+# No temporary file is tracked (outside a git checkout there is nothing to
+# check).
+check-stray:
+	@if git rev-parse --git-dir >/dev/null 2>&1; then \
+	  stray=$$(git ls-files | grep -E '\.tmp$$|~$$|\.tmp-[^/]*$$'); \
+	  if [ -n "$$stray" ]; then echo "temporary files are tracked: $$stray"; exit 1; fi; \
+	  echo "no temporary file is tracked: ok"; fi
+
 test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures \
-      check-failures check-diagrams check-book \
+      check-failures check-diagrams check-book check-map check-stray \
       check-lines check-quotes check-commands check-workbook check-handout \
       check-epub check-pdf check-book-browser
 	@$(MAKE) --no-print-directory check-code-width

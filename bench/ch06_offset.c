@@ -45,6 +45,7 @@
 #include "rng.h"
 #include "scene_file.h"
 #include "render.h"
+#include "search.h"
 #include "shade.h"
 #include "timing.h"
 

@@ -46,17 +46,10 @@ static const char SCENE[] =
     "sphere center 0.9 -0.6 4 radius 0.4 color 0.9 0.3 0.2 material matte\n"
     "light point position 0 3 2 intensity 1 1 1\n";
 
-static void load(scene *s)
-{
-    bench_load_scene(s, SCENE, sizeof SCENE - 1, "recursion");
-}
-
 /* Renders with the limits; returns the rays per pixel. */
 static double render_with(scene *s, image *img, int depth, double cutoff)
 {
-    s->max_depth = depth, s->cutoff = cutoff;
-    render_stats st = {0};
-    render(s, img, &st);
+    render_stats st = bench_render_with_limits(s, img, depth, cutoff);
     double rays = (double)(st.primary_rays + st.shadow_rays + st.reflection_rays);
     return rays / ((double)img->width * img->height);
 }
@@ -102,7 +95,7 @@ static void row(scene *s, image *img, const image *ref, const char *name, double
 int main(void)
 {
     scene s;
-    load(&s);
+    bench_load_scene(&s, SCENE, sizeof SCENE - 1, "recursion");
     image ref, img;
     if (!image_init(&ref, s.cam.width, s.cam.height) ||
         !image_init(&img, s.cam.width, s.cam.height))

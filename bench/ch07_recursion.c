@@ -55,17 +55,10 @@ static const char SCENE[] =
     "sphere center 0.2 -0.7 3.6 radius 0.3 material water\n"
     "light point position -3 3 2 intensity 0.9 0.85 0.8\n";
 
-static void load(scene *s)
-{
-    bench_load_scene(s, SCENE, sizeof SCENE - 1, "recursion");
-}
-
 /* Renders with the limits; returns the rays per pixel. */
 static double render_with(scene *s, image *img, int depth, double cutoff)
 {
-    s->max_depth = depth, s->cutoff = cutoff;
-    render_stats st = {0};
-    render(s, img, &st);
+    render_stats st = bench_render_with_limits(s, img, depth, cutoff);
     double rays = (double)(st.primary_rays + st.shadow_rays +
                            st.reflection_rays + st.refraction_rays);
     return rays / ((double)img->width * img->height);
@@ -87,7 +80,7 @@ static void row(scene *s, image *img, const image *ref, const char *name,
 int main(void)
 {
     scene s;
-    load(&s);
+    bench_load_scene(&s, SCENE, sizeof SCENE - 1, "recursion");
     image ref, img;
     if (!image_init(&ref, WIDTH, HEIGHT) || !image_init(&img, WIDTH, HEIGHT))
         abort();

@@ -41,6 +41,7 @@
 #include <string.h>
 
 #include "render.h"
+#include "trees.h"
 #include "ch08_rays.h"
 #include "timing.h"
 
@@ -180,7 +181,7 @@ static void add_mesh(scene *s, mesh m, double scale, vec3 at, bool tree)
     if ((o.mesh = scene_add_mesh(s, m)) < 0 || !scene_add_object(s, o))
         exit(1);
     s->tree_params.method = tree ? KDTREE_SAH : KDTREE_NONE;
-    if (!scene_build_trees(s))
+    if (!scene_build_trees(s, NULL))
         exit(1);
 }
 

@@ -74,6 +74,8 @@
 #include "rng.h"
 #include "camera.h"
 #include "scene.h"
+#include "search.h"
+#include "trees.h"
 #include "ch08_rays.h"
 #include "timing.h"
 
@@ -507,7 +509,7 @@ static void objects_point(int n, const ray *rays, int count, double *ns)
     for (int tree = 0; tree < 2; tree++) {
         s[tree].tree_params.min_items = 1;
         s[tree].tree_params.method = tree ? KDTREE_SAH : KDTREE_NONE;
-        if (!scene_build_trees(&s[tree]))
+        if (!scene_build_trees(&s[tree], NULL))
             exit(1);
         sc[tree] = (scene_case){&s[tree], rays, count, 0};
         cases[tree] = (bench_case){tree ? "objects-tree" : "objects-list", param, scene_run,

@@ -23,6 +23,7 @@
 
 #include "render.h"
 #include "scene_file.h"
+#include "search.h"
 #include "shade.h"
 #include "failure_util.h"
 

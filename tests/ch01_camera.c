@@ -7,6 +7,7 @@
 #include <float.h>
 #include <math.h>
 #include <png.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -16,6 +17,7 @@
 
 #include "camera.h"
 #include "image.h"
+#include "render.h"
 #include "scene.h"
 #include "test_util.h"
 
@@ -504,11 +506,50 @@ END_TEST
 
 START_TEST(test_cli_help_succeeds)
 {
-    char errors[256];
+    /* The help goes to standard output, whole, and nothing to stderr. */
+    char errors[256], text[4096] = "";
+    char out[192];
+    snprintf(out, sizeof out, "%s", tmp_path("help.txt"));
     const char *help[] = {"--help", NULL};
-    ck_assert_int_eq(run_bin(help, errors, sizeof errors), 0);
+    ck_assert_int_eq(run_bin_limited(help, errors, sizeof errors,
+                                     (run_limits){.stdout_path = out}),
+                     0);
+    FILE *f = fopen(out, "r");
+    ck_assert_ptr_nonnull(f);
+    size_t n = fread(text, 1, sizeof text - 1, f);
+    fclose(f);
+    text[n] = '\0';
+    ck_assert_msg(strncmp(text, "usage: ", 7) == 0, "stdout: %s", text);
+    const char *options[] = {"-o FILE", "--size WxH", "--stats", "--help"};
+    for (int k = 0; k < 4; k++)
+        ck_assert_msg(strstr(text, options[k]) != NULL, "no %s in: %s",
+                      options[k], text);
+    ck_assert_str_eq(errors, "");
 }
 END_TEST
+
+#ifndef NDEBUG
+/* The checked preconditions: a wrong call stops the program at once
+ * instead of writing beside the image. */
+START_TEST(test_a_pixel_outside_the_image_is_a_checked_mistake)
+{
+    image img;
+    ck_assert(image_init(&img, 4, 3));
+    image_set(&img, 4, 0, (vec3){0, 0, 0}); /* one past the last column */
+}
+END_TEST
+
+START_TEST(test_rendering_into_an_image_of_another_size_is_a_checked_mistake)
+{
+    scene s;
+    scene_init(&s);
+    image img;
+    ck_assert(image_init(&img, s.cam.width / 2, s.cam.height));
+    render_stats stats = {0};
+    render(&s, &img, &stats);
+}
+END_TEST
+#endif
 
 Suite *ch01_camera_suite(void)
 {
@@ -558,6 +599,16 @@ Suite *ch01_camera_suite(void)
     tcase_add_test(cli, test_cli_rejects_bad_arguments);
     tcase_add_test(cli, test_cli_reports_scene_errors_with_location);
     tcase_add_test(cli, test_cli_help_succeeds);
+#ifndef NDEBUG
+    TCase *contracts = tcase_create("contracts");
+    tcase_add_test_raise_signal(contracts,
+                                test_a_pixel_outside_the_image_is_a_checked_mistake,
+                                SIGABRT);
+    tcase_add_test_raise_signal(
+        contracts, test_rendering_into_an_image_of_another_size_is_a_checked_mistake,
+        SIGABRT);
+    suite_add_tcase(s, contracts);
+#endif
     suite_add_tcase(s, cli);
     return s;
 }

@@ -520,6 +520,160 @@ START_TEST(test_long_file_names_are_named_in_full)
 }
 END_TEST
 
+
+/* ------------------------------------------------------------ inputs and outputs */
+
+/* The output named as the scene, through a symbolic link to it, and through
+ * a second hard link: refused, the scene kept, nothing left beside it. */
+START_TEST(test_the_output_may_not_be_an_input)
+{
+    char folder[192], scene_path[256], names[3][256], errors[2048];
+    snprintf(folder, sizeof folder, "%s", tmp_path("in"));
+    ck_assert_int_eq(mkdir(folder, 0755), 0);
+    snprintf(scene_path, sizeof scene_path, "%s/s.scene", folder);
+    const char text[] = "image 8 6\n";
+    FILE *f = fopen(scene_path, "w");
+    ck_assert_ptr_nonnull(f);
+    fputs(text, f);
+    fclose(f);
+    snprintf(names[0], sizeof names[0], "%s/./s.scene", folder);
+    snprintf(names[1], sizeof names[1], "%s/link.png", folder);
+    snprintf(names[2], sizeof names[2], "%s/hard.png", folder);
+    ck_assert_int_eq(symlink("s.scene", names[1]), 0);
+    ck_assert_int_eq(link(scene_path, names[2]), 0);
+    for (int k = 0; k < 3; k++) {
+        const char *args[] = {scene_path, "-o", names[k], NULL};
+        ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+        ck_assert_msg(strstr(errors, "error: the output is an input:"), "%s", errors);
+        char now[64] = "";
+        ck_assert_int_eq(read_bytes(scene_path, now, sizeof now), strlen(text));
+        ck_assert(memcmp(now, text, strlen(text)) == 0);
+        ck_assert_int_eq(count_entries(folder), 3); /* no temporary either */
+    }
+}
+END_TEST
+
+START_TEST(test_a_name_that_fits_has_a_temporary_that_fits)
+{
+    /* NAME_MAX is 255: a 254-byte name is legal, and its temporary, with
+     * 11 bytes of suffix, must be too */
+    char name[256], out[512], errors[1024];
+    memset(name, 'n', 250);
+    strcpy(name + 250, ".png");
+    snprintf(out, sizeof out, "%s/%s", tmpdir, name);
+    const char *args[] = {"-o", out, "--size", "8x6", NULL};
+    int status = run_bin(args, errors, sizeof errors);
+    ck_assert_msg(status == 0, "stderr: %s", errors);
+    ck_assert(is_png(out));
+    ck_assert_int_eq(count_entries(tmpdir), 2); /* the picture and stderr.txt */
+}
+END_TEST
+
+START_TEST(test_command_line_numbers_are_digits_only)
+{
+    /* strtol would skip blanks and take a sign; the options take digits */
+    const char *sizes[] = {" 64x48", "+64x48", "-64x48", "64x 48", "64x+48", "64x48 ", ""};
+    char out[192], errors[1024];
+    snprintf(out, sizeof out, "%s", tmp_path("out.png"));
+    for (int k = 0; k < 7; k++) {
+        const char *args[] = {"--size", sizes[k], "-o", out, NULL};
+        ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+        ck_assert_msg(strstr(errors, "--size expects WIDTHxHEIGHT"), "'%s': %s", sizes[k],
+                      errors);
+    }
+    /* --threads (chapter 8) and, before it, an unknown option alike */
+    const char *counts[] = {" 2", "+2", "2 ", "0x2", ""};
+    for (int k = 0; k < 5; k++) {
+        const char *args[] = {"--threads", counts[k], "-o", out, NULL};
+        ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+        ck_assert_msg(strstr(errors, ": error: ") && strstr(errors, "Try '"), "'%s': %s",
+                      counts[k], errors);
+    }
+    ck_assert(!file_exists(out));
+    const char *good[] = {"--size", "0064x048", "-o", out, NULL};
+    ck_assert_int_eq(run_bin(good, errors, sizeof errors), 0);
+}
+END_TEST
+
+/* Does the file at path contain text? */
+static bool file_contains(const char *path, const char *text)
+{
+    static char buf[1 << 16];
+    size_t n = read_bytes(path, buf, sizeof buf - 1);
+    buf[n] = '\0';
+    return strstr(buf, text) != NULL;
+}
+
+START_TEST(test_a_usage_error_is_two_documented_lines)
+{
+    /* The error, then where help is: GNU's convention, which the README
+     * states (the tests run in the repository's root). */
+    char errors[1024], expected[1024];
+    const char *bin = getenv("CHAPTER_BIN");
+    const char *args[] = {"--sise", "64x48", NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+    snprintf(expected, sizeof expected,
+             "%s: error: unknown option, found '--sise'\nTry '%s --help'.\n", bin, bin);
+    ck_assert_str_eq(errors, expected);
+    ck_assert_msg(file_contains("README.md", "bin/chNN: error: unknown option, found "
+                                             "'--sise'\nTry 'bin/chNN --help'.\n"),
+                  "README.md does not show the two lines");
+}
+END_TEST
+
+
+/* Holds the running binary pid still for ms milliseconds: its clock goes
+ * on, so that the render seems to have taken that much longer. */
+static void pause_bin(pid_t pid, long ms)
+{
+    ck_assert_int_eq(kill(pid, SIGSTOP), 0);
+    struct timespec t = {ms / 1000, (ms % 1000) * 1000000};
+    nanosleep(&t, NULL);
+    ck_assert_int_eq(kill(pid, SIGCONT), 0);
+}
+
+/* How many newlines tmpdir/stderr.txt holds so far. */
+static int stderr_lines(void)
+{
+    char text[4096];
+    size_t n = read_bytes(tmp_path("stderr.txt"), text, sizeof text);
+    int lines = 0;
+    for (size_t k = 0; k < n; k++)
+        lines += text[k] == '\n';
+    return lines;
+}
+
+START_TEST(test_a_long_render_shows_progress_lines_in_a_log)
+{
+    /* stderr is a file here, not a terminal. The render is held still for
+     * 1.2 s as soon as it starts: it has then taken over a second, and a
+     * line must follow. Held again for 1.2 s, it may not write another:
+     * lines come at most every 10 s. */
+    char folder[192], out[192], errors[4096];
+    snprintf(folder, sizeof folder, "%s", tmp_path("log"));
+    ck_assert_int_eq(mkdir(folder, 0755), 0);
+    snprintf(out, sizeof out, "%.160s/out.png", folder); /* tmpdir is 24 bytes */
+    const char *args[] = {"-o", out, "--size", "4096x4096", NULL};
+    pid_t pid = start_bin(args, (run_limits){.alarm_seconds = 120});
+    struct timespec ms = {0, 1000000};
+    int waited = 0;
+    while (!has_entry_starting(folder, "out.png.tmp-") && waited++ < 60000)
+        nanosleep(&ms, NULL); /* the output is opened just before the render */
+    pause_bin(pid, 1200);
+    for (waited = 0; stderr_lines() == 0 && waited < 30000; waited++)
+        nanosleep(&ms, NULL);
+    pause_bin(pid, 1200);
+    struct timespec band = {0, 200000000}; /* many bands, were it per band */
+    nanosleep(&band, NULL);
+    kill(pid, SIGTERM);
+    int status = finish_bin(pid, errors, sizeof errors);
+    ck_assert_msg(status == 0 || status == 128 + SIGTERM, "status %d", status);
+    ck_assert_msg(strchr(errors, '\r') == NULL, "a terminal's redrawn line: %s", errors);
+    ck_assert_msg(stderr_lines() == 1, "%d lines: %s", stderr_lines(), errors);
+    ck_assert_msg(strstr(errors, "rendering: row ") || strstr(errors, "% "), "%s", errors);
+}
+END_TEST
+
 Suite *ch01_robustness_suite(void)
 {
     Suite *s = suite_create("ch01 robustness");
@@ -549,6 +703,7 @@ Suite *ch01_robustness_suite(void)
     tcase_add_test(where, test_a_replaced_file_keeps_its_mode);
     tcase_add_test(where, test_a_read_only_file_is_not_replaced);
     tcase_add_test(where, test_a_signal_leaves_no_temporary_file);
+    tcase_add_test(where, test_a_long_render_shows_progress_lines_in_a_log);
     suite_add_tcase(s, where);
 
     TCase *input = tcase_create("hostile input files");
@@ -559,5 +714,13 @@ Suite *ch01_robustness_suite(void)
     tcase_add_test(input, test_errors_escape_what_a_terminal_would_obey);
     tcase_add_test(input, test_long_file_names_are_named_in_full);
     suite_add_tcase(s, input);
+
+    TCase *io = tcase_create("inputs and outputs");
+    tcase_add_checked_fixture(io, make_tmpdir, remove_tmpdir);
+    tcase_add_test(io, test_the_output_may_not_be_an_input);
+    tcase_add_test(io, test_a_name_that_fits_has_a_temporary_that_fits);
+    tcase_add_test(io, test_command_line_numbers_are_digits_only);
+    tcase_add_test(io, test_a_usage_error_is_two_documented_lines);
+    suite_add_tcase(s, io);
     return s;
 }

@@ -11,6 +11,7 @@
 
 #include "render.h"
 #include "scene.h"
+#include "search.h"
 #include "test_util.h"
 #include "sphere.h"
 #include "../bench/rng.h"
@@ -100,15 +101,25 @@ END_TEST
 
 START_TEST(test_roots_are_ordered)
 {
+    int two_roots[N_FORMS] = {0};
     for (int k = 0; k < 2000; k++) {
         vec3 c = vec3_scale(bench_rng_unit_vector(&rng, 1e-3), uniform(0, 20));
-        ray r = {vec3_scale(bench_rng_unit_vector(&rng, 1e-3), uniform(0, 20)), bench_rng_unit_vector(&rng, 1e-3)};
+        ray r = {vec3_scale(bench_rng_unit_vector(&rng, 1e-3), uniform(0, 20)),
+                 bench_rng_unit_vector(&rng, 1e-3)};
+        double radius = uniform(0.1, 5);
         for (int f = 0; f < N_FORMS; f++) {
             double t[2];
-            if (forms[f].roots(c, uniform(0.1, 5), r, t) == 2)
+            if (forms[f].roots(c, radius, r, t) == 2) {
+                two_roots[f]++;
                 ck_assert_msg(t[0] <= t[1], "%s: %g > %g", forms[f].name, t[0], t[1]);
+            }
         }
     }
+    /* Every form must have been tested: a sphere of radius up to 5 within
+     * 20 of a random ray's origin is crossed by about one ray in ten. */
+    for (int f = 0; f < N_FORMS; f++)
+        ck_assert_msg(two_roots[f] >= 50, "%s: only %d rays with two roots",
+                      forms[f].name, two_roots[f]);
 }
 END_TEST
 
@@ -303,12 +314,12 @@ END_TEST
 
 START_TEST(test_sphere_statement_rejects_bad_radii)
 {
-    expect_parse_error("sphere radius 0", 1, 15, "radius between 1e-50 and 1e50, found '0'");
+    expect_parse_error("sphere radius 0", 1, 15, "radius from 1e-50 to 1e50, found '0'");
     expect_parse_error("sphere radius -1", 1, 15, "found '-1'");
     expect_parse_error("sphere radius nan", 1, 15, "finite");
     expect_parse_error("sphere radius inf", 1, 15, "finite");
-    expect_parse_error("sphere radius 1e-60", 1, 15, "between 1e-50");
-    expect_parse_error("sphere radius 1e60", 1, 15, "between 1e-50");
+    expect_parse_error("sphere radius 1e-60", 1, 15, "from 1e-50 to 1e50");
+    expect_parse_error("sphere radius 1e60", 1, 15, "from 1e-50 to 1e50");
     expect_parse_error("sphere radius", 1, 14, "found end of line");
 }
 END_TEST

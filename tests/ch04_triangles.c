@@ -15,6 +15,7 @@
 #include "obj.h"
 #include "render.h"
 #include "scene.h"
+#include "search.h"
 #include "triangle.h"
 #include "test_util.h"
 
@@ -417,7 +418,7 @@ START_TEST(test_triangle_and_mesh_statements_reject_bad_input)
     expect_scene_error("mesh", 1, 5, "a mesh needs an OBJ file");
     expect_scene_error("mesh file", 1, 10, "expected the name of an OBJ file");
     expect_scene_error("mesh file missing.obj", 1, 11, "cannot read mesh file");
-    expect_scene_error("mesh file x.obj scale 0", 1, 23, "between 1e-100 and 1e100");
+    expect_scene_error("mesh file x.obj scale 0", 1, 23, "from 1e-100 to 1e100");
     expect_scene_error("mesh file x.obj material glass", 1, 26, "material defined above");
     write_file("far.obj", "v 1e49 0 0\nv 0 0 0\nv 0 1 0\nf 1 2 3\n");
     expect_scene_error("mesh file far.obj scale 100", 1, 1, "beyond 1e50");

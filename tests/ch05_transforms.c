@@ -17,6 +17,7 @@
 #include "render.h"
 #include "scene.h"
 #include "scene_file.h"
+#include "search.h"
 #include "test_util.h"
 
 #define U (DBL_EPSILON / 2) /* the unit roundoff of double, 2^-53 */
@@ -665,7 +666,7 @@ START_TEST(test_transform_statements_reject_bad_input)
     expect_parse_error("sphere transform matrix 1 0 0 0 0 inf 0 0 0 0 1 0", 1, 35, "a finite number");
     expect_parse_error("sphere transform matrix 1 0 0 0 0 1 0 0 0 0 1e-300 0", 1, 18, "singular");
     expect_parse_error("sphere transform translate 1e50 0 0 translate 1e50 0 0", 1, 37, "beyond 1e50");
-    expect_parse_error("sphere center 0 0 0 transform scale 1 1 1 radius 0", 1, 50, "radius between");
+    expect_parse_error("sphere center 0 0 0 transform scale 1 1 1 radius 0", 1, 50, "radius from 1e-50");
     expect_parse_error("triangle transform shear", 1, 25, "plane of a shear");
     expect_parse_error("sphere transform rotate z 30 centre 0 0 0", 1, 30, "expected a sphere setting");
     expect_parse_error("sphere colour 1 0 0", 1, 8, "transform");

@@ -9,7 +9,9 @@
 #include <string.h>
 
 #include "render.h"
+#include "sample.h"
 #include "scene.h"
+#include "search.h"
 #include "shade.h"
 #include "test_util.h"
 
@@ -260,6 +262,9 @@ START_TEST(test_placed_objects_have_no_acne)
     for (int k = 0; k < 4; k++)
         ck_assert_msg(self_hits_in(placed_scene, scales[k], 0) == 0, "self-hits at scale %g",
                       scales[k]);
+    /* The control: the same rays from the float-rounded point with a fixed
+     * t > 1e-4 do hit the placed floor, so the count above can see them. */
+    ck_assert_int_gt(self_hits_in(placed_scene, 1e4, 1e-4), 20);
 }
 END_TEST
 

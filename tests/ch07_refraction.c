@@ -15,6 +15,7 @@
 #include "optics.h"
 #include "render.h"
 #include "scene.h"
+#include "search.h"
 #include "trace.h"
 #include "test_util.h"
 #include "../bench/rng.h"
@@ -491,10 +492,10 @@ START_TEST(test_scene_rejects_bad_optical_settings)
     expect_parse_error("material m opacity 1", 1, 12, "ior, transparency, fresnel");
     expect_parse_error("sphere checker 1 1", 1, 19, "checker colour component");
     expect_parse_error("sphere checker 1 -1 1", 1, 18, "from 0 to 1e6");
-    expect_parse_error("sphere tile 0", 1, 13, "tile size between 1e-50 and 1e50");
-    expect_parse_error("sphere tile -1", 1, 13, "tile size between");
+    expect_parse_error("sphere tile 0", 1, 13, "tile size from 1e-50 to 1e50");
+    expect_parse_error("sphere tile -1", 1, 13, "tile size from 1e-50");
     expect_parse_error("sphere tile inf", 1, 13, "finite");
-    expect_parse_error("triangle tile 1e-60", 1, 15, "tile size between");
+    expect_parse_error("triangle tile 1e-60", 1, 15, "tile size from 1e-50");
     expect_parse_error("sphere stripes 1", 1, 8, "checker, tile");
 }
 END_TEST

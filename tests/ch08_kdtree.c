@@ -19,6 +19,9 @@
 #include "mesh.h"
 #include "obj.h"
 #include "scene.h"
+#include "memory.h"
+#include "search.h"
+#include "trees.h"
 #include "test_util.h"
 
 /* ------------------------------------------------------------ helpers */
@@ -75,8 +78,8 @@ static double nearest_t(const mesh *m, ray r, walk_kind walk, int *triangle)
 }
 
 /* How many of the rays get a different nearest hit through the tree of m
- * than by brute force. A different triangle at exactly the same t is a
- * tie, not a difference. */
+ * than by brute force: another t, or another triangle at the same t (the
+ * tie rule gives a tie to the lower index, in every search). */
 static int disagreements(const mesh *m, const ray *rays, int n, walk_kind walk)
 {
     mesh b = brute(m);
@@ -85,7 +88,7 @@ static int disagreements(const mesh *m, const ray *rays, int n, walk_kind walk)
         int tri_tree, tri_brute;
         double t_tree = nearest_t(m, rays[k], walk, &tri_tree);
         double t_brute = nearest_t(&b, rays[k], WALK_ITERATIVE, &tri_brute);
-        if (!(t_tree == t_brute))
+        if (!(t_tree == t_brute) || tri_tree != tri_brute)
             differ++;
     }
     return differ;
@@ -664,7 +667,7 @@ START_TEST(test_the_objects_tree_agrees_with_the_list)
                 o.corners[i] = vec3_add(c, vec3_scale(bench_rng_unit_vector(&rng, 1e-3), 0.5));
         ck_assert(scene_add_object(&with, o));
     }
-    ck_assert(scene_build_trees(&with));
+    ck_assert(scene_build_trees(&with, NULL));
     ck_assert(with.object_tree.node_count > 0);
     expect_tree_agrees_with_list(&with);
 }
@@ -692,9 +695,123 @@ START_TEST(test_the_objects_tree_agrees_with_the_list_for_placed_objects)
     scene_init(&with);
     ck_assert_msg(scene_parse(&with, text, used, "placed.scene", &err), "%d:%d %s", err.line,
                   err.col, err.message);
-    ck_assert(scene_build_trees(&with));
+    ck_assert(scene_build_trees(&with, NULL));
     ck_assert(with.object_tree.node_count > 0);
     expect_tree_agrees_with_list(&with);
+}
+END_TEST
+
+/* A triangle whose coordinates are near 1e9 in its own space, rotated and
+ * moved back by a translation that cancels them, so that it lies near the
+ * world's origin, 1.5 wide; and 30 small spheres far away, so that the
+ * scene has an objects' tree. The sums of M p lose about 1e-7 to
+ * cancellation: the world box must still hold the triangle. */
+static void placed_far_triangle_scene(scene *s, long double corners[3][2])
+{
+    const long double a = 0.8L, b = 0.6L;
+    const double X = 312345678.25, Y = 712345678.5, side = 1.5;
+    const double object[3][2] = {{X, Y}, {X + side, Y}, {X, Y + side}};
+    long double tx = -(a * X + b * Y), ty = -(-b * X + a * Y);
+    for (int k = 0; k < 3; k++) {
+        corners[k][0] = a * object[k][0] + b * object[k][1] + tx;
+        corners[k][1] = -b * object[k][0] + a * object[k][1] + ty;
+    }
+    static char text[8192];
+    size_t used = (size_t)snprintf(text, sizeof text,
+                                   "triangle a %.17g %.17g 0 b %.17g %.17g 0 c %.17g %.17g 0 "
+                                   "transform matrix 0.8 0.6 0 %.17Lg -0.6 0.8 0 %.17Lg 0 0 1 5\n",
+                                   object[0][0], object[0][1], object[1][0], object[1][1],
+                                   object[2][0], object[2][1], tx, ty);
+    for (int k = 0; k < 30; k++)
+        used += (size_t)snprintf(text + used, sizeof text - used,
+                                 "sphere center %d 20 30 radius 0.1\n", k - 15);
+    scene_error err;
+    ck_assert_msg(parse_named(s, text, used, "far.scene", &err), "%d:%d %s", err.line, err.col,
+                  err.message);
+    ck_assert(s->object_tree.node_count > 0);
+}
+
+START_TEST(test_a_ray_grazing_a_placed_object_far_from_its_origin_finds_it_in_the_tree)
+{
+    scene with;
+    long double w[3][2];
+    placed_far_triangle_scene(&with, w);
+    scene without = with;
+    without.object_tree = (kdtree){0};
+    seed(31);
+    int hits = 0;
+    for (int n = 0; n < 30000; n++) {
+        /* a point within 2e-7 of a corner, where the triangle touches its box */
+        const long double *c = w[n % 3];
+        long double x = c[0] + 4e-7L * (uniform01() - 0.5), y = c[1] + 4e-7L * (uniform01() - 0.5);
+        ray r = {{0, 0, 0}, vec3_normalize((vec3){(double)x, (double)y, 5})};
+        hit a, b;
+        render_stats stats = {0};
+        bool in_list = scene_intersect(&without, r, 0, INFINITY, &b, &stats);
+        ck_assert_msg(scene_intersect(&with, r, 0, INFINITY, &a, &stats) == in_list,
+                      "ray %d: the list %s the triangle, the tree does not", n,
+                      in_list ? "hits" : "misses");
+        hits += in_list;
+    }
+    ck_assert_int_gt(hits, 3000); /* the rays graze it: many hit, many miss */
+    ck_assert_int_lt(hits, 27000);
+    scene_free(&with);
+}
+END_TEST
+
+/* ------------------------------------------------------------ shadow rays */
+
+/* An OBJ grid of 2 n^2 triangles over [-1, 1]^2 in the plane z = 0. */
+static void write_grid_obj(const char *name, int n)
+{
+    static char text[1 << 14];
+    size_t used = 0;
+    for (int j = 0; j <= n; j++)
+        for (int i = 0; i <= n; i++)
+            used += (size_t)snprintf(text + used, sizeof text - used, "v %g %g 0\n",
+                                     -1 + 2.0 * i / n, -1 + 2.0 * j / n);
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            int a = j * (n + 1) + i + 1, b = a + 1, c = a + n + 1, d = c + 1;
+            used += (size_t)snprintf(text + used, sizeof text - used, "f %d %d %d\nf %d %d %d\n",
+                                     a, b, d, a, d, c);
+        }
+    write_file(name, text);
+}
+
+/* count instances of the grid, one behind the other along +z from z = 5:
+ * a shadow ray along +z through all of them is blocked by the first it
+ * tests, which is asked for any hit, and no other is taken into its own
+ * space. */
+static void expect_shadow_ray_stops_at_its_first_occluder(int count)
+{
+    write_grid_obj("grid.obj", 4);
+    static char text[64 * 64];
+    size_t used = 0;
+    for (int k = 0; k < count; k++)
+        used += (size_t)snprintf(text + used, sizeof text - used,
+                                 "mesh file grid.obj transform translate 0 0 %d\n", 5 + k);
+    char path[192];
+    snprintf(path, sizeof path, "%s", tmp_path("instances.scene"));
+    scene s;
+    scene_error err;
+    ck_assert_msg(parse_named(&s, text, used, path, &err), "%s", err.message);
+    ck_assert_int_eq(s.object_count, count);
+    ck_assert_int_eq(s.object_tree.node_count > 0, count >= SCENE_TREE_MIN_OBJECTS);
+    render_stats stats = {0};
+    ray r = {{0.1, 0.2, 0}, {0, 0, 1}};
+    ck_assert(scene_occluded(&s, r, 0, 100, &stats));
+    ck_assert_int_eq(stats.object_space_rays, 1);
+    ck_assert_int_eq(stats.mesh_occlusion_tests, 1);
+    if (count < SCENE_TREE_MIN_OBJECTS) /* a list: every other one is skipped */
+        ck_assert_int_eq(stats.shadow_objects_skipped, count - 1);
+    scene_free(&s);
+}
+
+START_TEST(test_a_shadow_ray_through_instances_stops_at_its_first_occluder)
+{
+    expect_shadow_ray_stops_at_its_first_occluder(5);  /* a list of objects */
+    expect_shadow_ray_stops_at_its_first_occluder(40); /* the objects' tree */
 }
 END_TEST
 
@@ -723,6 +840,142 @@ static char *read_all(const char *path, size_t *length)
     fclose(f);
     return data;
 }
+
+/* The program of the chapter before this one: $CHAPTER_BIN with its
+ * chapter number lowered by one (bin/ch08 -> bin/ch07). */
+static const char *previous_bin(void)
+{
+    static char path[256];
+    const char *bin = getenv("CHAPTER_BIN");
+    ck_assert_ptr_nonnull(bin);
+    snprintf(path, sizeof path, "%s", bin);
+    char *number = strrchr(path, 'h'); /* ...chNN */
+    ck_assert(number != NULL && strlen(number) == 3);
+    int n = atoi(number + 1) - 1;
+    snprintf(number + 1, 3, "%02d", n);
+    return path;
+}
+
+#define TIE_W 48
+#define TIE_H 36
+#define TIE_FANS 63 /* cones, each with its apex on a pixel's ray */
+#define TIE_SIDES 16
+
+/* Cones whose apexes lie exactly on pixel rays (4 times the ray's unit
+ * direction: a power of two, so exact), their triangles listed in a
+ * shuffled order. corners[f][k] is triangle k of fan f's three corners. */
+static void tie_fans(vec3 corners[TIE_FANS][TIE_SIDES][3])
+{
+    scene s;
+    scene_init(&s);
+    s.cam.width = TIE_W, s.cam.height = TIE_H;
+    int f = 0;
+    for (int j = 2; j < TIE_H && f < TIE_FANS; j += 5)
+        for (int i = 2; i < TIE_W && f < TIE_FANS; i += 5, f++) {
+            vec3 apex = vec3_scale(camera_ray(&s.cam, i, j).dir, 4);
+            vec3 rim[TIE_SIDES];
+            for (int k = 0; k < TIE_SIDES; k++) {
+                double a = 2 * M_PI * (k + 0.3 * (f % 3)) / TIE_SIDES;
+                rim[k] = vec3_add(apex, (vec3){0.2 * cos(a), 0.2 * sin(a), 0.25});
+            }
+            for (int k = 0; k < TIE_SIDES; k++) {
+                corners[f][k][0] = apex;
+                corners[f][k][1] = rim[k];
+                corners[f][k][2] = rim[(k + 1) % TIE_SIDES];
+            }
+        }
+    ck_assert_int_eq(f, TIE_FANS);
+    scene_free(&s);
+}
+
+/* The order in which the files list the triangles: shuffled. */
+static void tie_order(int order[TIE_FANS * TIE_SIDES])
+{
+    int n = TIE_FANS * TIE_SIDES;
+    for (int k = 0; k < n; k++)
+        order[k] = k;
+    seed(8);
+    for (int k = n - 1; k > 0; k--) {
+        int j = (int)(uniform01() * (k + 1)), swap = order[k];
+        order[k] = order[j], order[j] = swap;
+    }
+}
+
+/* What bin renders of scene_path, with extra arguments (or NULL). */
+static char *render_bytes(const char *bin, const char *scene_path, const char *threads,
+                          size_t *length)
+{
+    char errors[4096];
+    const char *args[] = {scene_path, "-o", tmp_path("tie.png"), threads ? "--threads" : NULL,
+                          threads, NULL};
+    const char *saved = getenv("CHAPTER_BIN");
+    char chapter[256];
+    snprintf(chapter, sizeof chapter, "%s", saved);
+    setenv("CHAPTER_BIN", bin, 1);
+    int status = run_bin(args, errors, sizeof errors);
+    setenv("CHAPTER_BIN", chapter, 1);
+    ck_assert_msg(status == 0, "%s: %s", bin, errors);
+    return read_all(tmp_path("tie.png"), length);
+}
+
+/* Chapter 7's program (brute force) and chapter 8's (the trees, with one
+ * thread or three) draw scene_path byte for byte alike. */
+static void expect_same_bytes(const char *scene_path)
+{
+    size_t n7, n8, n8t;
+    char *seven = render_bytes(previous_bin(), scene_path, NULL, &n7);
+    char *eight = render_bytes(getenv("CHAPTER_BIN"), scene_path, "1", &n8);
+    char *threads = render_bytes(getenv("CHAPTER_BIN"), scene_path, "3", &n8t);
+    ck_assert_msg(n7 == n8 && memcmp(seven, eight, n7) == 0, "%s: ch07 and ch08 differ",
+                  scene_path);
+    ck_assert_msg(n8 == n8t && memcmp(eight, threads, n8) == 0, "%s: 1 and 3 threads differ",
+                  scene_path);
+    free(seven), free(eight), free(threads);
+}
+
+START_TEST(test_chapters_7_and_8_draw_ties_alike)
+{
+    static vec3 c[TIE_FANS][TIE_SIDES][3];
+    static int order[TIE_FANS * TIE_SIDES];
+    static char obj[1 << 18], lone[1 << 19];
+    tie_fans(c);
+    tie_order(order);
+    /* the fans as one mesh, which chapter 8 gives a tree, its vertices
+     * shared; and as lone triangles, objects that chapter 8 puts in the
+     * objects' tree, each of its own colour */
+    size_t vo = 0, lo = (size_t)snprintf(lone, sizeof lone, "image %d %d\n", TIE_W, TIE_H);
+    for (int f = 0; f < TIE_FANS; f++) {
+        const vec3 *p = c[f][0];
+        vo += (size_t)snprintf(obj + vo, sizeof obj - vo, "v %.17g %.17g %.17g\n", p[0].x,
+                               p[0].y, p[0].z);
+        for (int k = 0; k < TIE_SIDES; k++)
+            vo += (size_t)snprintf(obj + vo, sizeof obj - vo, "v %.17g %.17g %.17g\n",
+                                   c[f][k][1].x, c[f][k][1].y, c[f][k][1].z);
+    }
+    for (int n = 0; n < TIE_FANS * TIE_SIDES; n++) {
+        int f = order[n] / TIE_SIDES, k = order[n] % TIE_SIDES;
+        int apex = f * (TIE_SIDES + 1) + 1;
+        vo += (size_t)snprintf(obj + vo, sizeof obj - vo, "f %d %d %d\n", apex, apex + 1 + k,
+                               apex + 1 + (k + 1) % TIE_SIDES);
+        const vec3 *p = c[f][k];
+        lo += (size_t)snprintf(lone + lo, sizeof lone - lo,
+                               "triangle a %.17g %.17g %.17g b %.17g %.17g %.17g "
+                               "c %.17g %.17g %.17g color %.2f %.2f %.2f\n",
+                               p[0].x, p[0].y, p[0].z, p[1].x, p[1].y, p[1].z, p[2].x, p[2].y,
+                               p[2].z, 0.2 + 0.8 * uniform01(), 0.2 + 0.8 * uniform01(),
+                               0.2 + 0.8 * uniform01());
+    }
+    write_file("fans.obj", obj);
+    char mesh_text[128];
+    snprintf(mesh_text, sizeof mesh_text, "image %d %d\nmesh file fans.obj color 0.9 0.7 0.4\n",
+             TIE_W, TIE_H);
+    char mesh_path[192], lone_path[192];
+    snprintf(mesh_path, sizeof mesh_path, "%s", write_file("mesh.scene", mesh_text));
+    snprintf(lone_path, sizeof lone_path, "%s", write_file("lone.scene", lone));
+    expect_same_bytes(mesh_path);
+    expect_same_bytes(lone_path);
+}
+END_TEST
 
 START_TEST(test_thread_count_does_not_change_the_image)
 {
@@ -846,6 +1099,98 @@ START_TEST(test_kdtree_statement_rejects_bad_settings)
 }
 END_TEST
 
+/* Parses text as the scene file budget.scene (its meshes relative to the
+ * current folder) with the geometry budget set to bytes; the total after. */
+static bool parse_within(const char *text, long long bytes, scene_error *err,
+                         long long *total)
+{
+    scene s;
+    scene_init(&s);
+    s.geometry_budget = bytes;
+    bool ok = scene_parse(&s, text, strlen(text), "budget.scene", err);
+    *total = s.geometry_total;
+    scene_free(&s);
+    return ok;
+}
+
+START_TEST(test_the_trees_count_against_the_geometry_budget)
+{
+    scene_error err;
+    long long mesh_only, with_tree, total;
+    const char *teapot = "image 8 6\nmesh file meshes/teapot-8.obj\n";
+    const char *no_tree = "image 8 6\nkdtree build none\n"
+                          "mesh file meshes/teapot-8.obj\n";
+    ck_assert_msg(parse_within(no_tree, SCENE_MAX_GEOMETRY_BYTES, &err, &mesh_only),
+                  "%s", err.message);
+    ck_assert_msg(parse_within(teapot, SCENE_MAX_GEOMETRY_BYTES, &err, &with_tree),
+                  "%s", err.message);
+    ck_assert_msg(with_tree > mesh_only, "the tree took no bytes: %lld", with_tree);
+    /* Room for the mesh and 100 bytes: not for its tree, which the mesh
+     * statement on line 2 asked for. */
+    ck_assert(!parse_within(teapot, mesh_only + 100, &err, &total));
+    expect_error_at(&err, "budget.scene", 2, 1,
+                    "the kd-tree of mesh file 'meshes/teapot-8.obj' would pass "
+                    "the scene's budget of", teapot);
+    ck_assert_int_eq(err.kind, PARSE_OVER_BUDGET);
+    ck_assert_int_le(total, mesh_only + 100);
+    /* The objects' tree belongs to the whole file. */
+    char spheres[2048] = "";
+    for (int k = 0; k < 40; k++)
+        snprintf(spheres + strlen(spheres), sizeof spheres - strlen(spheres),
+                 "sphere center %d 0 9 radius 0.4\n", k - 20);
+    ck_assert_msg(parse_within(spheres, SCENE_MAX_GEOMETRY_BYTES, &err, &total),
+                  "%s", err.message);
+    ck_assert_int_gt(total, 0);
+    ck_assert(!parse_within(spheres, total - 1, &err, &total));
+    expect_error_at(&err, "budget.scene", 0, 0, "the objects' kd-tree would pass",
+                    spheres);
+    ck_assert_int_eq(err.kind, PARSE_OVER_BUDGET);
+}
+END_TEST
+
+START_TEST(test_running_out_of_memory_anywhere_in_a_load_is_reported)
+{
+    /* A cube of 12 triangles (a tree of its own), placed twice, and 30
+     * spheres (a tree over the objects): the load fails at its first,
+     * second, ... allocation in turn, and each failure must be reported as
+     * running out of memory, at a place in the file, and leave nothing
+     * behind (the sanitizer build checks for leaks). */
+    write_file("cube.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                           "v 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n"
+                           "f 1 2 3 4\nf 5 8 7 6\nf 1 5 6 2\n"
+                           "f 2 6 7 3\nf 3 7 8 4\nf 4 8 5 1\n");
+    char text[4096] = "material shiny specular 0.5\n"
+                      "light area position 0 5 5 samples 4\n"
+                      "mesh file cube.obj transform rotate y 30\n"
+                      "mesh file cube.obj smooth transform translate 2 0 9\n";
+    for (int k = 0; k < 30; k++)
+        snprintf(text + strlen(text), sizeof text - strlen(text),
+                 "sphere center %d 0 9 radius 0.4 material shiny\n", k - 15);
+    char path[192];
+    snprintf(path, sizeof path, "%s", write_file("oom.scene", text));
+    int failures = 0;
+    for (long n = 0;; n++) {
+        scene s;
+        scene_error err;
+        scene_init(&s);
+        memory_fail_after(n);
+        bool ok = scene_load(&s, path, &err);
+        memory_fail_after(-1);
+        scene_free(&s);
+        if (ok)
+            break;
+        failures++;
+        ck_assert_msg(err.kind == PARSE_NO_MEMORY,
+                      "allocation %ld: kind %d: %s:%d: %s", n, err.kind,
+                      err.file, err.line, err.message);
+        ck_assert_msg(strstr(err.message, "out of memory") != NULL,
+                      "allocation %ld: %s", n, err.message);
+        ck_assert_msg(n < 100000, "the load never succeeds");
+    }
+    ck_assert_int_gt(failures, 20); /* every array, the trees' nodes, ... */
+}
+END_TEST
+
 Suite *ch08_kdtree_suite(void)
 {
     Suite *s = suite_create("ch08 kdtree");
@@ -860,6 +1205,7 @@ Suite *ch08_kdtree_suite(void)
     tcase_add_test(agree, test_any_hit_agrees_with_the_closest_hit);
     tcase_add_test(agree, test_the_objects_tree_agrees_with_the_list);
     tcase_add_test(agree, test_the_objects_tree_agrees_with_the_list_for_placed_objects);
+    tcase_add_test(agree, test_a_ray_grazing_a_placed_object_far_from_its_origin_finds_it_in_the_tree);
     suite_add_tcase(s, agree);
     TCase *edges = tcase_create("edge cases");
     tcase_set_timeout(edges, 120);
@@ -870,15 +1216,22 @@ Suite *ch08_kdtree_suite(void)
     tcase_add_test(edges, test_degenerate_input_keeps_depth_and_memory_bounded);
     tcase_add_test(edges, test_a_ray_through_a_shared_vertex_tests_every_triangle);
     suite_add_tcase(s, edges);
+    TCase *shadows = tcase_create("shadow rays");
+    tcase_add_checked_fixture(shadows, make_tmpdir, remove_tmpdir);
+    tcase_add_test(shadows, test_a_shadow_ray_through_instances_stops_at_its_first_occluder);
+    suite_add_tcase(s, shadows);
     TCase *bad = tcase_create("bad input and the command line");
     tcase_add_checked_fixture(bad, make_tmpdir, remove_tmpdir);
     tcase_set_timeout(bad, 120);
     tcase_add_test(bad, test_thread_count_does_not_change_the_image);
+    tcase_add_test(bad, test_chapters_7_and_8_draw_ties_alike);
     tcase_add_test(bad, test_statistics_add_up_whatever_the_thread_count);
     tcase_add_test(bad, test_bad_thread_counts_are_usage_errors);
     tcase_add_test(bad, test_stats_hint_an_over_fine_mesh);
     tcase_add_test(bad, test_kdtree_statement_sets_the_parameters);
     tcase_add_test(bad, test_kdtree_statement_rejects_bad_settings);
+    tcase_add_test(bad, test_the_trees_count_against_the_geometry_budget);
+    tcase_add_test(bad, test_running_out_of_memory_anywhere_in_a_load_is_reported);
     suite_add_tcase(s, bad);
     return s;
 }

@@ -1,10 +1,9 @@
-/* scene.c: the scene's defaults, its contents, and the queries over them
- * (chapter 1). */
+/* scene.c: the scene as a container: its defaults, what it owns, and the
+ * arrays that hold its contents (chapter 1). */
 #include "scene.h"
 
 #include <stdlib.h>
 #include <string.h>
-
 
 void scene_init(scene *s)
 {
@@ -21,4 +20,5 @@ void scene_free(scene *s)
 {
     memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
 }
+
 

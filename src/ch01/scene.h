@@ -1,8 +1,9 @@
 /* scene.h: what to render (chapter 1).
  *
  * scene_init fills in the defaults, scene_free releases what the scene
- * owns. Later chapters add objects, materials, lights, and the queries that
- * find what a ray hits. The scene does not read files: scene_file.h does. */
+ * owns. Later chapters add objects, materials, lights, meshes and
+ * transforms. The scene neither reads files (scene_file.h does) nor finds
+ * what a ray hits (search.h does, from chapter 2). */
 #ifndef SCENE_H
 #define SCENE_H
 
@@ -26,6 +27,7 @@ typedef struct {
 
 void scene_init(scene *s);
 void scene_free(scene *s);
+
 
 
 #endif

@@ -30,30 +30,18 @@ static bool parse_camera(parser *p, scene *s)
 }
 
 /* <<image statement>> ch01 */
-static bool read_side(parser *p, const char *what, int *out)
-{
-    long n = 0;
-    if (!parse_int(p, what, &n))
-        return false;
-    if (n < 1 || n > IMAGE_MAX_SIDE)
-        return parse_expected(p, "expected %s from 1 to %d pixels", what,
-                              IMAGE_MAX_SIDE);
-    *out = (int)n;
-    return true;
-}
-
 static bool parse_image(parser *p, scene *s)
 {
-    int w = 0, h = 0; /* set by read_side before any use */
-    if (!read_side(p, "an image width", &w) ||
-        !read_side(p, "an image height", &h))
+    long w = 0, h = 0; /* set by parse_int_in before any use */
+    if (!parse_int_in(p, "an image width", 1, IMAGE_MAX_SIDE, &w) ||
+        !parse_int_in(p, "an image height", 1, IMAGE_MAX_SIDE, &h))
         return false;
-    if ((long)w * h > IMAGE_MAX_PIXELS)
+    if (w * h > IMAGE_MAX_PIXELS)
         return parse_expected(p, "expected at most %ld pixels in all "
-                                 "(%dx%d is %ld)",
-                              IMAGE_MAX_PIXELS, w, h, (long)w * h);
-    s->cam.width = w;
-    s->cam.height = h;
+                                 "(%ldx%ld is %ld)",
+                              IMAGE_MAX_PIXELS, w, h, w * h);
+    s->cam.width = (int)w;
+    s->cam.height = (int)h;
     return true;
 }
 
@@ -99,6 +87,7 @@ static bool parse_statement(parser *p, void *target)
     }
     return parse_expected(p, "expected a statement keyword");
 }
+
 
 bool scene_parse(scene *s, const char *text, size_t length, const char *name,
                  scene_error *err)

@@ -1,11 +1,10 @@
-/* scene.c: the scene's defaults, its contents, and the queries over them
- * (chapter 1). */
+/* scene.c: the scene as a container: its defaults, what it owns, and the
+ * arrays that hold its contents (chapter 1). */
 #include "scene.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-/* <<scene helpers>> ch02 */
+/* <<scene.c includes>> ch02 */
 #include "array.h"
 
 void scene_init(scene *s)
@@ -26,7 +25,7 @@ void scene_free(scene *s)
     memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
 }
 
-/* <<scene contents>> ch02 */
+/* <<scene arrays>> ch02 */
 bool scene_add_object(scene *s, object o)
 {
     object *grown = array_grow(s->objects, s->object_count,
@@ -39,81 +38,3 @@ bool scene_add_object(scene *s, object o)
     return true;
 }
 
-/* <<the search for the nearest hit>> ch02 */
-/* What the search keeps of the nearest hit so far. */
-typedef struct {
-    const object *object; /* NULL: nothing hit yet */
-    double t;             /* its distance: the search's t_max */
-    int primitive;        /* which triangle of a mesh; 0 otherwise */
-    double b[3];          /* where on that triangle: barycentrics */
-} nearest_hit;
-
-typedef struct {
-    ray r;
-    double t_min;
-    nearest_hit best;
-    render_stats *stats;
-} scene_search;
-
-
-/* Narrows q->best when q->r, the ray in o's own space, hits o's shape
- * nearer than q->best.t. */
-static void shape_intersect(const scene *s, const object *o, scene_search *q)
-{
-    (void)s; /* chapter 4's meshes live in the scene */
-    double t;
-    switch (o->kind) {
-    case SHAPE_SPHERE:
-        q->stats->sphere_tests++;
-        if (sphere_hit_t(&o->sphere, q->r, q->t_min, q->best.t, &t))
-            q->best = (nearest_hit){.object = o, .t = t};
-        break;
-    }
-}
-
-static void object_intersect(const scene *s, const object *o, scene_search *q)
-{
-    shape_intersect(s, o, q);
-}
-
-/* Fills the geometry of h for the nearest hit best, found along r. */
-static void shape_fill_hit(const scene *s, const nearest_hit *best, ray r,
-                           hit *h)
-{
-    (void)s;
-    const object *o = best->object;
-    switch (o->kind) {
-    case SHAPE_SPHERE:
-        sphere_fill_hit(&o->sphere, r, best->t, h);
-        break;
-    }
-}
-
-static void object_fill_hit(const scene *s, const nearest_hit *best, ray r,
-                            hit *h)
-{
-    const object *o = best->object;
-    ray local = r; /* the ray in o's own space: the same until chapter 5 */
-    shape_fill_hit(s, best, local, h);
-    h->color = o->color;
-}
-
-/* Tests every object in turn. */
-static void search_objects(const scene *s, scene_search *q)
-{
-    for (int k = 0; k < s->object_count; k++)
-        object_intersect(s, &s->objects[k], q);
-}
-
-bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
-                     hit *h, render_stats *stats)
-{
-    scene_search q = {.r = r, .t_min = t_min, .stats = stats,
-                      .best = {.object = NULL, .t = t_max}};
-    search_objects(s, &q);
-    if (q.best.object == NULL)
-        return false;
-    stats->hits++;
-    object_fill_hit(s, &q.best, r, h);
-    return true;
-}

@@ -20,5 +20,4 @@ bool scene_parse(scene *s, const char *text, size_t length, const char *name,
 /* Reads the scene file at path (at most SCENE_MAX_BYTES) and parses it. */
 bool scene_load(scene *s, const char *path, scene_error *err);
 
-
 #endif

@@ -1,6 +1,8 @@
 /* trace.c: what a ray sees (chapter 1). See trace.h. */
 #include "trace.h"
 
+/* <<trace includes>> ch02 */
+#include "search.h"
 
 
 vec3 background_color(const background *bg, vec3 dir)

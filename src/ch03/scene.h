@@ -1,8 +1,9 @@
 /* scene.h: what to render (chapter 1).
  *
  * scene_init fills in the defaults, scene_free releases what the scene
- * owns. Later chapters add objects, materials, lights, and the queries that
- * find what a ray hits. The scene does not read files: scene_file.h does. */
+ * owns. Later chapters add objects, materials, lights, meshes and
+ * transforms. The scene neither reads files (scene_file.h does) nor finds
+ * what a ray hits (search.h does, from chapter 2). */
 #ifndef SCENE_H
 #define SCENE_H
 
@@ -62,17 +63,13 @@ typedef struct {
 void scene_init(scene *s);
 void scene_free(scene *s);
 
-/* <<scene functions>> ch02 */
+/* <<scene array declarations>> ch02 */
 /* A million: far beyond what a renderer without a tree can draw. */
 #define SCENE_MAX_OBJECTS (1 << 20)
 
 /* Appends o; false when out of memory or SCENE_MAX_OBJECTS is reached. */
 bool scene_add_object(scene *s, object o);
-
-/* The nearest hit along r with t in (t_min, t_max), filled into h. */
-bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
-                     hit *h, render_stats *stats);
-/* <<scene functions>> += ch03 */
+/* <<scene array declarations>> += ch03 */
 
 #define SCENE_MAX_MATERIALS 4096
 #define SCENE_MAX_LIGHTS 4096 /* every light costs every shaded point */
@@ -82,5 +79,6 @@ const material *scene_material(const scene *s, int index);
 /* Append a material or a light; false when out of memory or at the limit. */
 bool scene_add_material(scene *s, material m);
 bool scene_add_light(scene *s, light L);
+
 
 #endif

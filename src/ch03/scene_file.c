@@ -5,24 +5,16 @@
 #include <stdlib.h>
 #include <string.h>
 #include "image.h"
+/* <<scene file includes>> ch03 */
+#include "material_statement.h"
+#include "light_statement.h"
 
-/* <<statement helpers>> ch03 */
-
-/* The index of the material named by the token just read: 0 for "default",
- * k for the scene's k-th material, -1 if there is none of that name. */
-static int find_material(const scene *s, const parser *p)
-{
-    if (parse_token_is(p, "default"))
-        return 0;
-    for (int k = 0; k < s->material_count; k++)
-        if (parse_token_is(p, s->materials[k].name))
-            return k + 1;
-    return -1;
-}
+/* <<readers of settings>> ch03 */
 
 static bool read_material_name(parser *p, const scene *s, int *material)
 {
-    if (!parse_next_token(p) || (*material = find_material(s, p)) < 0)
+    if (!parse_next_token(p) ||
+        (*material = material_statement_find(s, p)) < 0)
         return parse_expected(p, "expected the name of a material defined "
                                  "above");
     return true;
@@ -51,30 +43,18 @@ static bool parse_camera(parser *p, scene *s)
 }
 
 /* <<image statement>> ch01 */
-static bool read_side(parser *p, const char *what, int *out)
-{
-    long n = 0;
-    if (!parse_int(p, what, &n))
-        return false;
-    if (n < 1 || n > IMAGE_MAX_SIDE)
-        return parse_expected(p, "expected %s from 1 to %d pixels", what,
-                              IMAGE_MAX_SIDE);
-    *out = (int)n;
-    return true;
-}
-
 static bool parse_image(parser *p, scene *s)
 {
-    int w = 0, h = 0; /* set by read_side before any use */
-    if (!read_side(p, "an image width", &w) ||
-        !read_side(p, "an image height", &h))
+    long w = 0, h = 0; /* set by parse_int_in before any use */
+    if (!parse_int_in(p, "an image width", 1, IMAGE_MAX_SIDE, &w) ||
+        !parse_int_in(p, "an image height", 1, IMAGE_MAX_SIDE, &h))
         return false;
-    if ((long)w * h > IMAGE_MAX_PIXELS)
+    if (w * h > IMAGE_MAX_PIXELS)
         return parse_expected(p, "expected at most %ld pixels in all "
-                                 "(%dx%d is %ld)",
-                              IMAGE_MAX_PIXELS, w, h, (long)w * h);
-    s->cam.width = w;
-    s->cam.height = h;
+                                 "(%ldx%ld is %ld)",
+                              IMAGE_MAX_PIXELS, w, h, w * h);
+    s->cam.width = (int)w;
+    s->cam.height = (int)h;
     return true;
 }
 
@@ -115,15 +95,6 @@ static bool parse_object_setting(parser *p, scene *s, object *o, bool *known)
     return true;
 }
 
-static bool read_radius(parser *p, double *radius)
-{
-    if (!parse_number(p, "a radius", radius))
-        return false;
-    if (!(*radius >= 1e-50 && *radius <= 1e50))
-        return parse_expected(p, "expected a radius between 1e-50 and 1e50");
-    return true;
-}
-
 static bool parse_sphere(parser *p, scene *s)
 {
     object o = {.kind = SHAPE_SPHERE, .sphere = {{0, 0, 5}, 1},
@@ -133,7 +104,8 @@ static bool parse_sphere(parser *p, scene *s)
         if (parse_token_is(p, "center"))
             ok = parse_point(p, "a centre coordinate", &o.sphere.center);
         else if (parse_token_is(p, "radius"))
-            ok = read_radius(p, &o.sphere.radius);
+            ok = parse_number_in(p, "a radius", 1e-50, 1e50,
+                                 &o.sphere.radius);
         else
             ok = parse_object_setting(p, s, &o, &known);
         if (!known)
@@ -149,173 +121,6 @@ static bool parse_sphere(parser *p, scene *s)
     return true;
 }
 /* <<statements>> += ch03 */
-
-static const char material_setting_names[] =
-    "emission, ambient, diffuse, specular, shininess, highlight"
-    ;
-
-static bool read_highlight_model(parser *p, material *m)
-{
-    bool named = parse_next_token(p);
-    if (named && parse_token_is(p, "phong"))
-        m->highlight = HIGHLIGHT_PHONG;
-    else if (named && parse_token_is(p, "blinn"))
-        m->highlight = HIGHLIGHT_BLINN;
-    else
-        return parse_expected(p, "expected 'phong' or 'blinn'");
-    return true;
-}
-
-static bool read_material_setting(parser *p, material *m)
-{
-    if (parse_token_is(p, "emission"))
-        return parse_color(p, "an emitted intensity", &m->emission);
-    if (parse_token_is(p, "ambient"))
-        return parse_coefficient(p, "an ambient coefficient", &m->ambient);
-    if (parse_token_is(p, "diffuse"))
-        return parse_coefficient(p, "a diffuse coefficient", &m->diffuse);
-    if (parse_token_is(p, "specular"))
-        return parse_coefficient(p, "a specular coefficient", &m->specular);
-    if (parse_token_is(p, "shininess")) {
-        if (!parse_number(p, "a shininess", &m->shininess))
-            return false;
-        return m->shininess >= 1 ||
-               parse_expected(p, "expected a shininess of at least 1");
-    }
-    if (parse_token_is(p, "highlight"))
-        return read_highlight_model(p, m);
-    return parse_expected(p, "expected a material setting (%s)",
-                          material_setting_names);
-}
-
-/* <<the material statement>> ch03 */
-static bool parse_material(parser *p, scene *s)
-{
-    material m = material_default();
-    if (!parse_next_token(p) || p->token_length >= (int)sizeof m.name)
-        return parse_expected(p,
-                              "expected a material name of 1 to %d characters",
-                              (int)sizeof m.name - 1);
-    int existing = find_material(s, p);
-    bool redefining_default = existing == 0 && s->default_material.line == 0;
-    if (existing >= 0 && !redefining_default)
-        return parse_expected(
-            p, "expected a new material name (defined on line %d)",
-            scene_material(s, existing)->line);
-    memcpy(m.name, p->token, (size_t)p->token_length);
-    m.name[p->token_length] = '\0';
-    m.line = p->line_number;
-    while (parse_next_token(p))
-        if (!read_material_setting(p, &m))
-            return false;
-    if (redefining_default)
-        s->default_material = m;
-    else if (!scene_add_material(s, m))
-        return parse_no_room(p, p->line, s->material_count,
-                             SCENE_MAX_MATERIALS, "materials");
-    return true;
-}
-
-/* <<the light statement>> ch03 */
-/* <<reading attenuation>> ch03 */
-static bool read_attenuation(parser *p, double a[3])
-{
-    const char *where[3];
-    int length[3];
-    for (int k = 0; k < 3; k++) {
-        if (!parse_number(p, "an attenuation coefficient", &a[k]))
-            return false;
-        where[k] = p->token, length[k] = p->token_length;
-    }
-    const char *problem = NULL;
-    int bad = 0;
-    if (!(a[0] >= 1e-6 && a[0] <= 1e6))
-        bad = 0,
-        problem =
-            "a1 from 1e-6 to 1e6, so that the light is finite at its position";
-    else if (!(a[1] >= 0 && a[1] <= 1e6))
-        bad = 1,
-        problem = "a2 from 0 to 1e6, so that the denominator stays at least a1";
-    else if (!(a[2] >= 0 && a[2] <= 1e6))
-        bad = 2,
-        problem = "a3 from 0 to 1e6, so that the denominator stays at least a1";
-    if (problem == NULL)
-        return true;
-    p->token = where[bad], p->token_length = length[bad];
-    return parse_expected(p, "expected %s", problem);
-}
-
-static bool read_spot_setting(parser *p, light *L)
-{
-    double value;
-    if (parse_token_is(p, "angle")) {
-        if (!parse_number(p, "a cone angle", &value))
-            return false;
-        if (!(value > 0 && value < 180))
-            return parse_expected(
-                p, "expected a cone angle between 0 and 180 degrees");
-        L->cos_cutoff = cos(value * (M_PI / 180.0));
-        return true;
-    }
-    if (!parse_number(p, "a spot exponent", &L->exponent))
-        return false;
-    return L->exponent >= 0 ||
-           parse_expected(p, "expected a spot exponent of at least 0");
-}
-
-static bool read_light_setting(parser *p, light *L)
-{
-    static const char *const settings[] = {
-        [LIGHT_POINT] = "position, intensity, attenuation",
-        [LIGHT_DIRECTIONAL] = "direction, intensity",
-        [LIGHT_SPOT] = "position, direction, angle, exponent, intensity, "
-                       "attenuation",
-    };
-    bool placed = L->kind != LIGHT_DIRECTIONAL, aimed = L->kind != LIGHT_POINT;
-    if (parse_token_is(p, "intensity"))
-        return parse_color(p, "a light intensity", &L->intensity);
-    if (placed && parse_token_is(p, "position"))
-        return parse_point(p, "a light position", &L->position);
-    if (aimed && parse_token_is(p, "direction"))
-        return parse_direction(p, "a light direction", &L->direction);
-    if (placed && parse_token_is(p, "attenuation"))
-        return read_attenuation(p, L->attenuation);
-    if (L->kind == LIGHT_SPOT &&
-        (parse_token_is(p, "angle") || parse_token_is(p, "exponent")))
-        return read_spot_setting(p, L);
-    return parse_expected(p, "expected a setting of this light (%s)",
-                          settings[L->kind]);
-}
-
-static const char other_light_kinds[] = ""
-    ;
-
-static bool parse_light(parser *p, scene *s)
-{
-    light L = {.position = {0, 0, 0},
-               .direction = {0, -1, 0},
-               .intensity = {1, 1, 1},
-               .attenuation = {1, 0, 0},
-               .cos_cutoff = cos(30 * (M_PI / 180.0)),
-               .exponent = 2};
-    bool named = parse_next_token(p);
-    if (named && parse_token_is(p, "point"))
-        L.kind = LIGHT_POINT;
-    else if (named && parse_token_is(p, "directional"))
-        L.kind = LIGHT_DIRECTIONAL;
-    else if (named && parse_token_is(p, "spot"))
-        L.kind = LIGHT_SPOT;
-    else
-        return parse_expected(p, "expected a kind of light (point, "
-                                 "directional, spot%s)", other_light_kinds);
-    while (parse_next_token(p))
-        if (!read_light_setting(p, &L))
-            return false;
-    if (!scene_add_light(s, L))
-        return parse_no_room(p, p->line, s->light_count, SCENE_MAX_LIGHTS,
-                             "lights");
-    return true;
-}
 
 static bool parse_ambient(parser *p, scene *s)
 {
@@ -356,8 +161,8 @@ static const struct {
     /* <<scene keywords>> += ch03 */
     {"ambient", parse_ambient},
     {"tonemap", parse_tonemap},
-    {"material", parse_material},
-    {"light", parse_light},
+    {"material", material_statement_parse},
+    {"light", light_statement_parse},
 };
 
 static bool parse_statement(parser *p, void *target)
@@ -376,6 +181,7 @@ static bool parse_statement(parser *p, void *target)
     }
     return parse_expected(p, "expected a statement keyword");
 }
+
 
 bool scene_parse(scene *s, const char *text, size_t length, const char *name,
                  scene_error *err)

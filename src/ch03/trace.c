@@ -1,7 +1,9 @@
 /* trace.c: what a ray sees (chapter 1). See trace.h. */
 #include "trace.h"
 
-/* <<trace includes>> ch03 */
+/* <<trace includes>> ch02 */
+#include "search.h"
+/* <<trace includes>> += ch03 */
 #include "shade.h"
 
 

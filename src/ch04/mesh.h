@@ -15,12 +15,14 @@
 #define MESH_MAX_TRIANGLES (1 << 23) /* 8.4 million */
 
 /* Where a mesh was read from and how it was placed: two meshes that agree
- * on all of it are the same mesh. path is NULL for a mesh made in code. */
+ * on all of it but the line are the same mesh. path is NULL for a mesh
+ * made in code. */
 typedef struct {
     char *path; /* owned by the mesh */
     double scale;
     vec3 offset;
     bool smooth;
+    int line; /* of the scene statement that first named it, for errors */
 } mesh_source;
 
 typedef struct {
@@ -49,6 +51,29 @@ bool mesh_source_equal(const mesh_source *a, const mesh_source *b);
 /* Gives every vertex the area-weighted sum of its triangles' normals and
  * makes every triangle use them; false when out of memory. */
 bool mesh_smooth_normals(mesh *m);
+
+/* <<the mesh index declarations>> ch04 */
+/* An index of meshes by their source, so that a file named twice is read
+ * once: a hash table of slots holding 1 + a mesh's position in an array of
+ * meshes, 0 when empty. Zero is an empty index. */
+typedef struct {
+    int *slots;
+    int size; /* a power of two, more than twice the meshes indexed */
+} mesh_index;
+
+/* Room in x for one more than the count meshes it indexes, rebuilt from
+ * meshes when it grows; false when out of memory (x is then unchanged). */
+bool mesh_index_reserve(mesh_index *x, const mesh *meshes, int count);
+
+/* Adds meshes[k], which has room (mesh_index_reserve), to x; a mesh made
+ * in code, with no path, is not indexed. */
+void mesh_index_add(mesh_index *x, const mesh *meshes, int k);
+
+/* The position in meshes of a mesh with that source, or -1. */
+int mesh_index_find(const mesh_index *x, const mesh *meshes,
+                    const mesh_source *source);
+
+void mesh_index_free(mesh_index *x);
 
 /* <<mesh intersection declarations>> ch04 */
 /* The hit record of a hit at th on the triangle (a, b, c): flat shaded. */

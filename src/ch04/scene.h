@@ -1,8 +1,9 @@
 /* scene.h: what to render (chapter 1).
  *
  * scene_init fills in the defaults, scene_free releases what the scene
- * owns. Later chapters add objects, materials, lights, and the queries that
- * find what a ray hits. The scene does not read files: scene_file.h does. */
+ * owns. Later chapters add objects, materials, lights, meshes and
+ * transforms. The scene neither reads files (scene_file.h does) nor finds
+ * what a ray hits (search.h does, from chapter 2). */
 #ifndef SCENE_H
 #define SCENE_H
 
@@ -70,24 +71,19 @@ typedef struct {
     int mesh_count, mesh_capacity;
     long long triangle_budget, geometry_budget; /* for all meshes together */
     long long triangle_total, geometry_total;   /* what the meshes take now */
-    int *mesh_index; /* slots of 1 + a mesh's index by source; 0: empty */
-    int mesh_index_size; /* a power of two, more than twice mesh_count */
+    mesh_index mesh_index; /* the meshes by source */
 } scene;
 
 void scene_init(scene *s);
 void scene_free(scene *s);
 
-/* <<scene functions>> ch02 */
+/* <<scene array declarations>> ch02 */
 /* A million: far beyond what a renderer without a tree can draw. */
 #define SCENE_MAX_OBJECTS (1 << 20)
 
 /* Appends o; false when out of memory or SCENE_MAX_OBJECTS is reached. */
 bool scene_add_object(scene *s, object o);
-
-/* The nearest hit along r with t in (t_min, t_max), filled into h. */
-bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
-                     hit *h, render_stats *stats);
-/* <<scene functions>> += ch03 */
+/* <<scene array declarations>> += ch03 */
 
 #define SCENE_MAX_MATERIALS 4096
 #define SCENE_MAX_LIGHTS 4096 /* every light costs every shaded point */
@@ -97,7 +93,7 @@ const material *scene_material(const scene *s, int index);
 /* Append a material or a light; false when out of memory or at the limit. */
 bool scene_add_material(scene *s, material m);
 bool scene_add_light(scene *s, light L);
-/* <<scene functions>> += ch04 */
+/* <<scene array declarations>> += ch04 */
 
 #define SCENE_MAX_MESHES 65536 /* meshes loaded; objects may share them */
 #define SCENE_MAX_TRIANGLES (1LL << 24)       /* of all meshes together */
@@ -111,5 +107,6 @@ int scene_add_mesh(scene *s, mesh m);
 
 /* The index of a mesh with that source, or -1. */
 int scene_find_mesh(const scene *s, const mesh_source *source);
+
 
 #endif

@@ -5,30 +5,22 @@
 #include <stdlib.h>
 #include <string.h>
 #include "image.h"
+/* <<scene file includes>> ch03 */
+#include "material_statement.h"
+#include "light_statement.h"
+/* <<scene file includes>> += ch04 */
+#include "mesh_load.h"
 
-/* <<statement helpers>> ch03 */
-
-/* The index of the material named by the token just read: 0 for "default",
- * k for the scene's k-th material, -1 if there is none of that name. */
-static int find_material(const scene *s, const parser *p)
-{
-    if (parse_token_is(p, "default"))
-        return 0;
-    for (int k = 0; k < s->material_count; k++)
-        if (parse_token_is(p, s->materials[k].name))
-            return k + 1;
-    return -1;
-}
+/* <<readers of settings>> ch03 */
 
 static bool read_material_name(parser *p, const scene *s, int *material)
 {
-    if (!parse_next_token(p) || (*material = find_material(s, p)) < 0)
+    if (!parse_next_token(p) ||
+        (*material = material_statement_find(s, p)) < 0)
         return parse_expected(p, "expected the name of a material defined "
                                  "above");
     return true;
 }
-/* <<statement helpers>> += ch04 */
-#include "obj.h"
 
 /* <<statements>> ch01 */
 static bool parse_camera(parser *p, scene *s)
@@ -53,30 +45,18 @@ static bool parse_camera(parser *p, scene *s)
 }
 
 /* <<image statement>> ch01 */
-static bool read_side(parser *p, const char *what, int *out)
-{
-    long n = 0;
-    if (!parse_int(p, what, &n))
-        return false;
-    if (n < 1 || n > IMAGE_MAX_SIDE)
-        return parse_expected(p, "expected %s from 1 to %d pixels", what,
-                              IMAGE_MAX_SIDE);
-    *out = (int)n;
-    return true;
-}
-
 static bool parse_image(parser *p, scene *s)
 {
-    int w = 0, h = 0; /* set by read_side before any use */
-    if (!read_side(p, "an image width", &w) ||
-        !read_side(p, "an image height", &h))
+    long w = 0, h = 0; /* set by parse_int_in before any use */
+    if (!parse_int_in(p, "an image width", 1, IMAGE_MAX_SIDE, &w) ||
+        !parse_int_in(p, "an image height", 1, IMAGE_MAX_SIDE, &h))
         return false;
-    if ((long)w * h > IMAGE_MAX_PIXELS)
+    if (w * h > IMAGE_MAX_PIXELS)
         return parse_expected(p, "expected at most %ld pixels in all "
-                                 "(%dx%d is %ld)",
-                              IMAGE_MAX_PIXELS, w, h, (long)w * h);
-    s->cam.width = w;
-    s->cam.height = h;
+                                 "(%ldx%ld is %ld)",
+                              IMAGE_MAX_PIXELS, w, h, w * h);
+    s->cam.width = (int)w;
+    s->cam.height = (int)h;
     return true;
 }
 
@@ -117,15 +97,6 @@ static bool parse_object_setting(parser *p, scene *s, object *o, bool *known)
     return true;
 }
 
-static bool read_radius(parser *p, double *radius)
-{
-    if (!parse_number(p, "a radius", radius))
-        return false;
-    if (!(*radius >= 1e-50 && *radius <= 1e50))
-        return parse_expected(p, "expected a radius between 1e-50 and 1e50");
-    return true;
-}
-
 static bool parse_sphere(parser *p, scene *s)
 {
     object o = {.kind = SHAPE_SPHERE, .sphere = {{0, 0, 5}, 1},
@@ -135,7 +106,8 @@ static bool parse_sphere(parser *p, scene *s)
         if (parse_token_is(p, "center"))
             ok = parse_point(p, "a centre coordinate", &o.sphere.center);
         else if (parse_token_is(p, "radius"))
-            ok = read_radius(p, &o.sphere.radius);
+            ok = parse_number_in(p, "a radius", 1e-50, 1e50,
+                                 &o.sphere.radius);
         else
             ok = parse_object_setting(p, s, &o, &known);
         if (!known)
@@ -151,173 +123,6 @@ static bool parse_sphere(parser *p, scene *s)
     return true;
 }
 /* <<statements>> += ch03 */
-
-static const char material_setting_names[] =
-    "emission, ambient, diffuse, specular, shininess, highlight"
-    ;
-
-static bool read_highlight_model(parser *p, material *m)
-{
-    bool named = parse_next_token(p);
-    if (named && parse_token_is(p, "phong"))
-        m->highlight = HIGHLIGHT_PHONG;
-    else if (named && parse_token_is(p, "blinn"))
-        m->highlight = HIGHLIGHT_BLINN;
-    else
-        return parse_expected(p, "expected 'phong' or 'blinn'");
-    return true;
-}
-
-static bool read_material_setting(parser *p, material *m)
-{
-    if (parse_token_is(p, "emission"))
-        return parse_color(p, "an emitted intensity", &m->emission);
-    if (parse_token_is(p, "ambient"))
-        return parse_coefficient(p, "an ambient coefficient", &m->ambient);
-    if (parse_token_is(p, "diffuse"))
-        return parse_coefficient(p, "a diffuse coefficient", &m->diffuse);
-    if (parse_token_is(p, "specular"))
-        return parse_coefficient(p, "a specular coefficient", &m->specular);
-    if (parse_token_is(p, "shininess")) {
-        if (!parse_number(p, "a shininess", &m->shininess))
-            return false;
-        return m->shininess >= 1 ||
-               parse_expected(p, "expected a shininess of at least 1");
-    }
-    if (parse_token_is(p, "highlight"))
-        return read_highlight_model(p, m);
-    return parse_expected(p, "expected a material setting (%s)",
-                          material_setting_names);
-}
-
-/* <<the material statement>> ch03 */
-static bool parse_material(parser *p, scene *s)
-{
-    material m = material_default();
-    if (!parse_next_token(p) || p->token_length >= (int)sizeof m.name)
-        return parse_expected(p,
-                              "expected a material name of 1 to %d characters",
-                              (int)sizeof m.name - 1);
-    int existing = find_material(s, p);
-    bool redefining_default = existing == 0 && s->default_material.line == 0;
-    if (existing >= 0 && !redefining_default)
-        return parse_expected(
-            p, "expected a new material name (defined on line %d)",
-            scene_material(s, existing)->line);
-    memcpy(m.name, p->token, (size_t)p->token_length);
-    m.name[p->token_length] = '\0';
-    m.line = p->line_number;
-    while (parse_next_token(p))
-        if (!read_material_setting(p, &m))
-            return false;
-    if (redefining_default)
-        s->default_material = m;
-    else if (!scene_add_material(s, m))
-        return parse_no_room(p, p->line, s->material_count,
-                             SCENE_MAX_MATERIALS, "materials");
-    return true;
-}
-
-/* <<the light statement>> ch03 */
-/* <<reading attenuation>> ch03 */
-static bool read_attenuation(parser *p, double a[3])
-{
-    const char *where[3];
-    int length[3];
-    for (int k = 0; k < 3; k++) {
-        if (!parse_number(p, "an attenuation coefficient", &a[k]))
-            return false;
-        where[k] = p->token, length[k] = p->token_length;
-    }
-    const char *problem = NULL;
-    int bad = 0;
-    if (!(a[0] >= 1e-6 && a[0] <= 1e6))
-        bad = 0,
-        problem =
-            "a1 from 1e-6 to 1e6, so that the light is finite at its position";
-    else if (!(a[1] >= 0 && a[1] <= 1e6))
-        bad = 1,
-        problem = "a2 from 0 to 1e6, so that the denominator stays at least a1";
-    else if (!(a[2] >= 0 && a[2] <= 1e6))
-        bad = 2,
-        problem = "a3 from 0 to 1e6, so that the denominator stays at least a1";
-    if (problem == NULL)
-        return true;
-    p->token = where[bad], p->token_length = length[bad];
-    return parse_expected(p, "expected %s", problem);
-}
-
-static bool read_spot_setting(parser *p, light *L)
-{
-    double value;
-    if (parse_token_is(p, "angle")) {
-        if (!parse_number(p, "a cone angle", &value))
-            return false;
-        if (!(value > 0 && value < 180))
-            return parse_expected(
-                p, "expected a cone angle between 0 and 180 degrees");
-        L->cos_cutoff = cos(value * (M_PI / 180.0));
-        return true;
-    }
-    if (!parse_number(p, "a spot exponent", &L->exponent))
-        return false;
-    return L->exponent >= 0 ||
-           parse_expected(p, "expected a spot exponent of at least 0");
-}
-
-static bool read_light_setting(parser *p, light *L)
-{
-    static const char *const settings[] = {
-        [LIGHT_POINT] = "position, intensity, attenuation",
-        [LIGHT_DIRECTIONAL] = "direction, intensity",
-        [LIGHT_SPOT] = "position, direction, angle, exponent, intensity, "
-                       "attenuation",
-    };
-    bool placed = L->kind != LIGHT_DIRECTIONAL, aimed = L->kind != LIGHT_POINT;
-    if (parse_token_is(p, "intensity"))
-        return parse_color(p, "a light intensity", &L->intensity);
-    if (placed && parse_token_is(p, "position"))
-        return parse_point(p, "a light position", &L->position);
-    if (aimed && parse_token_is(p, "direction"))
-        return parse_direction(p, "a light direction", &L->direction);
-    if (placed && parse_token_is(p, "attenuation"))
-        return read_attenuation(p, L->attenuation);
-    if (L->kind == LIGHT_SPOT &&
-        (parse_token_is(p, "angle") || parse_token_is(p, "exponent")))
-        return read_spot_setting(p, L);
-    return parse_expected(p, "expected a setting of this light (%s)",
-                          settings[L->kind]);
-}
-
-static const char other_light_kinds[] = ""
-    ;
-
-static bool parse_light(parser *p, scene *s)
-{
-    light L = {.position = {0, 0, 0},
-               .direction = {0, -1, 0},
-               .intensity = {1, 1, 1},
-               .attenuation = {1, 0, 0},
-               .cos_cutoff = cos(30 * (M_PI / 180.0)),
-               .exponent = 2};
-    bool named = parse_next_token(p);
-    if (named && parse_token_is(p, "point"))
-        L.kind = LIGHT_POINT;
-    else if (named && parse_token_is(p, "directional"))
-        L.kind = LIGHT_DIRECTIONAL;
-    else if (named && parse_token_is(p, "spot"))
-        L.kind = LIGHT_SPOT;
-    else
-        return parse_expected(p, "expected a kind of light (point, "
-                                 "directional, spot%s)", other_light_kinds);
-    while (parse_next_token(p))
-        if (!read_light_setting(p, &L))
-            return false;
-    if (!scene_add_light(s, L))
-        return parse_no_room(p, p->line, s->light_count, SCENE_MAX_LIGHTS,
-                             "lights");
-    return true;
-}
 
 static bool parse_ambient(parser *p, scene *s)
 {
@@ -372,129 +177,7 @@ static bool parse_triangle(parser *p, scene *s)
 }
 
 /* <<the mesh statement>> ch04 */
-/* PATH of the token, relative to the folder of the file being parsed. */
-static bool resolve_path(const parser *p, const char *token, int length,
-                         char *out, size_t size)
-{
-    const char *slash = strrchr(p->name, '/');
-    int folder =
-        token[0] == '/' || slash == NULL ? 0 : (int)(slash - p->name) + 1;
-    return snprintf(out, size, "%.*s%.*s", folder, p->name, length, token) <
-           (int)size;
-}
-
-/* What the scene's budget leaves for one more mesh. */
-static mesh_budget budget_left(const scene *s)
-{
-    long long triangles = s->triangle_budget - s->triangle_total;
-    long long bytes = s->geometry_budget - s->geometry_total;
-    triangles = triangles < MESH_MAX_TRIANGLES ? triangles
-                                               : MESH_MAX_TRIANGLES;
-    return (mesh_budget){triangles > 0 ? (long)triangles : 0,
-                         bytes > 0 ? bytes : 0};
-}
-
-/* Moves an error that is not the OBJ text's fault to the scene line that
- * named the file (at file); false. */
-static bool mesh_file_error(parser *p, const scene *s, const char *file,
-                            const char *path)
-{
-    parse_error *err = p->err;
-    char why[sizeof err->message];
-    snprintf(why, sizeof why, "%s", err->message);
-    int line = err->line;
-    if (err->kind == PARSE_CANNOT_READ)
-        return parse_fail_with(p, err->kind, file,
-                               "cannot read mesh file '%s': %s", path, why);
-    if (err->kind == PARSE_OVER_BUDGET)
-        return parse_fail_with(
-            p, err->kind, file,
-            "mesh file '%s' would pass the scene's budget of %lld triangles "
-            "and %lld bytes of geometry: at its line %d, %s",
-            path, s->triangle_budget, s->geometry_budget, line, why);
-    if (line == 0)
-        return parse_fail_with(p, PARSE_NO_MEMORY, file, "mesh file '%s': %s",
-                               path, why);
-    return parse_fail_with(p, PARSE_NO_MEMORY, file,
-                           "mesh file '%s': %s (at its line %d)", path, why,
-                           line);
-}
-
-static bool load_mesh_file(parser *p, const scene *s, const char *file,
-                           const char *path, mesh *m)
-{
-    if (mesh_load_obj_within(m, path, budget_left(s), p->err))
-        return true;
-    if (p->err->kind == PARSE_BAD_INPUT)
-        return false; /* the OBJ file's own line and column */
-    return mesh_file_error(p, s, file, path);
-}
-
-/* <<placing a mesh>> ch04 */
-static bool read_scale(parser *p, double *scale)
-{
-    if (!parse_number(p, "a scale", scale))
-        return false;
-    return (*scale >= 1e-100 && *scale <= 1e100) ||
-           parse_expected(p, "expected a scale between 1e-100 and 1e100");
-}
-
-static bool smooth_within_budget(parser *p, const scene *s, mesh *m)
-{
-    long long normals = ((long long)m->vertex_count + 1) * sizeof(vec3);
-    long long corners =
-        ((long long)m->triangle_count + 1) * sizeof(mesh_triangle);
-    if (mesh_bytes(m) + normals + corners > budget_left(s).bytes)
-        return parse_fail_with(p, PARSE_OVER_BUDGET, p->line,
-                               "the mesh's smooth normals would pass the "
-                               "scene's budget of %lld bytes of geometry",
-                               s->geometry_budget);
-    return mesh_smooth_normals(m) ||
-           parse_fail_with(p, PARSE_NO_MEMORY, p->line,
-                           "out of memory for the mesh's normals");
-}
-
-static bool place_mesh(parser *p, const scene *s, mesh *m,
-                       const mesh_source *source)
-{
-    for (int k = 0; k < m->vertex_count; k++) {
-        vec3 v = vec3_add(vec3_scale(m->vertices[k], source->scale),
-                          source->offset);
-        double largest = fmax(fabs(v.x), fmax(fabs(v.y), fabs(v.z)));
-        if (!(largest <= PARSE_MAX_COORDINATE))
-            return parse_fail_at(
-                p, p->line,
-                "vertex %d of the mesh lies beyond 1e50 once placed", k + 1);
-        m->vertices[k] = v;
-    }
-    if (source->smooth && m->normal_count == 0 &&
-        !smooth_within_budget(p, s, m))
-        return false;
-    mesh_compute_bounds(m);
-    return true;
-}
-
-/* Reads, places and adds the mesh of source, named by the token at file:
- * its index in the scene, or -1 with the error filled. */
-static int add_mesh_file(parser *p, scene *s, const char *file,
-                         const mesh_source *source)
-{
-    mesh m = {0};
-    int k = -1;
-    if (load_mesh_file(p, s, file, source->path, &m) &&
-        place_mesh(p, s, &m, source)) {
-        m.source = *source;
-        if ((m.source.path = strdup(source->path)) == NULL)
-            parse_fail_with(p, PARSE_NO_MEMORY, p->line, "out of memory");
-        else if ((k = scene_add_mesh(s, m)) < 0)
-            parse_no_room(p, p->line, s->mesh_count, SCENE_MAX_MESHES,
-                          "meshes");
-    }
-    if (k < 0)
-        mesh_free(&m);
-    return k;
-}
-
+/* <<the mesh statement's settings>> ch04 */
 /* The settings of a mesh statement that are not every object's. */
 typedef struct {
     const char *file; /* the token naming the file; NULL: none yet */
@@ -514,7 +197,7 @@ static bool read_mesh_setting(parser *p, mesh_settings *m, bool *known)
         return true;
     }
     if (parse_token_is(p, "scale"))
-        return read_scale(p, &m->scale);
+        return parse_number_in(p, "a scale", 1e-100, 1e100, &m->scale);
     if (parse_token_is(p, "offset"))
         return parse_point(p, "an offset coordinate", &m->offset);
     if (parse_token_is(p, "smooth"))
@@ -543,6 +226,17 @@ static bool read_mesh_settings(parser *p, scene *s, mesh_settings *m,
                              "file");
 }
 
+/* PATH of the token, relative to the folder of the file being parsed. */
+static bool resolve_path(const parser *p, const char *token, int length,
+                         char *out, size_t size)
+{
+    const char *slash = strrchr(p->name, '/');
+    int folder =
+        token[0] == '/' || slash == NULL ? 0 : (int)(slash - p->name) + 1;
+    return snprintf(out, size, "%.*s%.*s", folder, p->name, length, token) <
+           (int)size;
+}
+
 static bool parse_mesh(parser *p, scene *s)
 {
     object o = {.kind = SHAPE_MESH, .color = {0.8, 0.8, 0.8}};
@@ -552,10 +246,12 @@ static bool parse_mesh(parser *p, scene *s)
         return false;
     if (!resolve_path(p, m.file, m.file_length, path, sizeof path))
         return parse_fail_at(p, m.file, "the mesh file's path is too long");
-    mesh_source source = {path, m.scale, m.offset, m.smooth};
+    mesh_source source = {path, m.scale, m.offset, m.smooth, p->line_number};
     o.mesh = scene_find_mesh(s, &source); /* the file, read already? */
-    if (o.mesh < 0 && (o.mesh = add_mesh_file(p, s, m.file, &source)) < 0)
+    if (o.mesh < 0 && (o.mesh = mesh_load_into(p, s, m.file, &source)) < 0)
         return false;
+    if (s->meshes[o.mesh].triangle_count == 0)
+        return true; /* nothing to see: no object, no box to test */
     if (!scene_add_object(s, o))
         return parse_no_room(p, p->line, s->object_count, SCENE_MAX_OBJECTS,
                              "objects");
@@ -577,8 +273,8 @@ static const struct {
     /* <<scene keywords>> += ch03 */
     {"ambient", parse_ambient},
     {"tonemap", parse_tonemap},
-    {"material", parse_material},
-    {"light", parse_light},
+    {"material", material_statement_parse},
+    {"light", light_statement_parse},
     /* <<scene keywords>> += ch04 */
     {"triangle", parse_triangle},
     {"mesh", parse_mesh},
@@ -600,6 +296,7 @@ static bool parse_statement(parser *p, void *target)
     }
     return parse_expected(p, "expected a statement keyword");
 }
+
 
 bool scene_parse(scene *s, const char *text, size_t length, const char *name,
                  scene_error *err)

@@ -54,6 +54,11 @@ bool parse_expected(parser *p, const char *format, ...);
 bool parse_no_room(parser *p, const char *at, int count, int max,
                    const char *plural);
 
+/* An error found once the parse is over, about line `line` of the file
+ * called name (0: the file as a whole), at its first column; false. */
+bool parse_fail_on_line(parse_error *err, const char *name, int line,
+                        parse_error_kind kind, const char *format, ...);
+
 /* Copies name into to[size], ending it in "..." when it does not fit. */
 void parse_copy_name(char *to, size_t size, const char *name);
 
@@ -76,6 +81,15 @@ bool parse_color(parser *p, const char *what, vec3 *out);
  * most 1e6 keeps any sum of products far from overflowing to infinity. */
 #define PARSE_MAX_INTENSITY 1e6
 
+/* The next token as a number from lo to hi, a number from lo up to but
+ * not including hi, or a whole number from lo to hi; else "expected WHAT
+ * from LO to HI". */
+bool parse_number_in(parser *p, const char *what, double lo, double hi,
+                     double *out);
+bool parse_number_below(parser *p, const char *what, double lo, double hi,
+                        double *out);
+bool parse_int_in(parser *p, const char *what, long lo, long hi, long *out);
+
 typedef bool (*line_parser)(parser *p, void *target);
 
 /* Calls parse_line on every line of text[0..length), stopping at the first
@@ -84,8 +98,10 @@ bool parse_lines(const char *text, size_t length, const char *name,
                  parse_error *err, line_parser parse_line, void *target);
 
 /* The whole regular file at path, at most max_bytes, in a malloc'ed *text
- * that is NUL-terminated; false with err filled (line 0) when it cannot be
- * read, is not a regular file, or is too large. */
+ * that is NUL-terminated (only up to its first NUL byte, if it holds one:
+ * it is then no text, and parse_lines says where); false with err filled
+ * (line 0) when it cannot be read, is not a regular file, or is too
+ * large. */
 bool parse_read_file(const char *path, long max_bytes, char **text,
                      size_t *length, parse_error *err);
 /* <<parser declarations>> += ch02 */

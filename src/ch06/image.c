@@ -4,6 +4,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h> /* NAME_MAX */
 #include <png.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -11,6 +12,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "memory.h"
 
 bool image_init(image *img, int width, int height)
 {
@@ -21,7 +23,8 @@ bool image_init(image *img, int width, int height)
         return false;
     if ((long)width * height > IMAGE_MAX_PIXELS)
         return false;
-    img->pixels = calloc((size_t)width * height, sizeof *img->pixels);
+    img->pixels = memory_alloc_zeroed((size_t)width * height,
+                                      sizeof *img->pixels);
     if (img->pixels == NULL)
         return false;
     img->width = width;
@@ -65,7 +68,7 @@ double gamma_encode(double linear, double gamma)
 static unsigned char *encode_rows(const image *img)
 {
     size_t n = (size_t)img->width * img->height;
-    unsigned char *bytes = malloc(3 * n);
+    unsigned char *bytes = memory_alloc(n, 3);
     for (size_t k = 0; bytes != NULL && k < n; k++) {
         bytes[3 * k + 0] = srgb_to_byte(img->pixels[k].x);
         bytes[3 * k + 1] = srgb_to_byte(img->pixels[k].y);
@@ -125,14 +128,27 @@ static bool explain(char *why, size_t why_size, const char *format, ...)
 }
 
 /* <<open the output>> ch01 */
+#define TEMPORARY_SUFFIX ".tmp-XXXXXX" /* mkstemp's X's make it unique */
+
+/* target's name with the suffix, the name cut short so that it stays
+ * within NAME_MAX bytes whenever target's own name does. */
+static void temporary_name(char *out, const char *target)
+{
+    const char *name = strrchr(target, '/');
+    name = name != NULL ? name + 1 : target;
+    size_t keep = strlen(name), room = NAME_MAX - strlen(TEMPORARY_SUFFIX);
+    sprintf(out, "%.*s%.*s" TEMPORARY_SUFFIX, (int)(name - target), target,
+            (int)(keep < room ? keep : room), name);
+}
+
 static bool open_temporary(png_output *o, const char *target, mode_t mode,
                            char *why, size_t why_size)
 {
-    o->target = strdup(target);
-    o->temporary = malloc(strlen(target) + sizeof ".tmp-XXXXXX");
+    o->target = memory_copy_string(target);
+    o->temporary = memory_alloc(strlen(target) + sizeof TEMPORARY_SUFFIX, 1);
     if (o->target == NULL || o->temporary == NULL)
         return explain(why, why_size, "out of memory");
-    sprintf(o->temporary, "%s.tmp-XXXXXX", target);
+    temporary_name(o->temporary, target);
     int fd = mkstemp(o->temporary);
     if (fd < 0) {
         explain(why, why_size, "cannot create %s: %s", o->temporary,

@@ -26,10 +26,11 @@ bool image_init(image *img, int width, int height);
 void image_free(image *img);
 
 /* A NaN or an infinity in a pixel is a bug upstream, never bad input: the
- * parsers keep every number finite and bounded. The check goes away with
- * -DNDEBUG. */
+ * parsers keep every number finite and bounded; so is a pixel outside the
+ * image. The checks go away with -DNDEBUG. */
 static inline void image_set(image *img, int i, int j, vec3 c)
 {
+    assert(i >= 0 && i < img->width && j >= 0 && j < img->height);
     assert(isfinite(c.x) && isfinite(c.y) && isfinite(c.z));
     img->pixels[(size_t)j * img->width + i] = c;
 }

@@ -1,5 +1,8 @@
 /* shade.c: the Phong model, lights and tone mapping (chapter 3). */
 #include "shade.h"
+/* <<shade.c includes>> ch06 */
+#include "search.h"
+#include "sample.h"
 
 /* <<highlights>> ch03 */
 double phong_cosine(vec3 n, vec3 l, vec3 v)
@@ -120,6 +123,7 @@ static vec3 direct_light(const scene *s, const material *m, const hit *h,
             light point = area_light_point(L, k, &g);
             sum = vec3_add(sum, direct_light(s, m, h, n, v, &point, stats));
         }
+        stats->light_samples_cut += L->samples_cut;
         return sum;
     }
     stats->light_tests++;

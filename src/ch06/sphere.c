@@ -1,5 +1,7 @@
 /* sphere.c: the ray-sphere hit used by the renderer (chapter 2). */
 #include "sphere.h"
+/* <<sphere.c includes>> ch06 */
+#include "offset.h"
 
 const sphere_roots_method SPHERE_ROOTS_METHODS[SPHERE_ROOTS_METHOD_COUNT] = {
     {"geometric", "double", sphere_roots_geometric},
@@ -37,4 +39,19 @@ void sphere_fill_hit(const sphere *sp, ray r, double t, hit *h)
                            : vec3_scale(r.dir, -1);
     h->geometric_normal = h->normal;
     h->inside = vec3_dot(r.dir, h->normal) > 0;
+}
+/* <<the sphere's hit-point bound>> ch06 */
+
+void sphere_refine_hit(const sphere *sp, hit *h)
+{
+    vec3 out = vec3_sub(h->point, sp->center);
+    double length = vec3_length(out);
+    if (!(length > 0)) { /* on the centre: no direction to push along */
+        h->error = vec3_scale(vec3_abs(h->point), gamma_bound(8));
+        return;
+    }
+    vec3 q = vec3_scale(out, sp->radius / length); /* 5 roundings */
+    h->point = vec3_add(sp->center, q);            /* and 1 more */
+    h->error = vec3_add(vec3_scale(vec3_abs(q), gamma_bound(5)),
+                        vec3_scale(vec3_abs(h->point), gamma_bound(1)));
 }

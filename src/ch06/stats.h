@@ -22,9 +22,12 @@ typedef struct {
     long long shadow_rays_blocked;  /* of those, the ones that hit something */
     long long shadow_skipped_dark;  /* the light arrives with no intensity */
     long long shadow_skipped_alone; /* nothing in the scene could block it */
+    long long shadow_objects_skipped; /* untested: the ray was blocked already */
     long long reflection_rays;
     long long reflection_skipped_depth;  /* at the depth limit */
     long long reflection_skipped_weight; /* below the contribution cutoff */
+    long long ray_trees_cut; /* trees of rays that ran out of budget */
+    long long light_samples_cut; /* area light samples the budget took away */
 } render_stats;
 
 #endif

@@ -192,7 +192,7 @@ bool mat4_inverse(mat4 a, mat4 *out)
         int pivot = col;
         for (int r = col + 1; r < 4; r++)
             if (fabs(a.m[r][col]) > fabs(a.m[pivot][col]))
-                pivot = r; /* the largest: multipliers stay within 1 */
+                pivot = r; /* the largest: multipliers below it within 1 */
         if (a.m[pivot][col] == 0)
             return false; /* the column is zero from here down: singular */
         swap_rows(&a, col, pivot), swap_rows(&inv, col, pivot);
@@ -234,10 +234,10 @@ bool mat4_is_finite(mat4 a)
 bool mat4_look_at(vec3 eye, vec3 target, vec3 up, mat4 *out)
 {
     vec3 view = vec3_sub(target, eye);
-    double distance = vec3_length(view), up_length = vec3_length(up);
-    if (!(distance > 0 && up_length > 0 && isfinite(distance)))
+    double up_length = vec3_length(up); /* the scene's is a unit vector */
+    if (!vec3_is_direction(view) || !(up_length > 0))
         return false;
-    vec3 z = vec3_scale(view, 1 / distance);
+    vec3 z = vec3_normalize_scaled(view); /* however near the target is */
     vec3 side = vec3_cross(up, z); /* up x forward: right, left-handed */
     double side_length = vec3_length(side);
     if (!(side_length / up_length >= MIN_UP_SINE))

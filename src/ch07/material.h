@@ -3,6 +3,8 @@
 #define MATERIAL_H
 
 #include "vec.h"
+/* <<material includes>> ch07 */
+#include "optics.h"
 
 typedef enum { HIGHLIGHT_PHONG, HIGHLIGHT_BLINN } highlight_model;
 

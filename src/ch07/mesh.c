@@ -3,6 +3,9 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include "memory.h"
+/* <<mesh.c includes>> ch06 */
+#include "offset.h"
 
 /* <<mesh storage>> ch04 */
 void mesh_free(mesh *m)
@@ -44,6 +47,80 @@ void mesh_compute_bounds(mesh *m)
     m->bounds = (box){lo, hi};
 }
 
+/* <<the mesh index>> ch04 */
+/* FNV-1a over n bytes, continuing from h. */
+static unsigned long long fnv1a(unsigned long long h, const void *bytes,
+                                size_t n)
+{
+    const unsigned char *b = bytes;
+    for (size_t k = 0; k < n; k++)
+        h = (h ^ b[k]) * 1099511628211ULL;
+    return h;
+}
+
+/* Where the index starts looking for source. */
+static size_t first_slot(const mesh_source *source, int size)
+{
+    const mesh_source *c = source; /* + 0.0: -0.0 hashes as 0.0, its equal */
+    double numbers[4] = {c->scale + 0.0, c->offset.x + 0.0,
+                         c->offset.y + 0.0, c->offset.z + 0.0};
+    unsigned long long h = fnv1a(14695981039346656037ULL, c->path,
+                                 strlen(c->path));
+    h = fnv1a(h, numbers, sizeof numbers);
+    h = fnv1a(h, &c->smooth, sizeof c->smooth);
+    return (size_t)(h & (unsigned long long)(size - 1));
+}
+
+static size_t next_slot(const mesh_index *x, size_t slot)
+{
+    return (slot + 1) & (size_t)(x->size - 1);
+}
+
+void mesh_index_add(mesh_index *x, const mesh *meshes, int k)
+{
+    if (meshes[k].source.path == NULL)
+        return; /* made in code: no source to find it by */
+    size_t slot = first_slot(&meshes[k].source, x->size);
+    while (x->slots[slot] != 0)
+        slot = next_slot(x, slot);
+    x->slots[slot] = k + 1;
+}
+
+bool mesh_index_reserve(mesh_index *x, const mesh *meshes, int count)
+{
+    if (2 * (count + 1) < x->size)
+        return true;
+    int size = x->size ? 2 * x->size : 64;
+    int *slots = memory_alloc_zeroed((size_t)size, sizeof *slots);
+    if (slots == NULL)
+        return false;
+    free(x->slots);
+    x->slots = slots, x->size = size;
+    for (int k = 0; k < count; k++)
+        mesh_index_add(x, meshes, k);
+    return true;
+}
+
+int mesh_index_find(const mesh_index *x, const mesh *meshes,
+                    const mesh_source *source)
+{
+    if (x->size == 0 || source->path == NULL)
+        return -1;
+    size_t slot = first_slot(source, x->size);
+    for (; x->slots[slot] != 0; slot = next_slot(x, slot)) {
+        int k = x->slots[slot] - 1;
+        if (mesh_source_equal(&meshes[k].source, source))
+            return k;
+    }
+    return -1;
+}
+
+void mesh_index_free(mesh_index *x)
+{
+    free(x->slots);
+    *x = (mesh_index){0};
+}
+
 /* <<smooth normals>> ch04 */
 /* (b - a) x (c - a): the sheet's n, twice the area long. */
 static vec3 face_normal(vec3 a, vec3 b, vec3 c)
@@ -61,8 +138,8 @@ bool mesh_smooth_normals(mesh *m)
 {
     size_t count = (size_t)m->vertex_count + 1,
            faces = (size_t)m->triangle_count;
-    vec3 *normals = calloc(count, sizeof *normals);
-    mesh_triangle *corners = malloc((faces + 1) * sizeof *corners);
+    vec3 *normals = memory_alloc_zeroed(count, sizeof *normals);
+    mesh_triangle *corners = memory_alloc(faces, sizeof *corners);
     if (normals == NULL || corners == NULL) {
         free(normals), free(corners);
         return false;
@@ -161,4 +238,35 @@ bool mesh_intersect(const mesh *m, ray r, double t_min, double t_max, hit *h,
         return false;
     mesh_fill_hit(m, k, r, &th, h);
     return true;
+}
+
+/* <<the triangle's hit-point bound>> ch06 */
+/* How wrong the watertight test's t can be for a ray that starts at p
+ * near the triangle (a, b, c), as a distance from its plane. */
+static double triangle_test_error(vec3 a, vec3 b, vec3 c, vec3 p)
+{
+    vec3 corners[3] = {a, b, c};
+    double M = 0; /* the triangle's reach from p: largest coordinate */
+    for (int k = 0; k < 3; k++) {
+        vec3 r = vec3_abs(vec3_sub(corners[k], p));
+        M = fmax(M, fmax(r.x, fmax(r.y, r.z)));
+    }
+    double twice_area = vec3_length(vec3_cross(vec3_sub(b, a),
+                                               vec3_sub(c, a)));
+    if (!(twice_area > 0))
+        return INFINITY; /* never hit: the test rejects it */
+    return sqrt(3) * (gamma_bound(3) * M +
+                      48 * gamma_bound(4) * M * M * M / twice_area);
+}
+
+
+void triangle_refine_hit(vec3 a, vec3 b, vec3 c, const double w[3], hit *h)
+{
+    vec3 pa = vec3_scale(a, w[0]), pb = vec3_scale(b, w[1]),
+         pc = vec3_scale(c, w[2]);
+    h->point = vec3_add(vec3_add(pa, pb), pc);
+    vec3 sum = vec3_add(vec3_add(vec3_abs(pa), vec3_abs(pb)), vec3_abs(pc));
+    double test = triangle_test_error(a, b, c, h->point);
+    h->error = vec3_add(vec3_scale(sum, gamma_bound(7)),
+                        (vec3){test, test, test});
 }

@@ -15,12 +15,14 @@
 #define MESH_MAX_TRIANGLES (1 << 23) /* 8.4 million */
 
 /* Where a mesh was read from and how it was placed: two meshes that agree
- * on all of it are the same mesh. path is NULL for a mesh made in code. */
+ * on all of it but the line are the same mesh. path is NULL for a mesh
+ * made in code. */
 typedef struct {
     char *path; /* owned by the mesh */
     double scale;
     vec3 offset;
     bool smooth;
+    int line; /* of the scene statement that first named it, for errors */
 } mesh_source;
 
 typedef struct {
@@ -50,6 +52,29 @@ bool mesh_source_equal(const mesh_source *a, const mesh_source *b);
  * makes every triangle use them; false when out of memory. */
 bool mesh_smooth_normals(mesh *m);
 
+/* <<the mesh index declarations>> ch04 */
+/* An index of meshes by their source, so that a file named twice is read
+ * once: a hash table of slots holding 1 + a mesh's position in an array of
+ * meshes, 0 when empty. Zero is an empty index. */
+typedef struct {
+    int *slots;
+    int size; /* a power of two, more than twice the meshes indexed */
+} mesh_index;
+
+/* Room in x for one more than the count meshes it indexes, rebuilt from
+ * meshes when it grows; false when out of memory (x is then unchanged). */
+bool mesh_index_reserve(mesh_index *x, const mesh *meshes, int count);
+
+/* Adds meshes[k], which has room (mesh_index_reserve), to x; a mesh made
+ * in code, with no path, is not indexed. */
+void mesh_index_add(mesh_index *x, const mesh *meshes, int k);
+
+/* The position in meshes of a mesh with that source, or -1. */
+int mesh_index_find(const mesh_index *x, const mesh *meshes,
+                    const mesh_source *source);
+
+void mesh_index_free(mesh_index *x);
+
 /* <<mesh intersection declarations>> ch04 */
 /* The hit record of a hit at th on the triangle (a, b, c): flat shaded. */
 void triangle_fill_hit(vec3 a, vec3 b, vec3 c, ray r, double t, hit *h);
@@ -77,5 +102,11 @@ int mesh_nearest(const mesh *m, const mesh_ray *mr, double t_min,
  * a single ray; *tests counts the triangles tested. */
 bool mesh_intersect(const mesh *m, ray r, double t_min, double t_max, hit *h,
                     long long *tests);
+/* <<mesh intersection declarations>> += ch06 */
+
+/* Rebuilds the point of h, a hit on the triangle (a, b, c) at barycentric
+ * coordinates w, and sets its error bound, widened by the error of the
+ * test that could meet the triangle again. */
+void triangle_refine_hit(vec3 a, vec3 b, vec3 c, const double w[3], hit *h);
 
 #endif

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "memory.h"
 
 static int column_of(const parser *p, const char *at)
 {
@@ -49,6 +50,19 @@ bool parse_fail_with(parser *p, parse_error_kind kind, const char *at,
     va_start(args, format);
     fail(p, kind, at, format, args);
     va_end(args);
+    return false;
+}
+
+bool parse_fail_on_line(parse_error *err, const char *name, int line,
+                        parse_error_kind kind, const char *format, ...)
+{
+    parser p = {.name = name, .line_number = line, .err = err};
+    va_list args;
+    va_start(args, format);
+    fail(&p, kind, p.line, format, args); /* p.line: column 1 */
+    va_end(args);
+    if (line == 0)
+        err->col = 0;
     return false;
 }
 
@@ -107,7 +121,7 @@ static bool token_to_double(const parser *p, double *value, bool *no_memory)
 {
     char small[64];
     size_t n = (size_t)p->token_length;
-    char *text = n < sizeof small ? small : malloc(n + 1);
+    char *text = n < sizeof small ? small : memory_alloc(n + 1, 1);
     if ((*no_memory = text == NULL))
         return false;
     memcpy(text, p->token, n);
@@ -160,6 +174,58 @@ bool parse_color(parser *p, const char *what, vec3 *out)
     *out = (vec3){c[0], c[1], c[2]};
     return true;
 }
+
+/* x as %g writes it, less the exponent's '+' and leading zeros: 1e50. */
+static const char *bound_text(double x, char text[32])
+{
+    snprintf(text, 32, "%g", x);
+    char *e = strchr(text, 'e');
+    if (e != NULL) {
+        char *digits = e + 1 + (e[1] == '-'), *from = digits;
+        while (*from == '+' || *from == '0')
+            from++;
+        memmove(digits, from, strlen(from) + 1);
+    }
+    return text;
+}
+
+static bool number_in(parser *p, const char *what, double lo, double hi,
+                      bool open_hi, double *out)
+{
+    double x;
+    char a[32], b[32];
+    if (!parse_number(p, what, &x))
+        return false;
+    if (!(x >= lo && (open_hi ? x < hi : x <= hi)))
+        return parse_expected(p, "expected %s from %s to %s%s", what,
+                              bound_text(lo, a), bound_text(hi, b),
+                              open_hi ? " (not included)" : "");
+    *out = x;
+    return true;
+}
+
+bool parse_number_in(parser *p, const char *what, double lo, double hi,
+                     double *out)
+{
+    return number_in(p, what, lo, hi, false, out);
+}
+
+bool parse_number_below(parser *p, const char *what, double lo, double hi,
+                        double *out)
+{
+    return number_in(p, what, lo, hi, true, out);
+}
+
+bool parse_int_in(parser *p, const char *what, long lo, long hi, long *out)
+{
+    long n;
+    if (!parse_int(p, what, &n))
+        return false;
+    if (n < lo || n > hi)
+        return parse_expected(p, "expected %s from %ld to %ld", what, lo, hi);
+    *out = n;
+    return true;
+}
 /* <<numbers and colours>> += ch02 */
 
 bool parse_point(parser *p, const char *what, vec3 *out)
@@ -200,10 +266,10 @@ bool parse_direction(parser *p, const char *what, vec3 *out)
         return false;
     while (parse_is_blank(*first))
         first++;
-    if (!(vec3_dot(*out, *out) > 0)) /* also too short to square */
+    if (!vec3_is_direction(*out))
         return parse_fail_at(p, first, "expected %s of non-zero length",
                              what);
-    *out = vec3_normalize(*out);
+    *out = vec3_normalize_scaled(*out); /* however short or long */
     return true;
 }
 
@@ -263,32 +329,41 @@ static bool grow_buffer(char **text, size_t *capacity, size_t max,
     if (*capacity > max)
         return too_large(err, path, (long)max); /* it holds max + 1 bytes */
     size_t wanted = *capacity <= max / 2 ? 2 * *capacity : max + 1;
-    char *grown = realloc(*text, wanted + 1);
+    char *grown = memory_resize(*text, wanted + 1, 1);
     if (grown == NULL)
         return file_error(err, PARSE_NO_MEMORY, path, "out of memory");
     *text = grown, *capacity = wanted;
     return true;
 }
 
-/* Reads fd to its end into *text, starting with room for size bytes. */
+enum { READ_PIECE = 1 << 20 }; /* bytes read, and checked, at a time */
+
+/* Reads fd to its end, or to its first NUL byte, into *text, starting with
+ * room for size bytes. */
 static bool read_all(int fd, size_t size, size_t max, char **text,
                      size_t *length, const char *path, parse_error *err)
 {
     size_t capacity = size < max ? size : max; /* the first read's room */
-    if ((*text = malloc(capacity + 2)) == NULL)
+    if (capacity > READ_PIECE)
+        capacity = READ_PIECE; /* a wrong size costs no more than this */
+    if ((*text = memory_alloc(capacity + 2, 1)) == NULL)
         return file_error(err, PARSE_NO_MEMORY, path, "out of memory");
     capacity++; /* a byte more than the size, to read the end at once */
     for (*length = 0;;) {
         if (*length == capacity && !grow_buffer(text, &capacity, max, path,
                                                 err))
             return false;
-        ssize_t n = read(fd, *text + *length, capacity - *length);
+        size_t room = capacity - *length;
+        char *piece = *text + *length;
+        ssize_t n = read(fd, piece, room < READ_PIECE ? room : READ_PIECE);
         if (n == 0)
             break;
         if (n < 0 && errno != EINTR)
             return file_error(err, PARSE_CANNOT_READ, path, "%s",
                               strerror(errno));
         *length += n > 0 ? (size_t)n : 0;
+        if (n > 0 && memchr(piece, '\0', (size_t)n) != NULL)
+            break; /* not text: the parser reports the NUL where it is */
     }
     (*text)[*length] = '\0'; /* there is room: a byte beyond capacity */
     return true;

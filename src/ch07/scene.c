@@ -1,22 +1,11 @@
-/* scene.c: the scene's defaults, its contents, and the queries over them
- * (chapter 1). */
+/* scene.c: the scene as a container: its defaults, what it owns, and the
+ * arrays that hold its contents (chapter 1). */
 #include "scene.h"
 
 #include <stdlib.h>
 #include <string.h>
-
-/* <<scene helpers>> ch02 */
+/* <<scene.c includes>> ch02 */
 #include "array.h"
-/* <<scene helpers>> += ch07 */
-
-/* True where the checker of tile size s takes its second colour. */
-static bool checker_is_odd(vec3 p, double s)
-{
-    /* cubes centred on multiples of s: floors at y = 0 fall mid-cube */
-    double sum = floor(p.x / s + 0.5) + floor(p.y / s + 0.5) +
-                 floor(p.z / s + 0.5);
-    return fabs(fmod(sum, 2)) == 1;
-}
 
 void scene_init(scene *s)
 {
@@ -56,13 +45,13 @@ void scene_free(scene *s)
     for (int k = 0; k < s->mesh_count; k++)
         mesh_free(&s->meshes[k]);
     free(s->meshes);
-    free(s->mesh_index);
+    mesh_index_free(&s->mesh_index);
     /* <<free scene members>> += ch05 */
     free(s->transforms);
     memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
 }
 
-/* <<scene contents>> ch02 */
+/* <<scene arrays>> ch02 */
 bool scene_add_object(scene *s, object o)
 {
     object *grown = array_grow(s->objects, s->object_count,
@@ -74,286 +63,7 @@ bool scene_add_object(scene *s, object o)
     s->objects[s->object_count++] = o;
     return true;
 }
-
-/* <<the search for the nearest hit>> ch02 */
-/* What the search keeps of the nearest hit so far. */
-typedef struct {
-    const object *object; /* NULL: nothing hit yet */
-    double t;             /* its distance: the search's t_max */
-    int primitive;        /* which triangle of a mesh; 0 otherwise */
-    double b[3];          /* where on that triangle: barycentrics */
-} nearest_hit;
-
-typedef struct {
-    ray r;
-    double t_min;
-    nearest_hit best;
-    render_stats *stats;
-    /* <<search members>> ch04 */
-    mesh_ray prepared; /* valid once is_prepared is set */
-    bool is_prepared;
-    /* <<search members>> += ch06 */
-    bool any_hit; /* a shadow ray's search: the first hit settles it */
-} scene_search;
-
-/* <<search helpers>> ch04 */
-/* The search's ray with its per-ray constants, made on first use. */
-static const mesh_ray *prepared_ray(scene_search *q)
-{
-    if (!q->is_prepared)
-        q->prepared = mesh_ray_of(q->r), q->is_prepared = true;
-    return &q->prepared;
-}
-/* <<search helpers>> += ch05 */
-
-static void shape_intersect(const scene *s, const object *o,
-                            scene_search *q);
-
-/* r in the object's space: o' = M^-1 o, d' = M^-1 d. d' is not
- * normalised, so that o' + t d' = M^-1 (o + t d): the same t. */
-static ray ray_to_object(const transform *t, ray r)
-{
-    return (ray){mat4_mul_point(t->inv, r.origin),
-                 mat4_mul_dir(t->inv, r.dir)};
-}
-
-/* Tests the placed object o with q's ray taken into its space; q's best
- * hit narrows when o is hit nearer. */
-static void search_placed_object(const scene *s, const object *o,
-                                 scene_search *q)
-{
-    scene_search local = *q;
-    local.r = ray_to_object(scene_transform(s, o->transform), q->r);
-    local.is_prepared = false; /* the world ray's shear is not this ray's */
-    q->stats->object_space_rays++;
-    shape_intersect(s, o, &local);
-    q->best = local.best;
-}
-
-/* (M^-1)^T n, normalised: a normal of the object's space in the world. */
-static vec3 normal_to_world(const transform *t, vec3 n)
-{
-    return vec3_normalize(mat4_mul_normal(t->inv, n));
-}
-
-/* h, filled in the object's space, brought into the world for the world
- * ray r: the point at the same t, the normals by the inverse transpose. */
-static void hit_to_world(const transform *t, ray r, hit *h)
-{
-    h->point = ray_at(r, h->t);
-    h->normal = normal_to_world(t, h->normal);
-    h->geometric_normal = normal_to_world(t, h->geometric_normal);
-    h->inside = vec3_dot(r.dir, h->geometric_normal) > 0;
-}
-/* <<search helpers>> += ch06 */
-
-/* The hit point moved back onto the sphere, with its error bound. */
-static void sphere_refine_hit(const sphere *sp, hit *h)
-{
-    vec3 out = vec3_sub(h->point, sp->center);
-    double length = vec3_length(out);
-    if (!(length > 0)) { /* on the centre: no direction to push along */
-        h->error = vec3_scale(vec3_abs(h->point), gamma_bound(8));
-        return;
-    }
-    vec3 q = vec3_scale(out, sp->radius / length); /* 5 roundings */
-    h->point = vec3_add(sp->center, q);            /* and 1 more */
-    h->error = vec3_add(vec3_scale(vec3_abs(q), gamma_bound(5)),
-                        vec3_scale(vec3_abs(h->point), gamma_bound(1)));
-}
-
-/* How wrong the watertight test's t can be for a ray that starts at p
- * near the triangle (a, b, c), as a distance from its plane. */
-static double triangle_test_error(vec3 a, vec3 b, vec3 c, vec3 p)
-{
-    vec3 corners[3] = {a, b, c};
-    double M = 0; /* the triangle's reach from p: largest coordinate */
-    for (int k = 0; k < 3; k++) {
-        vec3 r = vec3_abs(vec3_sub(corners[k], p));
-        M = fmax(M, fmax(r.x, fmax(r.y, r.z)));
-    }
-    double twice_area = vec3_length(vec3_cross(vec3_sub(b, a),
-                                               vec3_sub(c, a)));
-    if (!(twice_area > 0))
-        return INFINITY; /* never hit: the test rejects it */
-    return sqrt(3) * (gamma_bound(3) * M +
-                      48 * gamma_bound(4) * M * M * M / twice_area);
-}
-
-/* The hit point rebuilt from its barycentric coordinates w, with its
- * error bound, widened by the error of the test that could meet the
- * triangle again. */
-static void triangle_refine_hit(vec3 a, vec3 b, vec3 c, const double w[3],
-                                hit *h)
-{
-    vec3 pa = vec3_scale(a, w[0]), pb = vec3_scale(b, w[1]),
-         pc = vec3_scale(c, w[2]);
-    h->point = vec3_add(vec3_add(pa, pb), pc);
-    vec3 sum = vec3_add(vec3_add(vec3_abs(pa), vec3_abs(pb)), vec3_abs(pc));
-    double test = triangle_test_error(a, b, c, h->point);
-    h->error = vec3_add(vec3_scale(sum, gamma_bound(7)),
-                        (vec3){test, test, test});
-}
-
-static void refine_hit_point(const scene *s, const nearest_hit *best, hit *h)
-{
-    const object *o = best->object;
-    switch (o->kind) {
-    case SHAPE_SPHERE:
-        sphere_refine_hit(&o->sphere, h);
-        break;
-    case SHAPE_TRIANGLE: {
-        const vec3 *c = o->corners;
-        triangle_refine_hit(c[0], c[1], c[2], best->b, h);
-        break;
-    }
-    case SHAPE_MESH: {
-        const mesh *m = &s->meshes[o->mesh];
-        const int *v = m->triangles[best->primitive].v;
-        triangle_refine_hit(m->vertices[v[0]], m->vertices[v[1]],
-                            m->vertices[v[2]], best->b, h);
-        break;
-    }
-    }
-}
-
-/* The refined object-space point p, with error e, taken to the world by
- * t: its image M p and the bound of that image. */
-static void place_hit_point(const transform *t, vec3 p, vec3 e, hit *h)
-{
-    const double(*m)[4] = t->m.m;
-    const double pc[3] = {p.x, p.y, p.z}, ec[3] = {e.x, e.y, e.z};
-    double bound[3];
-    for (int i = 0; i < 3; i++) {
-        double carried = 0, product = fabs(m[i][3]);
-        for (int j = 0; j < 3; j++) {
-            carried += fabs(m[i][j]) * ec[j];
-            product += fabs(m[i][j] * pc[j]);
-        }
-        bound[i] = (1 + gamma_bound(3)) * carried + gamma_bound(3) * product;
-    }
-    h->point = mat4_mul_point(t->m, p);
-    h->error = (vec3){bound[0], bound[1], bound[2]};
-}
-
-/* Narrows q->best when q->r, the ray in o's own space, hits o's shape
- * nearer than q->best.t. */
-static void shape_intersect(const scene *s, const object *o, scene_search *q)
-{
-    (void)s; /* chapter 4's meshes live in the scene */
-    double t;
-    switch (o->kind) {
-    case SHAPE_SPHERE:
-        q->stats->sphere_tests++;
-        if (sphere_hit_t(&o->sphere, q->r, q->t_min, q->best.t, &t))
-            q->best = (nearest_hit){.object = o, .t = t};
-        break;
-    /* <<intersect the other shapes>> ch04 */
-    case SHAPE_TRIANGLE: {
-        triangle_hit th;
-        q->stats->triangle_tests++;
-        const vec3 *c = o->corners;
-        if (triangle_hit_prepared(&prepared_ray(q)->shear, c[0], c[1], c[2],
-                                  q->t_min, q->best.t, &th))
-            q->best = (nearest_hit){o, th.t, 0, {th.b[0], th.b[1], th.b[2]}};
-        break;
-    }
-    case SHAPE_MESH: {
-        triangle_hit th = {0}; /* filled whenever k >= 0 */
-        int k = mesh_nearest(&s->meshes[o->mesh], prepared_ray(q), q->t_min,
-                             q->best.t, &th, q->stats);
-        if (k >= 0)
-            q->best = (nearest_hit){o, th.t, k, {th.b[0], th.b[1], th.b[2]}};
-        break;
-    }
-    }
-}
-
-static void object_intersect(const scene *s, const object *o, scene_search *q)
-{
-    /* <<search an object in its own space>> ch05 */
-    if (o->transform != 0) {
-        search_placed_object(s, o, q);
-        return;
-    }
-    /* <<search an object in its own space>> += ch06 */
-    if (q->any_hit && q->best.object != NULL)
-        return; /* an occluder is found: no other object can change that */
-    shape_intersect(s, o, q);
-}
-
-/* Fills the geometry of h for the nearest hit best, found along r. */
-static void shape_fill_hit(const scene *s, const nearest_hit *best, ray r,
-                           hit *h)
-{
-    (void)s;
-    const object *o = best->object;
-    switch (o->kind) {
-    case SHAPE_SPHERE:
-        sphere_fill_hit(&o->sphere, r, best->t, h);
-        break;
-    /* <<fill the hits of the other shapes>> ch04 */
-    case SHAPE_TRIANGLE: {
-        const vec3 *c = o->corners;
-        triangle_fill_hit(c[0], c[1], c[2], r, best->t, h);
-        break;
-    }
-    case SHAPE_MESH: {
-        triangle_hit th = {best->t, {best->b[0], best->b[1], best->b[2]}};
-        mesh_fill_hit(&s->meshes[o->mesh], best->primitive, r, &th, h);
-        break;
-    }
-    }
-}
-
-static void object_fill_hit(const scene *s, const nearest_hit *best, ray r,
-                            hit *h)
-{
-    const object *o = best->object;
-    ray local = r; /* the ray in o's own space: the same until chapter 5 */
-    /* <<take the ray into the object's space>> ch05 */
-    const transform *placed =
-        o->transform != 0 ? scene_transform(s, o->transform) : NULL;
-    if (placed != NULL)
-        local = ray_to_object(placed, r);
-    shape_fill_hit(s, best, local, h);
-    /* <<bound the rounding of the hit point>> ch06 */
-    refine_hit_point(s, best, h);
-    vec3 object_point = h->point, object_error = h->error;
-    /* <<bring the hit back into the world>> ch05 */
-    if (placed != NULL)
-        hit_to_world(placed, r, h);
-    /* <<bring the hit back into the world>> += ch06 */
-    if (placed != NULL)
-        place_hit_point(placed, object_point, object_error, h);
-    h->color = o->color;
-    /* <<fill the object's part of the hit>> ch03 */
-    h->material = o->material;
-    /* <<fill the object's part of the hit>> += ch07 */
-    if (o->checkered && checker_is_odd(h->point, o->tile > 0 ? o->tile : 1))
-        h->color = o->checker;
-}
-
-/* Tests every object in turn. */
-static void search_objects(const scene *s, scene_search *q)
-{
-    for (int k = 0; k < s->object_count; k++)
-        object_intersect(s, &s->objects[k], q);
-}
-
-bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
-                     hit *h, render_stats *stats)
-{
-    scene_search q = {.r = r, .t_min = t_min, .stats = stats,
-                      .best = {.object = NULL, .t = t_max}};
-    search_objects(s, &q);
-    if (q.best.object == NULL)
-        return false;
-    stats->hits++;
-    object_fill_hit(s, &q.best, r, h);
-    return true;
-}
-/* <<scene contents>> += ch03 */
+/* <<scene arrays>> += ch03 */
 
 const material *scene_material(const scene *s, int index)
 {
@@ -382,60 +92,7 @@ bool scene_add_light(scene *s, light L)
     s->lights[s->light_count++] = L;
     return true;
 }
-/* <<scene contents>> += ch04 */
-
-/* FNV-1a over n bytes, continuing from h. */
-static unsigned long long fnv1a(unsigned long long h, const void *bytes,
-                                size_t n)
-{
-    const unsigned char *b = bytes;
-    for (size_t k = 0; k < n; k++)
-        h = (h ^ b[k]) * 1099511628211ULL;
-    return h;
-}
-
-/* Where the index starts looking for source. */
-static size_t first_slot(const mesh_source *source, int size)
-{
-    const mesh_source *c = source; /* + 0.0: -0.0 hashes as 0.0, its equal */
-    double numbers[4] = {c->scale + 0.0, c->offset.x + 0.0,
-                         c->offset.y + 0.0, c->offset.z + 0.0};
-    unsigned long long h = fnv1a(14695981039346656037ULL, c->path,
-                                 strlen(c->path));
-    h = fnv1a(h, numbers, sizeof numbers);
-    h = fnv1a(h, &c->smooth, sizeof c->smooth);
-    return (size_t)(h & (unsigned long long)(size - 1));
-}
-
-static size_t next_slot(const scene *s, size_t slot)
-{
-    return (slot + 1) & (size_t)(s->mesh_index_size - 1);
-}
-
-static void index_mesh(scene *s, int k)
-{
-    size_t slot = first_slot(&s->meshes[k].source, s->mesh_index_size);
-    while (s->mesh_index[slot] != 0)
-        slot = next_slot(s, slot);
-    s->mesh_index[slot] = k + 1;
-}
-
-/* Room in the index for one more mesh; false when out of memory. */
-static bool grow_index(scene *s)
-{
-    if (2 * (s->mesh_count + 1) < s->mesh_index_size)
-        return true;
-    int size = s->mesh_index_size ? 2 * s->mesh_index_size : 64;
-    int *index = calloc((size_t)size, sizeof *index);
-    if (index == NULL)
-        return false;
-    free(s->mesh_index);
-    s->mesh_index = index, s->mesh_index_size = size;
-    for (int k = 0; k < s->mesh_count; k++)
-        if (s->meshes[k].source.path != NULL)
-            index_mesh(s, k);
-    return true;
-}
+/* <<scene arrays>> += ch04 */
 
 int scene_add_mesh(scene *s, mesh m)
 {
@@ -444,11 +101,10 @@ int scene_add_mesh(scene *s, mesh m)
     if (grown == NULL)
         return -1;
     s->meshes = grown;
-    if (!grow_index(s))
+    if (!mesh_index_reserve(&s->mesh_index, s->meshes, s->mesh_count))
         return -1;
     s->meshes[s->mesh_count] = m;
-    if (m.source.path != NULL)
-        index_mesh(s, s->mesh_count);
+    mesh_index_add(&s->mesh_index, s->meshes, s->mesh_count);
     s->triangle_total += m.triangle_count;
     s->geometry_total += mesh_bytes(&m);
     return s->mesh_count++;
@@ -456,17 +112,9 @@ int scene_add_mesh(scene *s, mesh m)
 
 int scene_find_mesh(const scene *s, const mesh_source *source)
 {
-    if (s->mesh_index_size == 0 || source->path == NULL)
-        return -1;
-    size_t slot = first_slot(source, s->mesh_index_size);
-    for (; s->mesh_index[slot] != 0; slot = next_slot(s, slot)) {
-        int k = s->mesh_index[slot] - 1;
-        if (mesh_source_equal(&s->meshes[k].source, source))
-            return k;
-    }
-    return -1;
+    return mesh_index_find(&s->mesh_index, s->meshes, source);
 }
-/* <<scene contents>> += ch05 */
+/* <<scene arrays>> += ch05 */
 
 int scene_add_transform(scene *s, transform t)
 {
@@ -485,6 +133,8 @@ const transform *scene_transform(const scene *s, int k)
     return &s->transforms[k - 1];
 }
 
+/* <<whole-scene questions>> ch05 */
+
 void scene_count_triangles(const scene *s, long long *stored,
                            long long *instanced)
 {
@@ -499,17 +149,7 @@ void scene_count_triangles(const scene *s, long long *stored,
             ++*stored, ++*instanced;
     }
 }
-/* <<scene contents>> += ch06 */
-
-bool scene_occluded(const scene *s, ray r, double t_min, double t_max,
-                    render_stats *stats)
-{
-    scene_search q = {.r = r, .t_min = t_min, .stats = stats,
-                      .best = {.object = NULL, .t = t_max},
-                      .any_hit = true};
-    search_objects(s, &q);
-    return q.best.object != NULL;
-}
+/* <<whole-scene questions>> += ch06 */
 
 bool scene_can_shadow(const scene *s, const hit *h)
 {

@@ -1,8 +1,9 @@
 /* scene.h: what to render (chapter 1).
  *
  * scene_init fills in the defaults, scene_free releases what the scene
- * owns. Later chapters add objects, materials, lights, and the queries that
- * find what a ray hits. The scene does not read files: scene_file.h does. */
+ * owns. Later chapters add objects, materials, lights, meshes and
+ * transforms. The scene neither reads files (scene_file.h does) nor finds
+ * what a ray hits (search.h does, from chapter 2). */
 #ifndef SCENE_H
 #define SCENE_H
 
@@ -19,9 +20,6 @@
 #include "mesh.h"
 /* <<scene includes>> += ch06 */
 #include "offset.h"
-#include "sample.h"
-/* <<scene includes>> += ch07 */
-#include "optics.h"
 
 typedef enum { BACKGROUND_SOLID, BACKGROUND_GRADIENT } background_kind;
 
@@ -81,11 +79,12 @@ typedef struct {
     int mesh_count, mesh_capacity;
     long long triangle_budget, geometry_budget; /* for all meshes together */
     long long triangle_total, geometry_total;   /* what the meshes take now */
-    int *mesh_index; /* slots of 1 + a mesh's index by source; 0: empty */
-    int mesh_index_size; /* a power of two, more than twice mesh_count */
+    mesh_index mesh_index; /* the meshes by source */
     /* <<scene members>> += ch05 */
     transform *transforms;
     int transform_count, transform_capacity;
+    int camera_placed_on; /* the line of the last statement that placed the
+                             camera; 0: none did */
     /* <<scene members>> += ch06 */
     int max_depth; /* reflections deeper than this are not traced */
     double cutoff; /* nor those whose weight would fall below this */
@@ -94,17 +93,13 @@ typedef struct {
 void scene_init(scene *s);
 void scene_free(scene *s);
 
-/* <<scene functions>> ch02 */
+/* <<scene array declarations>> ch02 */
 /* A million: far beyond what a renderer without a tree can draw. */
 #define SCENE_MAX_OBJECTS (1 << 20)
 
 /* Appends o; false when out of memory or SCENE_MAX_OBJECTS is reached. */
 bool scene_add_object(scene *s, object o);
-
-/* The nearest hit along r with t in (t_min, t_max), filled into h. */
-bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
-                     hit *h, render_stats *stats);
-/* <<scene functions>> += ch03 */
+/* <<scene array declarations>> += ch03 */
 
 #define SCENE_MAX_MATERIALS 4096
 #define SCENE_MAX_LIGHTS 4096 /* every light costs every shaded point */
@@ -114,7 +109,7 @@ const material *scene_material(const scene *s, int index);
 /* Append a material or a light; false when out of memory or at the limit. */
 bool scene_add_material(scene *s, material m);
 bool scene_add_light(scene *s, light L);
-/* <<scene functions>> += ch04 */
+/* <<scene array declarations>> += ch04 */
 
 #define SCENE_MAX_MESHES 65536 /* meshes loaded; objects may share them */
 #define SCENE_MAX_TRIANGLES (1LL << 24)       /* of all meshes together */
@@ -128,7 +123,7 @@ int scene_add_mesh(scene *s, mesh m);
 
 /* The index of a mesh with that source, or -1. */
 int scene_find_mesh(const scene *s, const mesh_source *source);
-/* <<scene functions>> += ch05 */
+/* <<scene array declarations>> += ch05 */
 
 #define SCENE_MAX_TRANSFORMS SCENE_MAX_OBJECTS /* at most one per object */
 
@@ -138,15 +133,13 @@ int scene_add_transform(scene *s, transform t);
 /* The transform with index k >= 1. */
 const transform *scene_transform(const scene *s, int k);
 
+/* <<whole-scene question declarations>> ch05 */
+
 /* The triangles the scene stores (in its meshes and lone triangles) and
  * the triangles its objects draw (a mesh counts once per object). */
 void scene_count_triangles(const scene *s, long long *stored,
                            long long *instanced);
-/* <<scene functions>> += ch06 */
-
-/* Is there any hit along r with t in (t_min, t_max)? Stops at the first. */
-bool scene_occluded(const scene *s, ray r, double t_min, double t_max,
-                    render_stats *stats);
+/* <<whole-scene question declarations>> += ch06 */
 
 /* Could anything in s block a shadow ray leaving the hit h towards a light
  * above its surface? False only for a lone sphere hit from outside and a

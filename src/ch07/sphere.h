@@ -46,5 +46,10 @@ bool sphere_hit_t(const sphere *sp, ray r, double t_min, double t_max,
 
 /* Fills the geometry of h for the hit at t: t, point, normals, side. */
 void sphere_fill_hit(const sphere *sp, ray r, double t, hit *h);
+/* <<declaring the sphere's hit-point bound>> ch06 */
+
+/* Moves the point of h, a hit on sp, back onto the sphere and sets its
+ * error bound. */
+void sphere_refine_hit(const sphere *sp, hit *h);
 
 #endif

@@ -44,3 +44,43 @@ ray camera_ray(const camera *cam, int i, int j)
     camera_view view = camera_view_of(cam);
     return camera_view_ray(&view, i, j);
 }
+/* <<projection>> ch08 */
+
+/* A world point in the camera's frame: the placed camera's rotation R and
+ * eye e give R^T (p - e); an unplaced camera's frame is the world's. */
+static vec3 point_to_camera(const camera_view *v, vec3 p)
+{
+    if (!v->is_placed)
+        return p;
+    const double(*m)[4] = v->to_world.m;
+    vec3 d = {p.x - m[0][3], p.y - m[1][3], p.z - m[2][3]};
+    return (vec3){m[0][0] * d.x + m[1][0] * d.y + m[2][0] * d.z,
+                  m[0][1] * d.x + m[1][1] * d.y + m[2][1] * d.z,
+                  m[0][2] * d.x + m[1][2] * d.y + m[2][2] * d.z};
+}
+
+/* Where p, in front of the eye, falls on the image: pixel coordinates. */
+static void pixel_of(const camera_view *v, vec3 p, double *u, double *w)
+{
+    *u = (p.x / p.z - v->left) / v->pixel_size;
+    *w = (v->top - p.y / p.z) / v->pixel_size;
+}
+
+double camera_box_pixels(const camera *cam, vec3 lo, vec3 hi)
+{
+    camera_view view = camera_view_of(cam);
+    double u0 = INFINITY, u1 = -INFINITY, w0 = INFINITY, w1 = -INFINITY;
+    for (int k = 0; k < 8; k++) {
+        vec3 p = point_to_camera(&view, (vec3){k & 1 ? hi.x : lo.x,
+                                                k & 2 ? hi.y : lo.y,
+                                                k & 4 ? hi.z : lo.z});
+        double u, w;
+        if (!(p.z > 0))
+            return 0;
+        pixel_of(&view, p, &u, &w);
+        u0 = fmin(u0, u), u1 = fmax(u1, u), w0 = fmin(w0, w), w1 = fmax(w1, w);
+    }
+    u0 = fmax(u0, 0), u1 = fmin(u1, cam->width);
+    w0 = fmax(w0, 0), w1 = fmin(w1, cam->height);
+    return u1 > u0 && w1 > w0 ? (u1 - u0) * (w1 - w0) : 0;
+}

@@ -42,5 +42,11 @@ ray camera_view_ray(const camera_view *view, int i, int j);
 
 /* The same for a single ray: makes the view, then the ray. */
 ray camera_ray(const camera *cam, int i, int j);
+/* <<projection declarations>> ch08 */
+
+/* How many pixels of the image the box [lo, hi] covers at most: the
+ * rectangle around its corners' images, cut to the image; 0 when a corner
+ * is at or behind the eye (no estimate then). */
+double camera_box_pixels(const camera *cam, vec3 lo, vec3 hi);
 
 #endif

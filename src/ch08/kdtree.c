@@ -4,6 +4,8 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include "array.h"
+#include "memory.h"
 
 /* <<kd-tree storage>> ch08 */
 kdtree_params kdtree_default_params(void)
@@ -21,16 +23,24 @@ void kdtree_free(kdtree *t)
     *t = (kdtree){0};
 }
 
+/* A node's 30 upper bits index its child above, or count its items. */
+#define KDTREE_MAX_NODES (1 << 30)
+
+long long kdtree_bytes(const kdtree *t)
+{
+    return (long long)t->node_capacity * sizeof *t->nodes +
+           (long long)t->item_capacity * sizeof *t->items;
+}
+
 /* Appends n; its index, or -1 when out of memory. */
 static int add_node(kdtree *t, kdtree_node n)
 {
-    if (t->node_count == t->node_capacity) {
-        int wanted = t->node_capacity ? 2 * t->node_capacity : 256;
-        kdtree_node *grown = realloc(t->nodes, (size_t)wanted * sizeof n);
-        if (grown == NULL)
-            return -1;
-        t->nodes = grown, t->node_capacity = wanted;
-    }
+    kdtree_node *grown = array_grow(t->nodes, t->node_count,
+                                    &t->node_capacity, KDTREE_MAX_NODES,
+                                    sizeof n);
+    if (grown == NULL)
+        return -1;
+    t->nodes = grown;
     t->nodes[t->node_count] = n;
     return t->node_count++;
 }
@@ -38,49 +48,21 @@ static int add_node(kdtree *t, kdtree_node n)
 /* Appends a leaf of the count items; false when out of memory. */
 static bool add_leaf(kdtree *t, const int *items, int count, int depth)
 {
-    if (t->item_count + count > t->item_capacity) {
-        int wanted = t->item_capacity ? 2 * t->item_capacity : 1024;
-        while (wanted < t->item_count + count)
-            wanted *= 2;
-        int *grown = realloc(t->items, (size_t)wanted * sizeof *grown);
+    if (count > 0) { /* an empty leaf may come before any storage */
+        int *grown = array_reserve(t->items, t->item_count + count,
+                                   &t->item_capacity, KDTREE_MAX_NODES,
+                                   sizeof *grown);
         if (grown == NULL)
             return false;
-        t->items = grown, t->item_capacity = wanted;
+        t->items = grown;
+        memcpy(t->items + t->item_count, items, (size_t)count * sizeof *items);
     }
     kdtree_node leaf = {.first = (uint32_t)t->item_count,
                         .bits = (uint32_t)count << 2 | 3};
-    if (count > 0) /* an empty leaf may come before any storage */
-        memcpy(t->items + t->item_count, items, (size_t)count * sizeof *items);
     t->item_count += count;
     t->leaf_count++;
     t->depth = depth > t->depth ? depth : t->depth;
     return add_node(t, leaf) >= 0;
-}
-
-/* <<cells>> ch08 */
-static double box_area(const box *b)
-{
-    vec3 e = vec3_sub(b->hi, b->lo);
-    return 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
-}
-
-static bool is_box(const box *b)
-{
-    return b->lo.x <= b->hi.x && b->lo.y <= b->hi.y && b->lo.z <= b->hi.z;
-}
-
-/* a cut to the box b (empty when they do not meet: see is_box). */
-static box box_cut(const box *a, const box *b)
-{
-    return (box){vec3_max(a->lo, b->lo), vec3_min(a->hi, b->hi)};
-}
-
-/* The cell below (side 0) or above (side 1) the plane x on the axis. */
-static box child_cell(const box *cell, int axis, double x, int side)
-{
-    box c = *cell;
-    vec3_set_axis(side == 0 ? &c.hi : &c.lo, axis, x);
-    return c;
 }
 
 /* <<the builder>> ch08 */
@@ -103,7 +85,7 @@ static bool clip_item(const builder *b, int item, const box *cell, box *out)
     if (!b->clip(b->context, item, cell, out))
         return false;
     *out = box_cut(out, cell); /* rounding must not carry it outside */
-    return is_box(out);
+    return box_is_valid(out);
 }
 
 static int compare_ints(const void *a, const void *b)
@@ -210,7 +192,7 @@ static bool radix_sort_events(event *list, int n)
 {
     int start[9][257]; /* 9 kB */
     bool useful[9];
-    event *spare = malloc((size_t)n * sizeof *spare), *from = list;
+    event *spare = memory_alloc((size_t)n, sizeof *spare), *from = list;
     if (spare == NULL)
         return false;
     count_bytes(list, n, start, useful);
@@ -229,7 +211,8 @@ static bool radix_sort_events(event *list, int n)
 }
 
 /* Sorts list by position, then type: by insertion when it is short (most
- * are), by radix, one byte of the position at a time, when it is long. */
+ * are), by qsort up to 255, by radix, one byte of the position at a time,
+ * when it is longer. */
 static void sort_events(event *list, int n)
 {
     if (n >= 256 && radix_sort_events(list, n))
@@ -264,7 +247,7 @@ static bool alloc_events(event_lists *l, int n)
 {
     *l = (event_lists){0};
     for (int k = 0; k < 3; k++)
-        l->e[k] = malloc(((size_t)n + 1) * sizeof(event));
+        l->e[k] = memory_alloc((size_t)n, sizeof(event));
     if (l->e[0] && l->e[1] && l->e[2])
         return true;
     free_events(l);
@@ -394,7 +377,7 @@ static void classify(builder *b, const event *e, int n, split s)
 /* Leaf of the items of l: each item has one start or flat event on x. */
 static bool leaf_of_events(builder *b, const event_lists *l, int depth)
 {
-    int *items = malloc(((size_t)l->count + 1) * sizeof *items), n = 0;
+    int *items = memory_alloc((size_t)l->count, sizeof *items), n = 0;
     if (items == NULL)
         return false;
     for (int i = 0; i < l->n[0]; i++)
@@ -409,7 +392,7 @@ static bool leaf_of_events(builder *b, const event_lists *l, int depth)
 /* The items on both sides of the split: the start events on its axis. */
 static int *straddlers(const builder *b, const event *e, int n, int *count)
 {
-    int *items = malloc(((size_t)n + 1) * sizeof *items);
+    int *items = memory_alloc((size_t)n, sizeof *items);
     *count = 0;
     for (int i = 0; items != NULL && i < n; i++)
         if (event_type(e[i]) == EVENT_START &&
@@ -495,7 +478,7 @@ static bool split_events(builder *b, const event_lists *l, const box *cell,
     bool ok = both != NULL && alloc_events(below, 2 * (l->count + n)) &&
               alloc_events(above, 2 * (l->count + n));
     for (int side = 0; ok && side < 2; side++) {
-        box c = child_cell(cell, s.axis, s.position, side);
+        box c = box_child(cell, s.axis, s.position, side);
         ok = cut_events(b, both, n, &c, &cut[side]);
     }
     if (ok)
@@ -524,11 +507,11 @@ static bool build_sweep(builder *b, event_lists *l, box cell, int depth)
     b->references += below.count + above.count - l->count;
     int node = add_node(b->tree, (kdtree_node){.split = s.position,
                                                .bits = (uint32_t)s.axis});
-    ok = node >= 0 && build_sweep(b, &below, child_cell(&cell, s.axis,
+    ok = node >= 0 && build_sweep(b, &below, box_child(&cell, s.axis,
                                   s.position, 0), depth + 1);
     if (ok)
         b->tree->nodes[node].bits |= (uint32_t)b->tree->node_count << 2;
-    ok = ok && build_sweep(b, &above, child_cell(&cell, s.axis, s.position,
+    ok = ok && build_sweep(b, &above, box_child(&cell, s.axis, s.position,
                                                 1), depth + 1);
     free_events(&below), free_events(&above); /* on failure, what is left */
     return ok;
@@ -550,8 +533,8 @@ static void free_items(item_list *l)
 
 static bool alloc_items(item_list *l, int n)
 {
-    l->items = malloc(((size_t)n + 1) * sizeof *l->items);
-    l->boxes = malloc(((size_t)n + 1) * sizeof *l->boxes);
+    l->items = memory_alloc((size_t)n, sizeof *l->items);
+    l->boxes = memory_alloc((size_t)n, sizeof *l->boxes);
     l->count = 0;
     if (l->items != NULL && l->boxes != NULL)
         return true;
@@ -583,8 +566,8 @@ static void add_item(builder *b, item_list *to, int item, const box *bx,
 static bool split_items(builder *b, const item_list *l, const box *cell,
                         split s, item_list *below, item_list *above)
 {
-    box under = child_cell(cell, s.axis, s.position, 0);
-    box over = child_cell(cell, s.axis, s.position, 1);
+    box under = box_child(cell, s.axis, s.position, 0);
+    box over = box_child(cell, s.axis, s.position, 1);
     if (!alloc_items(below, l->count))
         return false;
     if (!alloc_items(above, l->count))
@@ -614,11 +597,11 @@ static bool split_node(builder *b, item_list *l, box cell, int depth,
         return false;
     int node = add_node(b->tree, (kdtree_node){.split = s.position,
                                                .bits = (uint32_t)s.axis});
-    ok = node >= 0 && build(b, &below, child_cell(&cell, s.axis, s.position,
+    ok = node >= 0 && build(b, &below, box_child(&cell, s.axis, s.position,
                                                   0), depth + 1);
     if (ok)
         b->tree->nodes[node].bits |= (uint32_t)b->tree->node_count << 2;
-    ok = ok && build(b, &above, child_cell(&cell, s.axis, s.position, 1),
+    ok = ok && build(b, &above, box_child(&cell, s.axis, s.position, 1),
                      depth + 1);
     free_items(&below), free_items(&above);
     return ok;
@@ -716,10 +699,10 @@ static bool root_cell(const box *bounds, int count, box *root)
     *root = (box){{INFINITY, INFINITY, INFINITY},
                   {-INFINITY, -INFINITY, -INFINITY}};
     for (int i = 0; i < count; i++)
-        if (is_box(&bounds[i]))
+        if (box_is_valid(&bounds[i]))
             *root = (box){vec3_min(root->lo, bounds[i].lo),
                           vec3_max(root->hi, bounds[i].hi)};
-    return is_box(root);
+    return box_is_valid(root);
 }
 
 /* The plane thickness for the walk: see KDTREE_THICKNESS. */
@@ -740,7 +723,7 @@ static bool start_sweep(builder *b, const box *bounds, int count,
     if (!alloc_events(&l, 2 * count))
         return false;
     for (int i = 0; i < count; i++) {
-        if (!is_box(&bounds[i]))
+        if (!box_is_valid(&bounds[i]))
             continue;
         for (int k = 0; k < 3; k++)
             l.n[k] = add_events(l.e[k], l.n[k], &bounds[i], k, i);
@@ -760,7 +743,7 @@ static bool start_items(builder *b, const box *bounds, int count,
     if (!alloc_items(&l, count))
         return false;
     for (int i = 0; i < count; i++)
-        if (is_box(&bounds[i])) {
+        if (box_is_valid(&bounds[i])) {
             l.items[l.count] = i;
             l.boxes[l.count++] = bounds[i];
         }
@@ -782,7 +765,7 @@ bool kdtree_build(kdtree *t, int count, const box *bounds, kdtree_clip clip,
     b.max_depth = b.max_depth < KDTREE_MAX_DEPTH ? b.max_depth
                                                  : KDTREE_MAX_DEPTH;
     b.budget = KDTREE_REFERENCES_PER_ITEM * (long long)count + 64;
-    b.side = malloc((size_t)count);
+    b.side = memory_alloc((size_t)count, 1);
     t->bounds = root;
     t->thickness = thickness_of(&root);
     bool ok = b.side != NULL &&

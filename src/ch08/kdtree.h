@@ -11,6 +11,7 @@
 #ifndef KDTREE_H
 #define KDTREE_H
 
+#include <assert.h>
 #include <stdbool.h>
 #include <stdint.h>
 #include "box.h"
@@ -58,6 +59,8 @@ typedef struct {
     uint32_t bits;
 } kdtree_node;
 
+_Static_assert(sizeof(kdtree_node) == 16, "a node is sixteen bytes");
+
 typedef struct kdtree {
     kdtree_node *nodes; /* node 0 is the root */
     int node_count, node_capacity;
@@ -83,6 +86,9 @@ typedef bool (*kdtree_clip)(const void *context, int item, const box *cell,
  * when out of memory. */
 bool kdtree_build(kdtree *t, int count, const box *bounds, kdtree_clip clip,
                   const void *context, const kdtree_params *p);
+
+/* The bytes t holds: its nodes and its items, as allocated. */
+long long kdtree_bytes(const kdtree *t);
 
 /* <<kd-tree walking>> ch08 */
 /* How far the walk's comparisons of t lean towards going on: relative,
@@ -148,6 +154,7 @@ static inline void kdtree_walk_start(kdtree_walk *w, const kdtree *t,
                                      vec3 origin, vec3 inv, double t_min,
                                      double t_max)
 {
+    assert(t->depth <= KDTREE_MAX_DEPTH); /* the stack has room */
     w->nodes = t->nodes;
     for (int k = 0; k < 3; k++) {
         w->low[k] = vec3_axis(origin, k) - t->thickness;

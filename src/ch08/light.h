@@ -28,6 +28,7 @@ typedef struct {
         SAMPLE_STRATIFIED, /* one random point in each of N equal cells */
         SAMPLE_GRID,       /* the centre of each cell */
     } pattern;             /* area: where the point lights go */
+    int samples_cut;       /* area: samples the shadow-ray budget took away */
 } light;
 
 #endif

@@ -3,6 +3,9 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include "memory.h"
+/* <<mesh.c includes>> ch06 */
+#include "offset.h"
 
 /* <<mesh storage>> ch04 */
 void mesh_free(mesh *m)
@@ -13,8 +16,7 @@ void mesh_free(mesh *m)
     free(m->triangle_normals);
     free(m->source.path);
     /* <<free mesh members>> ch08 */
-    kdtree_free(&m->tree);
-    free(m->leaf_corners);
+    mesh_free_tree(m);
     *m = (mesh){0};
 }
 
@@ -47,6 +49,80 @@ void mesh_compute_bounds(mesh *m)
     m->bounds = (box){lo, hi};
 }
 
+/* <<the mesh index>> ch04 */
+/* FNV-1a over n bytes, continuing from h. */
+static unsigned long long fnv1a(unsigned long long h, const void *bytes,
+                                size_t n)
+{
+    const unsigned char *b = bytes;
+    for (size_t k = 0; k < n; k++)
+        h = (h ^ b[k]) * 1099511628211ULL;
+    return h;
+}
+
+/* Where the index starts looking for source. */
+static size_t first_slot(const mesh_source *source, int size)
+{
+    const mesh_source *c = source; /* + 0.0: -0.0 hashes as 0.0, its equal */
+    double numbers[4] = {c->scale + 0.0, c->offset.x + 0.0,
+                         c->offset.y + 0.0, c->offset.z + 0.0};
+    unsigned long long h = fnv1a(14695981039346656037ULL, c->path,
+                                 strlen(c->path));
+    h = fnv1a(h, numbers, sizeof numbers);
+    h = fnv1a(h, &c->smooth, sizeof c->smooth);
+    return (size_t)(h & (unsigned long long)(size - 1));
+}
+
+static size_t next_slot(const mesh_index *x, size_t slot)
+{
+    return (slot + 1) & (size_t)(x->size - 1);
+}
+
+void mesh_index_add(mesh_index *x, const mesh *meshes, int k)
+{
+    if (meshes[k].source.path == NULL)
+        return; /* made in code: no source to find it by */
+    size_t slot = first_slot(&meshes[k].source, x->size);
+    while (x->slots[slot] != 0)
+        slot = next_slot(x, slot);
+    x->slots[slot] = k + 1;
+}
+
+bool mesh_index_reserve(mesh_index *x, const mesh *meshes, int count)
+{
+    if (2 * (count + 1) < x->size)
+        return true;
+    int size = x->size ? 2 * x->size : 64;
+    int *slots = memory_alloc_zeroed((size_t)size, sizeof *slots);
+    if (slots == NULL)
+        return false;
+    free(x->slots);
+    x->slots = slots, x->size = size;
+    for (int k = 0; k < count; k++)
+        mesh_index_add(x, meshes, k);
+    return true;
+}
+
+int mesh_index_find(const mesh_index *x, const mesh *meshes,
+                    const mesh_source *source)
+{
+    if (x->size == 0 || source->path == NULL)
+        return -1;
+    size_t slot = first_slot(source, x->size);
+    for (; x->slots[slot] != 0; slot = next_slot(x, slot)) {
+        int k = x->slots[slot] - 1;
+        if (mesh_source_equal(&meshes[k].source, source))
+            return k;
+    }
+    return -1;
+}
+
+void mesh_index_free(mesh_index *x)
+{
+    free(x->slots);
+    *x = (mesh_index){0};
+}
+
 /* <<smooth normals>> ch04 */
 /* (b - a) x (c - a): the sheet's n, twice the area long. */
 static vec3 face_normal(vec3 a, vec3 b, vec3 c)
@@ -64,8 +140,8 @@ bool mesh_smooth_normals(mesh *m)
 {
     size_t count = (size_t)m->vertex_count + 1,
            faces = (size_t)m->triangle_count;
-    vec3 *normals = calloc(count, sizeof *normals);
-    mesh_triangle *corners = malloc((faces + 1) * sizeof *corners);
+    vec3 *normals = memory_alloc_zeroed(count, sizeof *normals);
+    mesh_triangle *corners = memory_alloc(faces, sizeof *corners);
     if (normals == NULL || corners == NULL) {
         free(normals), free(corners);
         return false;
@@ -170,23 +246,24 @@ bool mesh_intersect(const mesh *m, ray r, double t_min, double t_max, hit *h,
 }
 /* <<intersecting a mesh>> += ch08 */
 
-/* The nearest hit in node's subtree, the ray in [t0, t1] inside its cell;
- * *t_max is the nearest hit so far. */
-static int nearest_in(const mesh *m, const mesh_ray *mr, int node,
-                      double t0, double t1, double t_min, double *t_max,
-                      triangle_hit *out, render_stats *stats)
+/* Narrows *t_max and *found, the nearest hit so far and its triangle (-1:
+ * none), by node's subtree, the ray in [t0, t1] inside its cell. */
+static void nearest_in(const mesh *m, const mesh_ray *mr, int node,
+                       double t0, double t1, double t_min, double *t_max,
+                       int *found, triangle_hit *out, render_stats *stats)
 {
     const kdtree_node *n = &m->tree.nodes[node];
-    int axis = (int)(n->bits & 3), nearest = -1;
+    int axis = (int)(n->bits & 3);
     stats->kd_nodes++;
     if (axis == 3) {
         int first = (int)n->first, count = (int)(n->bits >> 2);
         stats->triangle_tests += count;
-        int k = triangle_nearest_corners(&mr->shear, m->leaf_corners + first,
-                                         count, t_min, *t_max, out);
+        int k = triangle_nearest_of_leaf(&mr->shear, m->leaf_corners + first,
+                                         m->tree.items + first, count, t_min,
+                                         *t_max, *found, out);
         if (k >= 0)
-            *t_max = out->t, nearest = m->tree.items[first + k];
-        return nearest;
+            *t_max = out->t, *found = m->tree.items[first + k];
+        return;
     }
     kdtree_todo next[2];
     double o = vec3_axis(mr->r.origin, axis), thick = m->tree.thickness;
@@ -195,11 +272,9 @@ static int nearest_in(const mesh *m, const mesh_ray *mr, int node,
     for (int c = 0; c < 2 && next[c].node >= 0; c++) {
         if (next[c].t_min > *t_max * (1 + KDTREE_SLACK))
             break; /* a hit nearer than this cell is already found */
-        int k = nearest_in(m, mr, next[c].node, next[c].t_min,
-                           next[c].t_max, t_min, t_max, out, stats);
-        nearest = k >= 0 ? k : nearest;
+        nearest_in(m, mr, next[c].node, next[c].t_min, next[c].t_max, t_min,
+                   t_max, found, out, stats);
     }
-    return nearest;
 }
 
 int mesh_nearest_recursive(const mesh *m, const mesh_ray *mr, double t_min,
@@ -210,7 +285,9 @@ int mesh_nearest_recursive(const mesh *m, const mesh_ray *mr, double t_min,
     if (m->tree.node_count == 0 ||
         !box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
         return mesh_nearest(m, mr, t_min, t_max, out, stats);
-    return nearest_in(m, mr, 0, near, far, t_min, &t_max, out, stats);
+    int found = -1;
+    nearest_in(m, mr, 0, near, far, t_min, &t_max, &found, out, stats);
+    return found;
 }
 
 /* <<clipping a polygon>> ch08 */
@@ -269,7 +346,7 @@ static bool clip_triangle(const void *context, int item, const box *cell,
 static bool copy_leaf_corners(mesh *m)
 {
     int n = m->tree.item_count;
-    m->leaf_corners = malloc(((size_t)n + 1) * sizeof *m->leaf_corners);
+    m->leaf_corners = memory_alloc((size_t)n, sizeof *m->leaf_corners);
     if (m->leaf_corners == NULL)
         return false;
     for (int i = 0; i < n; i++) {
@@ -280,14 +357,26 @@ static bool copy_leaf_corners(mesh *m)
     return true;
 }
 
-bool mesh_build_tree(mesh *m, const kdtree_params *p)
+void mesh_free_tree(mesh *m)
 {
     kdtree_free(&m->tree);
     free(m->leaf_corners);
     m->leaf_corners = NULL;
+}
+
+long long mesh_tree_bytes(const mesh *m)
+{
+    long long corners = m->leaf_corners ? m->tree.item_count : 0;
+    return kdtree_bytes(&m->tree) +
+           corners * (long long)sizeof *m->leaf_corners;
+}
+
+bool mesh_build_tree(mesh *m, const kdtree_params *p)
+{
+    mesh_free_tree(m);
     kdtree_params q = *p;
     q.min_items = q.min_items > 0 ? q.min_items : MESH_TREE_MIN_TRIANGLES;
-    box *bounds = malloc(((size_t)m->triangle_count + 1) * sizeof *bounds);
+    box *bounds = memory_alloc((size_t)m->triangle_count, sizeof *bounds);
     bool ok = bounds != NULL;
     for (int k = 0; ok && k < m->triangle_count; k++) {
         const int *v = m->triangles[k].v;
@@ -318,9 +407,10 @@ int mesh_search_tree(const mesh *m, const mesh_ray *mr, double near,
         int k = out == NULL ? (triangle_any_corners(&mr->shear, corners,
                                                     leaf.count, t_min, t_max)
                                    ? 0 : -1)
-                            : triangle_nearest_corners(&mr->shear, corners,
-                                                       leaf.count, t_min,
-                                                       t_max, out);
+                            : triangle_nearest_of_leaf(
+                                  &mr->shear, corners,
+                                  m->tree.items + leaf.first, leaf.count,
+                                  t_min, t_max, found, out);
         if (k >= 0)
             found = m->tree.items[leaf.first + k], t_max = out ? out->t : t_max;
         if (k >= 0 && out == NULL)
@@ -345,4 +435,35 @@ bool mesh_occluded(const mesh *m, const mesh_ray *mr, double t_min,
     return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
                                        m->triangle_count, t_min, t_max,
                                        &unused) >= 0;
+}
+
+/* <<the triangle's hit-point bound>> ch06 */
+/* How wrong the watertight test's t can be for a ray that starts at p
+ * near the triangle (a, b, c), as a distance from its plane. */
+static double triangle_test_error(vec3 a, vec3 b, vec3 c, vec3 p)
+{
+    vec3 corners[3] = {a, b, c};
+    double M = 0; /* the triangle's reach from p: largest coordinate */
+    for (int k = 0; k < 3; k++) {
+        vec3 r = vec3_abs(vec3_sub(corners[k], p));
+        M = fmax(M, fmax(r.x, fmax(r.y, r.z)));
+    }
+    double twice_area = vec3_length(vec3_cross(vec3_sub(b, a),
+                                               vec3_sub(c, a)));
+    if (!(twice_area > 0))
+        return INFINITY; /* never hit: the test rejects it */
+    return sqrt(3) * (gamma_bound(3) * M +
+                      48 * gamma_bound(4) * M * M * M / twice_area);
+}
+
+
+void triangle_refine_hit(vec3 a, vec3 b, vec3 c, const double w[3], hit *h)
+{
+    vec3 pa = vec3_scale(a, w[0]), pb = vec3_scale(b, w[1]),
+         pc = vec3_scale(c, w[2]);
+    h->point = vec3_add(vec3_add(pa, pb), pc);
+    vec3 sum = vec3_add(vec3_add(vec3_abs(pa), vec3_abs(pb)), vec3_abs(pc));
+    double test = triangle_test_error(a, b, c, h->point);
+    h->error = vec3_add(vec3_scale(sum, gamma_bound(7)),
+                        (vec3){test, test, test});
 }

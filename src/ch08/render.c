@@ -1,33 +1,50 @@
-/* render.c: rendering a scene into an image (chapter 1). */
+/* render.c: rendering a scene into an image, band by band (chapter 1). */
 #include "render.h"
 
+#include <assert.h>
 /* <<render includes>> ch03 */
 #include "shade.h"
+/* <<render includes>> += ch08 */
+#include "search.h"
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* What the pixel whose primary ray is r shows. */
+static vec3 pixel_color(const scene *s, ray r, render_stats *stats)
+{
+    /* <<show something other than light>> ch08 */
+    if (s->heatmap > 0) { /* the kdtree statement's heat map: work, not light */
+        long long before = stats->kd_nodes;
+        hit h;
+        scene_intersect(s, r, 0, INFINITY, &h, stats);
+        double x = fmin((double)(stats->kd_nodes - before) / s->heatmap, 1);
+        return (vec3){fmin(3 * x, 1), fmin(fmax(3 * x - 1, 0), 1),
+                      fmax(3 * x - 2, 0)}; /* black, red, yellow, white */
+    }
+    vec3 c = trace(s, r, 0, stats);
+    /* <<map the pixel's light for display>> ch03 */
+    if (s->tone.alpha != 1 || s->tone.beta != 1) /* the defaults only clip */
+        c = (vec3){tone_map(c.x, s->tone.alpha, s->tone.beta),
+                   tone_map(c.y, s->tone.alpha, s->tone.beta),
+                   tone_map(c.z, s->tone.alpha, s->tone.beta)};
+    return c;
+}
 
 void render_rows(const scene *s, image *img, int first, int last,
                  render_stats *stats)
 {
+    /* the contract, checked: a caller's mistake, not bad input */
+    assert(img->width == s->cam.width && img->height == s->cam.height);
+    assert(0 <= first && first <= last && last <= img->height);
     camera_view view = camera_view_of(&s->cam);
     for (int j = first; j < last; j++) {
         for (int i = 0; i < img->width; i++) {
             ray r = camera_view_ray(&view, i, j);
             stats->primary_rays++;
-            vec3 c = trace(s, r, 0, stats);
-            /* <<map the pixel's light for display>> ch03 */
-            if (s->tone.alpha != 1 || s->tone.beta != 1) /* the defaults only clip */
-                c = (vec3){tone_map(c.x, s->tone.alpha, s->tone.beta),
-                           tone_map(c.y, s->tone.alpha, s->tone.beta),
-                           tone_map(c.z, s->tone.alpha, s->tone.beta)};
-            /* <<map the pixel's light for display>> += ch08 */
-            if (s->heatmap > 0) { /* the kdtree statement's heat map: work, not light */
-                render_stats work = {0};
-                hit h;
-                scene_intersect(s, r, 0, INFINITY, &h, &work);
-                double x = fmin((double)work.kd_nodes / s->heatmap, 1);
-                c = (vec3){fmin(3 * x, 1), fmin(fmax(3 * x - 1, 0), 1),
-                           fmax(3 * x - 2, 0)}; /* black, red, yellow, white */
-            }
-            image_set(img, i, j, c);
+            image_set(img, i, j, pixel_color(s, r, stats));
         }
     }
 }
@@ -35,4 +52,102 @@ void render_rows(const scene *s, image *img, int first, int last,
 void render(const scene *s, image *img, render_stats *stats)
 {
     render_rows(s, img, 0, img->height, stats);
+}
+
+/* <<rendering in bands>> ch08 */
+/* <<the threads' shared work>> ch08 */
+/* What every thread shares: the image, handed out band by band. */
+typedef struct {
+    const scene *s;
+    image *img;
+    atomic_int next_band, rows_done;
+} band_queue;
+
+/* A thread's part: its own counts, on a cache line of their own. */
+typedef struct {
+    _Alignas(64) render_stats stats;
+    band_queue *queue;
+    pthread_t thread;
+} band_worker;
+
+static int cores_online(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > 256 ? 256 : (int)n;
+}
+
+/* <<a thread's bands>> ch08 */
+/* The next band of rows [*first, *last); false when none is left. */
+static bool take_band(band_queue *q, int *first, int *last)
+{
+    int band = atomic_fetch_add(&q->next_band, 1);
+    if (band >= (q->img->height + BAND_ROWS - 1) / BAND_ROWS)
+        return false;
+    *first = band * BAND_ROWS;
+    *last = *first + BAND_ROWS < q->img->height ? *first + BAND_ROWS
+                                                : q->img->height;
+    return true;
+}
+
+static void render_band(band_worker *w, int first, int last)
+{
+    render_rows(w->queue->s, w->queue->img, first, last, &w->stats);
+    atomic_fetch_add(&w->queue->rows_done, last - first);
+}
+
+static void *band_thread(void *worker)
+{
+    band_worker *w = worker;
+    int first, last;
+    while (take_band(w->queue, &first, &last))
+        render_band(w, first, last);
+    return NULL;
+}
+
+/* <<adding up the threads' counts>> ch08 */
+_Static_assert(sizeof(render_stats) % sizeof(long long) == 0,
+               "render_stats holds counts (long long) only");
+
+/* Adds the counts of part to sum. */
+static void add_stats(render_stats *sum, const render_stats *part)
+{
+    enum { N = sizeof(render_stats) / sizeof(long long) };
+    long long a[N], b[N];
+    memcpy(a, sum, sizeof a), memcpy(b, part, sizeof b);
+    for (int k = 0; k < N; k++)
+        a[k] += b[k];
+    memcpy(sum, a, sizeof a);
+}
+
+/* <<the threads at work>> ch08 */
+void render_in_bands(const scene *s, image *img, const render_settings *how,
+                     render_stats *stats)
+{
+    band_queue q = {.s = s, .img = img};
+    atomic_init(&q.next_band, 0), atomic_init(&q.rows_done, 0);
+    band_worker one, *w = NULL;
+    int n = how->threads > 0 ? how->threads : cores_online();
+    int started = 1, first, last;
+    if (n > 1)
+        w = aligned_alloc(64, (size_t)n * sizeof *w);
+    if (w == NULL)
+        w = &one, n = 1; /* out of memory: this thread alone */
+    for (int k = 0; k < n; k++)
+        w[k] = (band_worker){.queue = &q};
+    while (started < n &&
+           pthread_create(&w[started].thread, NULL, band_thread,
+                          &w[started]) == 0)
+        started++; /* a thread that cannot start leaves its share to us */
+    while (take_band(&q, &first, &last)) { /* this thread is worker 0 */
+        render_band(&w[0], first, last);
+        if (how->progress != NULL)
+            how->progress(how->progress_context,
+                          atomic_load(&q.rows_done), img->height);
+    }
+    for (int k = 1; k < started; k++)
+        pthread_join(w[k].thread, NULL);
+    for (int k = 0; k < started; k++)
+        add_stats(stats, &w[k].stats);
+    if (w != &one)
+        free(w);
 }

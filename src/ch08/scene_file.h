@@ -20,10 +20,4 @@ bool scene_parse(scene *s, const char *text, size_t length, const char *name,
 /* Reads the scene file at path (at most SCENE_MAX_BYTES) and parses it. */
 bool scene_load(scene *s, const char *path, scene_error *err);
 
-/* <<scene file declarations>> ch05 */
-
-/* A transform may stretch or shrink no direction by more than this: the
- * infinity norms of its 3x3 part and of its inverse's are at most 1e12. */
-#define SCENE_MAX_STRETCH 1e12
-
 #endif

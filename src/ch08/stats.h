@@ -22,9 +22,12 @@ typedef struct {
     long long shadow_rays_blocked;  /* of those, the ones that hit something */
     long long shadow_skipped_dark;  /* the light arrives with no intensity */
     long long shadow_skipped_alone; /* nothing in the scene could block it */
+    long long shadow_objects_skipped; /* untested: the ray was blocked already */
     long long reflection_rays;
     long long reflection_skipped_depth;  /* at the depth limit */
     long long reflection_skipped_weight; /* below the contribution cutoff */
+    long long ray_trees_cut; /* trees of rays that ran out of budget */
+    long long light_samples_cut; /* area light samples the budget took away */
     /* <<statistics counters>> += ch07 */
     long long refraction_rays;
     long long refraction_skipped_depth;  /* at the depth limit */
@@ -32,6 +35,7 @@ typedef struct {
     long long total_reflections; /* glass hits with no refracted ray at all */
     /* <<statistics counters>> += ch08 */
     long long kd_nodes; /* kd-tree nodes visited */
+    long long mesh_occlusion_tests; /* meshes asked for any hit, not nearest */
 } render_stats;
 
 #endif

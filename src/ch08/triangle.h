@@ -87,6 +87,15 @@ int triangle_nearest_corners(const watertight_ray *w,
                              const triangle_corners *triangles, int count,
                              double t_min, double t_max, triangle_hit *out);
 
+/* triangle_nearest_corners for the triangles of a tree's leaf, whose
+ * indices in their mesh are items, keeping the tie rule across leaves: a
+ * hit at t_max itself wins when its index is below best, the index of the
+ * nearest hit found so far (-1: none, and t_max is excluded). */
+int triangle_nearest_of_leaf(const watertight_ray *w,
+                             const triangle_corners *triangles,
+                             const int *items, int count, double t_min,
+                             double t_max, int best, triangle_hit *out);
+
 /* Does the ray hit any of the triangles in (t_min, t_max)? */
 bool triangle_any_corners(const watertight_ray *w,
                           const triangle_corners *triangles, int count,

@@ -232,6 +232,26 @@ int triangle_nearest_corners(const watertight_ray *w,
     return nearest;
 }
 
+int triangle_nearest_of_leaf(const watertight_ray *w,
+                             const triangle_corners *triangles,
+                             const int *items, int count, double t_min,
+                             double t_max, int best, triangle_hit *out)
+{
+    sheared_ray s = sheared_from(w);
+    int nearest = -1;
+    double reach = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
+    for (int k = 0; k < count; k++) {
+        const vec3 *p = triangles[k].p;
+        triangle_hit th;
+        if (hit_sheared(&s, p[0], p[1], p[2], t_min, reach, &th) &&
+            (th.t < t_max || items[k] < best)) { /* a tie: the lower index */
+            *out = th, t_max = th.t, best = items[k], nearest = k;
+            reach = nextafter(t_max, INFINITY);
+        }
+    }
+    return nearest;
+}
+
 bool triangle_any_corners(const watertight_ray *w,
                           const triangle_corners *triangles, int count,
                           double t_min, double t_max)

@@ -56,6 +56,24 @@ static inline vec3 vec3_lerp(vec3 a, vec3 b, double t)
 #ifndef M_PI
 #define M_PI 3.14159265358979323846 /* POSIX has it; strict C11 does not */
 #endif
+/* <<vector operations>> += ch03 */
+
+/* Is a finite and not zero: a direction that can be normalised? */
+static inline int vec3_is_direction(vec3 a)
+{
+    int finite = isfinite(a.x) && isfinite(a.y) && isfinite(a.z);
+    return finite && (a.x != 0 || a.y != 0 || a.z != 0);
+}
+
+/* The unit vector along a, for any a that vec3_is_direction accepts. */
+static inline vec3 vec3_normalize_scaled(vec3 a)
+{
+    double d = vec3_dot(a, a);
+    if (d >= 0x1p-900 && d <= 0x1p900)
+        return vec3_normalize(a); /* no square lost a bit that matters */
+    double m = fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z)));
+    return vec3_normalize((vec3){a.x / m, a.y / m, a.z / m});
+}
 /* <<vector operations>> += ch04 */
 
 static inline vec3 vec3_cross(vec3 a, vec3 b)

@@ -1,0 +1,89 @@
+/* search.c: the search for what a ray hits, and the hit record of the
+ * winner (chapter 2). See search.h. */
+#include "search.h"
+
+/* <<the search for the nearest hit>> ch02 */
+/* What the search keeps of the nearest hit so far. */
+typedef struct {
+    const object *object; /* NULL: nothing hit yet */
+    double t;             /* its distance: the search's t_max */
+    int primitive;        /* which triangle of a mesh; 0 otherwise */
+    double b[3];          /* where on that triangle: barycentrics */
+    ray r;                /* the ray that found it, in the object's space */
+} nearest_hit;
+
+typedef struct {
+    const scene *scene; /* what is searched */
+    ray r;
+    double t_min;
+    nearest_hit best;
+    render_stats *stats;
+} scene_search;
+
+
+
+/* Narrows q->best when q->r, the ray in o's own space, hits o's shape
+ * nearer than q->best.t. */
+static void shape_intersect(const object *o, scene_search *q)
+{
+    double t, t_max = q->best.t; /* only a nearer hit counts */
+    switch (o->kind) {
+    case SHAPE_SPHERE:
+        q->stats->sphere_tests++;
+        if (sphere_hit_t(&o->sphere, q->r, q->t_min, t_max, &t))
+            q->best = (nearest_hit){.object = o, .t = t, .r = q->r};
+        break;
+    }
+}
+
+static void object_intersect(const object *o, scene_search *q)
+{
+    shape_intersect(o, q);
+}
+
+
+
+
+
+/* Fills the geometry of h for q's nearest hit, along the ray that found it. */
+static void shape_fill_hit(const scene_search *q, hit *h)
+{
+    const nearest_hit *best = &q->best;
+    const object *o = best->object;
+    switch (o->kind) {
+    case SHAPE_SPHERE:
+        sphere_fill_hit(&o->sphere, best->r, best->t, h);
+        break;
+    }
+}
+
+/* Fills h for q's nearest hit, found along q's ray in the world. */
+static void object_fill_hit(const scene_search *q, hit *h)
+{
+    const object *o = q->best.object;
+    shape_fill_hit(q, h);
+    h->color = o->color;
+    /* <<fill the object's part of the hit>> ch03 */
+    h->material = o->material;
+}
+
+/* Tests every object in turn. */
+static void search_objects(scene_search *q)
+{
+    const scene *s = q->scene;
+    for (int k = 0; k < s->object_count; k++)
+        object_intersect(&s->objects[k], q);
+}
+
+bool scene_intersect(const scene *s, ray r, double t_min, double t_max,
+                     hit *h, render_stats *stats)
+{
+    scene_search q = {.scene = s, .r = r, .t_min = t_min, .stats = stats,
+                      .best = {.object = NULL, .t = t_max}};
+    search_objects(&q);
+    if (q.best.object == NULL)
+        return false;
+    stats->hits++;
+    object_fill_hit(&q, h);
+    return true;
+}
