@@ -19,6 +19,12 @@
 #   make book-check   the book in headless Chromium at 1280x900 (installs it
 #                     as root): nothing wider than the text column, and a
 #                     screenshot build/book-screenshot.png
+#   make workbook     workbook/NN-name.md, the exercises to write (SOLVED=1:
+#                     the book's code); make grade, grade-chNN, hint EX=2.1,
+#                     watch; make chart-ch02 WORKBOOK=1 charts your forms
+#                     (chapters 1, 2 and 3)
+#   make handout      build/handout/ and its .tar.gz: no solutions in it
+#   make pdf, epub    the book's and the handout's editions
 #   make SAN=1 test   the same with AddressSanitizer and UBSan
 #   make WERROR=1     warnings are errors (CI)
 
@@ -314,6 +320,175 @@ charts-check: deps $(BENCHES)
 
 .PHONY: charts-check
 
+# ---------------------------------------------------------------- workbook
+# The reader writes the chunks a chapter marks .exercise (tools/exercises.awk
+# lists them) in workbook/NN-name.md, and the chapters' tests grade them.
+#   make workbook            one file per chapter, stubs that fail their tests;
+#                            a file that exists is never overwritten
+#   make workbook SOLVED=1   the book's own code in each stub, marked done
+#   make grade, grade-chNN   build the program with the started exercises in
+#                            place of the book's chunks, under build/workbook,
+#                            and grade each exercise (tools/grade.sh)
+#   make hint EX=2.1         that exercise's hint
+#   make watch               grade again whenever a workbook file changes
+# WB_DIR and WB_BUILD name another workbook and build folder (the tests).
+WB_DIR   ?= workbook
+WB_BUILD ?= build/workbook
+WB_FILES := $(patsubst chapters/%,$(WB_DIR)/%,$(CHAPTERS))
+# The reader's code is graded, not linted: a stub leaves parameters unused.
+WB_CFLAGS = $(CSTD) -Wall -Wextra -Wno-unused-parameter -Wno-unused-function \
+            -Wno-unused-variable -Wno-unused-but-set-variable -Wno-missing-braces \
+            -O2 -g -pthread -MMD -MP
+LAST     := $(lastword $(NUMS))
+
+.PHONY: workbook grade hint watch $(foreach n,$(NUMS),grade-ch$(n))
+workbook: $(WB_FILES)
+
+# Order-only: a workbook file is the reader's, never remade once it exists.
+$(WB_DIR)/%.md: | chapters/%.md
+	@mkdir -p $(@D)
+	awk -v solved=$(if $(SOLVED),1,0) -f tools/stub.awk -f tools/workbook.awk chapters/$*.md chapters/$*.md > $@
+
+grade: grade-ch$(LAST)
+
+$(foreach n,$(NUMS),grade-ch$(n)): grade-ch%: $(TANGLE)
+	+@TANGLE=$(TANGLE) WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) MAKE="$(MAKE)" \
+	  sh tools/grade.sh $* $(call chapters_upto,$*)
+
+hint:
+	@awk -v hint=$(EX) -f tools/exercises.awk $(CHAPTERS)
+
+watch: $(TANGLE)
+	+@WB_DIR=$(WB_DIR) sh tools/watch.sh $(MAKE) --no-print-directory grade
+
+# make chart-chNN WORKBOOK=1: chapter NN's charts with the reader's started
+# exercises as "yours", timed in the same rounds as the book's methods, under
+# $(WB_BUILD)/charts (never figures/; tools/chart_yours.sh). A bench takes
+# part with YOURS_<bench> (exercise=macro the bench knows), YOURS_OBJS_<bench>
+# (the workbook objects that hold them) and YOURS_SYMS_<bench> (the functions
+# renamed yours_...).
+YOURS_ch01_srgb      := 1.2=YOURS_SRGB
+YOURS_OBJS_ch01_srgb := image.o
+YOURS_SYMS_ch01_srgb := srgb_encode srgb_to_byte gamma_encode
+YOURS_ch02_sphere      := 2.1=YOURS_GEOMETRIC 2.2=YOURS_QUADRATIC 2.3=YOURS_ROBUST
+YOURS_OBJS_ch02_sphere := sphere_roots.o sphere_roots_float.o
+YOURS_SYMS_ch02_sphere := $(foreach f,geometric quadratic robust,sphere_roots_$(f) sphere_roots_$(f)_float)
+YOURS_ch03_specular      := 3.1=YOURS_HIGHLIGHTS
+YOURS_OBJS_ch03_specular := shade.o
+YOURS_SYMS_ch03_specular := phong_cosine blinn_cosine specular_phong specular_blinn
+YOURS_BENCHES := $(patsubst YOURS_OBJS_%,%,$(filter YOURS_OBJS_%,$(.VARIABLES)))
+YOURS_NUMS    := $(sort $(foreach b,$(YOURS_BENCHES),$(patsubst ch%,%,$(firstword $(subst _, ,$(b))))))
+
+define yours_chart_rule
+.PHONY: chart-ch$(1)
+chart-ch$(1): $(TANGLE) $$(LIB$(1)) $$(O$(1))/bench/timing.o | deps
+	$$(if $$(WORKBOOK),,$$(error make chart-ch$(1) WORKBOOK=1 charts your methods; the book's charts are chart-ch$(1)_NAME))
+	@GRADE_TANGLE_ONLY=1 TANGLE=$(TANGLE) WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) \
+	  sh tools/grade.sh $(1) $$(call chapters_upto,$(1))
+	@$(MAKE) --no-print-directory -s WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) \
+	  $$(foreach b,$$(filter ch$(1)_%,$(YOURS_BENCHES)),$$(addprefix $$(WO$(1))/,$$(YOURS_OBJS_$$(b))))
+	$$(foreach b,$$(filter ch$(1)_%,$(YOURS_BENCHES)),sh tools/chart_yours.sh $$(b) \
+	  $(WB_BUILD)/ch$(1)/state.tsv $(WB_BUILD)/charts "$$(YOURS_$$(b))" \
+	  "$$(addprefix $$(WO$(1))/,$$(YOURS_OBJS_$$(b)))" "$$(YOURS_SYMS_$$(b))" "$(CC)" \
+	  "$(ALL_CFLAGS) $(LTO_LINK) $(PNG_CFLAGS) -Ibench -I$$(T$(1))" \
+	  $$(O$(1))/bench/timing.o $$(LIB$(1)) $(PNG_LIBS) &&) true
+endef
+$(foreach n,$(YOURS_NUMS),$(eval $(call yours_chart_rule,$(n))))
+
+# make handout: build/handout/ and build/handout.tar.gz, the book for
+# students: every exercise's code replaced by its stub, in the chapters and
+# the woven book, with the workbook, tests, tools, meshes and figures; a
+# student can make grade there. check-handout (in make test) builds it
+# without the book and finds no solution line in it (but does in src/).
+.PHONY: handout check-handout
+handout: deps
+	sh tools/handout.sh build/handout
+	sh tools/check_handout.sh build/handout
+	tar -czf build/handout.tar.gz -C build handout
+	@echo "wrote build/handout/ and build/handout.tar.gz"
+
+check-handout:
+	@sh tools/handout.sh build/handoutcheck --no-book > /dev/null
+	@sh tools/check_handout.sh build/handoutcheck
+	@! sh tools/check_handout.sh src > /dev/null || \
+	  { echo "check-handout: the check finds no solution in src/ either"; exit 1; }
+
+# make pdf, make epub: both editions, the book's (build/book.pdf, .epub) and
+# the handout's (build/handout/book.pdf, .epub). The PDF is headless
+# Chromium's print with the stylesheet's print rules (tools/pdf.sh, which
+# installs Chromium as root), the EPUB pandoc's, MathML kept (tools/epub.sh).
+# make test checks the book's: every chapter starts a page of the PDF (where
+# Chromium and pdftotext are installed), the EPUB is a whole zip whose
+# navigation lists every chapter.
+.PHONY: pdf epub check-pdf check-epub
+pdf: build/book.pdf handout
+	sh tools/pdf.sh build/handout/book.html build/handout/book.pdf
+epub: build/book.epub handout
+	cd build/handout && sh tools/epub.sh book.md book.epub chapters/[0-9][0-9]-*.md
+
+build/book.pdf: build/book.html tools/pdf.sh
+	sh tools/pdf.sh $< $@
+
+build/book.epub: book.md $(CHAPTERS) tools/weave.lua tools/weave_names.lua tools/epub.sh \
+                 tools/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) | deps
+	sh tools/epub.sh book.md $@ $(CHAPTERS)
+
+check-epub: build/book.epub
+	@sh tools/check_epub.sh $< $(CHAPTERS)
+
+HAVE_PDF_TOOLS = $(shell (command -v chromium || command -v chromium-browser || \
+                   command -v google-chrome) >/dev/null 2>&1 && \
+                   command -v pdftotext >/dev/null 2>&1 && echo yes)
+check-pdf:
+	@if [ "$(HAVE_PDF_TOOLS)" = yes ]; then \
+	  $(MAKE) --no-print-directory build/book.pdf >/dev/null && \
+	  sh tools/check_pdf.sh build/book.pdf $(CHAPTERS); \
+	else echo "check-pdf: skipped: no chromium or no pdftotext (make pdf installs Chromium)"; fi
+
+# Each stub alone must fail its tests (minutes: not in make test).
+.PHONY: check-stubs
+check-stubs: $(TANGLE)
+	+@MAKE="$(MAKE)" sh tools/check_stubs.sh
+
+# The workbook's own tests (tools/check_workbook.sh), in build/wbcheck.
+.PHONY: check-workbook
+check-workbook: $(TANGLE)
+	+@MAKE="$(MAKE)" sh tools/check_workbook.sh
+
+# The workbook's program and suites of chapter NN, built from the tangle
+# that tools/grade.sh writes to $(WB_BUILD)/tangle/chNN.
+define workbook_rules
+WT$(1) := $(WB_BUILD)/tangle/ch$(1)
+WO$(1) := $(WB_BUILD)/obj/ch$(1)
+WOBJ$(1) := $$(patsubst %.c,$$(WO$(1))/%.o,$$(SRC$(1)))
+WLIB$(1) := $$(filter-out $$(WO$(1))/main.o,$$(WOBJ$(1)))
+
+$$(WO$(1))/%.o: $$(WT$(1))/%.c | deps
+	@mkdir -p $$(@D)
+	$$(CC) $$(WB_CFLAGS) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
+
+$$(WO$(1))/tests/%.o: tests/%.c | deps
+	@mkdir -p $$(@D)
+	$$(CC) $$(WB_CFLAGS) $$(PNG_CFLAGS) $$(CHECK_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
+
+$$(WO$(1))/tests/runner.o: tests/runner.c $$(SUITES$(1)) | deps
+	@mkdir -p $$(@D)
+	$$(CC) $$(WB_CFLAGS) $$(CHECK_CFLAGS) \
+	  '-DSUITE_LIST=$$(foreach s,$$(SUITES$(1)),X($$(basename $$(notdir $$(s)))))' -c -o $$@ $$<
+
+$(WB_BUILD)/test/ch$(1): $$(WO$(1))/tests/runner.o \
+                      $$(patsubst tests/%.c,$$(WO$(1))/tests/%.o,$$(SUITES$(1))) $$(WLIB$(1))
+	@mkdir -p $$(@D)
+	$$(CC) $$(WB_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
+
+$(WB_BUILD)/bin/ch$(1): $$(WOBJ$(1))
+	@mkdir -p $$(@D)
+	$$(CC) $$(WB_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
+
+-include $$(wildcard $$(WO$(1))/*.d $$(WO$(1))/tests/*.d)
+endef
+$(foreach n,$(NUMS),$(eval $(call workbook_rules,$(n))))
+
 # ---------------------------------------------------------------- fuzzing
 # make fuzz FUZZ_SECONDS=60: each libFuzzer target for that long, built with
 # clang, ASan and UBSan against the latest chapter's program. New inputs go to
@@ -448,7 +623,8 @@ check-stray:
 
 test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures \
       check-failures check-diagrams check-book check-map check-stray check-allocations \
-      check-lines check-quotes check-commands check-book-browser
+      check-lines check-quotes check-commands check-workbook check-handout \
+      check-epub check-pdf check-book-browser
 	@$(MAKE) --no-print-directory check-code-width
 	@echo "make test: all passed"
 

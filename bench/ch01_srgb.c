@@ -65,6 +65,16 @@ static NOINLINE unsigned char by_root_fit(double L)
     return to_byte(0.662002687 * s1 + 0.684122060 * s2 - 0.323583601 * s3 - 0.0225411470 * L);
 }
 
+#ifdef YOURS_SRGB
+/* make chart-ch01 WORKBOOK=1: the reader's srgb_to_byte (exercise 1.2),
+ * renamed in a copy of the workbook's image.o, timed among the others. */
+unsigned char yours_srgb_to_byte(double linear);
+static NOINLINE unsigned char by_yours(double L) { return yours_srgb_to_byte(L); }
+#define YOURS_COUNT 1
+#else
+#define YOURS_COUNT 0
+#endif
+
 /* A table of codes indexed by L rounded to one of lut_size steps. The chart
  * has four sizes, each its own table; lut points to the one in use. */
 enum { N_LUTS = 4 };
@@ -164,7 +174,7 @@ static void run_lut(void *ctx, long reps)
 
 /* ---------------------------------------------------------------- report */
 
-enum { N_FORMULAS = 5, N_CASES = N_FORMULAS + N_LUTS };
+enum { N_FORMULAS = 5 + YOURS_COUNT, N_CASES = N_FORMULAS + N_LUTS };
 
 int main(void)
 {
@@ -175,6 +185,9 @@ int main(void)
         {"pow", "double", by_pow},         {"powf", "float", by_powf},
         {"gamma", "2.2", by_gamma22},      {"sqrt", "2.0", by_sqrt},
         {"root-fit", "3 sqrt", by_root_fit},
+#ifdef YOURS_SRGB
+        {"yours", "exercise 1.2", by_yours},
+#endif
     };
     static method_fn fns[N_FORMULAS];
     static int which[N_LUTS];

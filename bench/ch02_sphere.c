@@ -38,9 +38,37 @@ typedef long double quad; /* already 128-bit on e.g. aarch64 */
 
 typedef sphere_roots_fn roots_fn;
 
+#if defined(YOURS_GEOMETRIC) || defined(YOURS_QUADRATIC) || defined(YOURS_ROBUST)
+/* make chart-ch02 WORKBOOK=1 defines YOURS_NAME for each form the reader has
+ * started (exercises 2.1-2.3): their functions, renamed yours_... in copies
+ * of the workbook's objects, are measured and timed in the same rounds as
+ * the book's six, as "yours-NAME". */
+#define YOURS_FORMS
+#define Y(name) int yours_sphere_roots_##name(vec3, double, ray, double[2]); \
+                int yours_sphere_roots_##name##_float(vec3, double, ray, double[2]);
+Y(geometric) Y(quadratic) Y(robust)
+#undef Y
+#define Y(name) {"yours-" #name, "double", yours_sphere_roots_##name}, \
+                {"yours-" #name, "float", yours_sphere_roots_##name##_float},
+static const sphere_roots_method yours[] = {
+#ifdef YOURS_GEOMETRIC
+    Y(geometric)
+#endif
+#ifdef YOURS_QUADRATIC
+    Y(quadratic)
+#endif
+#ifdef YOURS_ROBUST
+    Y(robust)
+#endif
+};
+#undef Y
+#define N_FORMS (SPHERE_ROOTS_METHOD_COUNT + (int)(sizeof yours / sizeof yours[0]))
+static sphere_roots_method forms[N_FORMS]; /* the book's six, then yours */
+#else
 /* The six forms as chapter 2 lists them: name, precision, function. */
 #define forms SPHERE_ROOTS_METHODS
 #define N_FORMS SPHERE_ROOTS_METHOD_COUNT
+#endif
 #define N_RAYS 20000
 
 /* ---------------------------------------------------------------- reference */
@@ -201,6 +229,12 @@ int main(void)
     static char names[N_FORMS][32];
     bench_case cases[N_FORMS];
     bench_timing timing[N_FORMS];
+#ifdef YOURS_FORMS
+    for (int f = 0; f < N_FORMS; f++)
+        forms[f] = f < SPHERE_ROOTS_METHOD_COUNT
+                       ? SPHERE_ROOTS_METHODS[f]
+                       : yours[f - SPHERE_ROOTS_METHOD_COUNT];
+#endif
     make_rays(&timing_rng, 100.0, &timed_center, timed_rays, TIMED_RAYS);
     for (int f = 0; f < N_FORMS; f++) {
         fns[f] = forms[f].roots;

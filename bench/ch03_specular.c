@@ -173,6 +173,21 @@ static void run_method(void *ctx, long reps)
 
 /* ---------------------------------------------------------------- report */
 
+#ifdef YOURS_HIGHLIGHTS
+/* make chart-ch03 WORKBOOK=1: the reader's highlights (exercise 3.1),
+ * renamed in a copy of the workbook's shade.o, timed among the others. */
+double yours_specular_phong(vec3 n, vec3 l, vec3 v, double k);
+double yours_specular_blinn(vec3 n, vec3 l, vec3 v, double k);
+static NOINLINE double by_yours_phong(vec3 n, vec3 l, vec3 v, double k)
+{
+    return yours_specular_phong(n, l, v, k);
+}
+static NOINLINE double by_yours_blinn(vec3 n, vec3 l, vec3 v, double k)
+{
+    return yours_specular_blinn(n, l, v, k);
+}
+#endif
+
 static const struct {
     const char *name;
     highlight_fn f;
@@ -180,6 +195,9 @@ static const struct {
     {"phong-pow", by_phong_pow},         {"phong-squaring", by_phong_squaring},
     {"phong-schlick", by_phong_schlick}, {"blinn-4k", by_blinn_4k},
     {"blinn-fitted", by_blinn_fitted},
+#ifdef YOURS_HIGHLIGHTS
+    {"yours-phong", by_yours_phong},     {"yours-blinn", by_yours_blinn},
+#endif
 };
 enum { N_METHODS = sizeof methods / sizeof methods[0], N_K = 2, N_CASES = N_METHODS * N_K };
 

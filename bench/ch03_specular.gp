@@ -15,6 +15,15 @@ names = "phong-pow phong-squaring phong-schlick blinn-4k blinn-fitted"
 labels = "'Phong, pow (used)' 'Phong, repeated squaring' 'Phong, Schlick rational' 'Blinn-Phong, exponent 4k' 'Blinn-Phong, fitted exponent'"
 colors = "#1b9e77 #66a61e #e7298a #d95f02 #7570b3"
 points = "7 5 9 11 13"
+# make chart-ch03 WORKBOOK=1 passes yours (exercise 3.1 started): the
+# reader's Phong and Blinn-Phong, in black.
+if (exists("yours")) {
+  names = names." yours-phong yours-blinn"
+  labels = labels." 'yours, Phong (exercise 3.1)' 'yours, Blinn-Phong'"
+  colors = colors." #000000 #000000"
+  points = points." 3 1"
+}
+n = words(names)
 is(m, k, kind) = strcol(1) eq m && strcol(2) eq k && strcol(5) eq kind
 
 set logscale y
@@ -25,9 +34,9 @@ set offsets graph 0, graph 0.1, 0, 0
 set xlabel "time per evaluation (ns; bars: interquartile range)"
 set ylabel "rms error over the hemisphere"
 set key bottom left box opaque font ",10" title "filled: k = 10, open: k = 100"
-plot for [m=1:5] csv using (is(word(names,m),"10","rms") ? $3 : NaN):(positive($4)) \
+plot for [m=1:n] csv using (is(word(names,m),"10","rms") ? $3 : NaN):(positive($4)) \
        with points pt (word(points,m)+0) ps 1.6 lc rgb word(colors,m) title word(labels,m), \
-     for [m=1:5] csv using (is(word(names,m),"100","rms") ? $3 : NaN):(positive($4)) \
+     for [m=1:n] csv using (is(word(names,m),"100","rms") ? $3 : NaN):(positive($4)) \
        with points pt (word(points,m)-1) ps 1.6 lc rgb word(colors,m) notitle, \
      csv using (strcol(5) eq "rms" ? $6 : NaN):(positive($4)):($7 - $6):(0) @quartile_bars
 

@@ -57,7 +57,9 @@ START_TEST(test_tangent_ray_gives_a_double_root)
     for (int f = 0; f < N_FORMS; f++) {
         double t[2];
         ck_assert_int_eq(forms[f].roots((vec3){0, 0, 5}, 1, (ray){{1, 0, 0}, PLUS_Z}, t), 2);
-        ck_assert_msg(t[0] == 5 && t[1] == 5, "%s: %g %g", forms[f].name, t[0], t[1]);
+        ck_assert_msg(t[0] == 5 && t[1] == 5, "%s: %g %g, not 5 5: measure from the ray's "
+                      "origin, c - o, not from (0, 0, 0) as sheet 1.4 does", forms[f].name,
+                      t[0], t[1]);
     }
 }
 END_TEST
@@ -66,7 +68,10 @@ START_TEST(test_ray_beside_the_sphere_misses)
 {
     for (int f = 0; f < N_FORMS; f++) {
         double t[2];
-        ck_assert_int_eq(forms[f].roots((vec3){0, 0, 5}, 1, (ray){{1.5, 0, 0}, PLUS_Z}, t), 0);
+        int n = forms[f].roots((vec3){0, 0, 5}, 1, (ray){{1.5, 0, 0}, PLUS_Z}, t);
+        ck_assert_msg(n == 0, "%s: %d roots for a ray from (1.5, 0, 0) that passes beside "
+                      "the sphere: measure from the ray's origin, c - o, not from (0, 0, 0) "
+                      "as sheet 1.4 does", forms[f].name, n);
     }
 }
 END_TEST

@@ -113,7 +113,10 @@ START_TEST(test_blinn_highlight_uses_the_unit_half_vector)
     /* l at 60 degrees, v along n: h is 30 degrees from n, so <n,h>^(4k) = cos^40 30. */
     vec3 l = {sin(60 * DEG), 0, cos(60 * DEG)};
     long double expected = powl(cosl(30 * (long double)DEG), 40);
-    ck_assert_double_eq_tol(specular_blinn(UP, l, UP, 10), (double)expected, 1e-15);
+    double got = specular_blinn(UP, l, UP, 10);
+    ck_assert_msg(fabs(got - (double)expected) < 1e-15,
+                  "<n,h>^40 = %g, not cos^40 30 = %g: h is the unit vector (l + v) / |l + v|, "
+                  "not the sheet's (l + v) / 2 (sheet 2.4)", got, (double)expected);
 }
 END_TEST
 
@@ -237,7 +240,10 @@ START_TEST(test_tone_map_keeps_values_below_one_below_one)
     const double betas[] = {0.5, 0.85, 1, 2};
     for (int b = 0; b < 4; b++) {
         for (double I = 0.001; I < 1; I += 0.001)
-            ck_assert_msg(tone_map(I, 1, betas[b]) < 1, "I %g beta %g", I, betas[b]);
+            ck_assert_msg(tone_map(I, 1, betas[b]) < 1,
+                          "I %g beta %g maps to %g: the tone map is min(alpha I^beta, 1), "
+                          "not the sheet's max (sheet 3.2), which makes every pixel white",
+                          I, betas[b], tone_map(I, 1, betas[b]));
         for (double I = 1; I < 1e6; I *= 1.7)
             ck_assert(tone_map(I, 1, betas[b]) == 1);
         /* The sheet's max((I^beta)^(1/2.2), 1) is never below 1: all white. */

@@ -271,7 +271,10 @@ START_TEST(test_inverse_transpose_keeps_normals_perpendicular)
          * amplified at most by kappa: |cos| <= 16 u kappa */
         double kappa = mat4_norm3(t.m) * mat4_norm3(t.inv);
         double c = vec3_dot(normal, moved) / (vec3_length(normal) * vec3_length(moved));
-        ck_assert_msg(fabs(c) <= 16 * U * kappa, "cos %g, kappa %g", c, kappa);
+        ck_assert_msg(fabs(c) <= 16 * U * kappa,
+                      "the moved normal is not perpendicular to the moved surface (cos %g, "
+                      "kappa %g): a normal moves by (M^-1)^T n, not by M n as sheet 5.3 has it",
+                      c, kappa);
         /* and the cofactor matrix points the same way, up to det's sign */
         vec3 cof = mat4_mul_dir(mat4_cofactor3(t.m), n);
         double sign = mat4_det3(t.m) < 0 ? -1 : 1;

@@ -183,13 +183,18 @@ START_TEST(test_snell_holds_for_the_refracted_direction)
                     vec3 i = incident(n, u, theta);
                     refraction r = forms[m].refract(i, n, eta1 / eta2);
                     long double s1 = sine_between(i, n);
-                    ck_assert_msg(r.total == (eta1 * s1 > eta2), "%s: TIR at %.3f deg", forms[m].name,
-                                  theta / DEG);
+                    ck_assert_msg(r.total == (eta1 * s1 > eta2),
+                                  "%s: total reflection %s at %.3f deg from %g into %g: Snell's "
+                                  "law is eta1 sin1 = eta2 sin2, so sin1 / sin2 = eta2 / eta1, "
+                                  "not the sheet's eta1 / eta2 (sheet 6.3)", forms[m].name,
+                                  r.total ? "wrongly" : "missed", theta / DEG, eta1, eta2);
                     if (r.total)
                         continue;
                     long double s2 = sine_between(r.dir, n);
                     ck_assert_msg(fabsl(eta1 * s1 - eta2 * s2) <= eta2 * t_tolerance(eta1 / eta2),
-                                  "%s: eta1 sin1 - eta2 sin2 = %Lg at %.3f deg", forms[m].name,
+                                  "%s: eta1 sin1 - eta2 sin2 = %Lg at %.3f deg: Snell's law is "
+                                  "eta1 sin1 = eta2 sin2, so sin1 / sin2 = eta2 / eta1, not the "
+                                  "sheet's eta1 / eta2 (sheet 6.3)", forms[m].name,
                                   eta1 * s1 - eta2 * s2, theta / DEG);
                     /* the sheet's ratio sin1 / sin2 = eta1 / eta2 is off by
                      * far more than rounding */

@@ -10,6 +10,9 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "image.h"
+#include "render.h"
+#include "scene_file.h"
 #include "test_util.h"
 
 /* The scenes of chapter 8's tie test (tests/ch08_kdtree.c): cones whose
@@ -131,6 +134,74 @@ START_TEST(test_bad_thread_counts_are_usage_errors)
 }
 END_TEST
 
+/* A small scene of the book's kinds of things, parsed here. */
+static void small_scene(scene *s)
+{
+    static const char text[] =
+        "image 37 23\n"
+        "sphere center 0 -1001 6 radius 1000 color 0.7 0.7 0.6\n"
+        "sphere center 0 0 6 radius 1 color 0.9 0.3 0.2\n"
+        "triangle a -2 -1 8  b 2 -1 8  c 0 2 8\n"
+        "light point position 3 4 0\n";
+    scene_error err;
+    scene_init(s);
+    ck_assert_msg(scene_parse(s, text, sizeof text - 1, "small", &err), "%s",
+                  err.message);
+}
+
+/* img and stats drawn by render_in_bands on `threads` threads. */
+static void draw_on(const scene *s, int threads, image *img,
+                    render_stats *stats)
+{
+    ck_assert(image_init(img, s->cam.width, s->cam.height));
+    *stats = (render_stats){0};
+    render_in_bands(s, img, &(render_settings){.threads = threads}, stats);
+}
+
+START_TEST(test_bands_on_threads_draw_what_one_render_draws)
+{
+    /* The bands, on one thread or three (23 rows: the last band is short),
+     * draw every pixel that chapter 1's render draws, the same. */
+    scene s;
+    small_scene(&s);
+    image whole, banded;
+    render_stats whole_stats = {0}, stats;
+    ck_assert(image_init(&whole, s.cam.width, s.cam.height));
+    render(&s, &whole, &whole_stats);
+    const int counts[] = {1, 3};
+    for (int k = 0; k < 2; k++) {
+        draw_on(&s, counts[k], &banded, &stats);
+        size_t n = (size_t)whole.width * whole.height;
+        ck_assert_msg(memcmp(whole.pixels, banded.pixels, n * sizeof(vec3)) == 0,
+                      "%d threads draw another picture", counts[k]);
+        image_free(&banded);
+    }
+    image_free(&whole);
+    scene_free(&s);
+}
+END_TEST
+
+START_TEST(test_the_threads_counts_add_up_to_one_renders)
+{
+    /* Each thread counts on its own; added up, the counts are those of one
+     * render of the whole image, member by member. */
+    scene s;
+    small_scene(&s);
+    image whole, banded;
+    render_stats whole_stats = {0}, stats;
+    ck_assert(image_init(&whole, s.cam.width, s.cam.height));
+    render(&s, &whole, &whole_stats);
+    ck_assert_int_eq(whole_stats.primary_rays, 37 * 23);
+    draw_on(&s, 3, &banded, &stats);
+    ck_assert_int_eq(stats.primary_rays, whole_stats.primary_rays);
+    ck_assert_int_eq(stats.shadow_rays, whole_stats.shadow_rays);
+    ck_assert(memcmp(&stats, &whole_stats, sizeof stats) == 0);
+    image_free(&banded);
+    image_free(&whole);
+    scene_free(&s);
+}
+END_TEST
+
 Suite *ch09_speed_suite(void)
 {
     Suite *s = suite_create("ch09 speed");
@@ -141,6 +212,8 @@ Suite *ch09_speed_suite(void)
     tcase_add_test(threads, test_ties_come_out_alike_on_any_number_of_threads);
     tcase_add_test(threads, test_statistics_add_up_whatever_the_thread_count);
     tcase_add_test(threads, test_bad_thread_counts_are_usage_errors);
+    tcase_add_test(threads, test_bands_on_threads_draw_what_one_render_draws);
+    tcase_add_test(threads, test_the_threads_counts_add_up_to_one_renders);
     suite_add_tcase(s, threads);
     return s;
 }

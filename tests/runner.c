@@ -17,7 +17,7 @@ int main(void)
 #define X(name) srunner_add_suite(runner, name##_suite());
     SUITE_LIST
 #undef X
-    srunner_run_all(runner, CK_NORMAL);
+    srunner_run_all(runner, CK_ENV); /* CK_VERBOSITY=verbose: every test */
     int failed = srunner_ntests_failed(runner);
     srunner_free(runner);
     return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;

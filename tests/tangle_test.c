@@ -678,7 +678,7 @@ END_TEST
 
 START_TEST(test_bad_usage_exits_with_status_2)
 {
-    const char *usage = "usage: tangle [--line] [--strict] -o OUTDIR CHAPTER.md...\n";
+    const char *usage = "usage: tangle [--line] [--strict] [--skip-not-done] -o OUTDIR CHAPTER.md...\n";
     struct run runs[] = {
         tangle(NULL),
         tangle("--bogus", "-o", "out", "a.md", NULL),
@@ -698,8 +698,72 @@ START_TEST(test_help_prints_usage_and_succeeds)
 {
     struct run r = tangle("--help", NULL);
     ck_assert_int_eq(r.status, 0);
-    ck_assert_str_eq(r.out, "usage: tangle [--line] [--strict] -o OUTDIR CHAPTER.md...\n");
+    ck_assert_str_eq(r.out, "usage: tangle [--line] [--strict] [--skip-not-done] -o OUTDIR CHAPTER.md...\n");
     free_run(&r);
+}
+END_TEST
+
+/* ---- workbook exercises --------------------------------------------- */
+
+static const char *const book_with_exercise =
+    "```{.c file=\"a.c\"}\n"
+    "<<x>>\n"
+    "```\n"
+    "```{.c chunk=\"x\" .exercise tests=\"test_x\"}\n"
+    "book;\n"
+    "```\n";
+
+START_TEST(test_exercise_class_means_nothing_without_skip_option)
+{
+    put("chapters/01-a.md", book_with_exercise);
+    put("workbook/01-a.md",
+        "```{.c chunk=\"x\" .replace .exercise}\n"
+        "stub;\n"
+        "// NOT DONE: delete this line\n"
+        "```\n");
+    expect_success(tangle("-o", "out", "chapters/01-a.md", "workbook/01-a.md", NULL));
+    assert_file("out/a.c", "/* <<x>> ch01 */\nstub;\n// NOT DONE: delete this line\n");
+}
+END_TEST
+
+START_TEST(test_skip_not_done_leaves_an_unstarted_exercise_out)
+{
+    put("chapters/01-a.md", book_with_exercise);
+    put("workbook/01-a.md",
+        "```{.c chunk=\"x\" .replace .exercise}\n"
+        "stub;\n"
+        "    // NOT DONE: delete this line\n"
+        "```\n");
+    expect_success(tangle("--skip-not-done", "-o", "out", "chapters/01-a.md",
+                          "workbook/01-a.md", NULL));
+    assert_file("out/a.c", "/* <<x>> ch01 */\nbook;\n");
+}
+END_TEST
+
+START_TEST(test_skip_not_done_uses_a_started_exercise)
+{
+    put("chapters/01-a.md", book_with_exercise);
+    put("workbook/01-a.md",
+        "```{.c chunk=\"x\" .replace .exercise}\n"
+        "mine; // NOT DONE is only a marker at the start of a line\n"
+        "```\n");
+    expect_success(tangle("--skip-not-done", "--line", "-o", "out",
+                          "chapters/01-a.md", "workbook/01-a.md", NULL));
+    assert_file("out/a.c", "#line 2 \"workbook/01-a.md\"\n"
+                "mine; // NOT DONE is only a marker at the start of a line\n");
+}
+END_TEST
+
+START_TEST(test_skip_not_done_keeps_blocks_not_marked_exercise)
+{
+    put("chapters/01-a.md", book_with_exercise);
+    put("workbook/01-a.md",
+        "```{.c chunk=\"x\" .replace}\n"
+        "// NOT DONE\n"
+        "```\n");
+    expect_success(tangle("--skip-not-done", "-o", "out", "chapters/01-a.md",
+                          "workbook/01-a.md", NULL));
+    assert_file("out/a.c", "/* <<x>> ch01 */\n// NOT DONE\n");
 }
 END_TEST
 
@@ -1707,6 +1771,10 @@ Suite *tangle_suite(void)
     tcase_add_test(rules, test_replace_discards_whole_body_and_later_append_extends_it);
     tcase_add_test(rules, test_append_works_across_chapter_files);
     tcase_add_test(rules, test_file_roots_can_be_appended_and_replaced);
+    tcase_add_test(rules, test_exercise_class_means_nothing_without_skip_option);
+    tcase_add_test(rules, test_skip_not_done_leaves_an_unstarted_exercise_out);
+    tcase_add_test(rules, test_skip_not_done_uses_a_started_exercise);
+    tcase_add_test(rules, test_skip_not_done_keeps_blocks_not_marked_exercise);
     tcase_add_test(rules, test_files_and_chunks_are_separate_namespaces);
     tcase_add_test(rules, test_root_files_in_subdirectories_are_created);
     tcase_add_test(rules, test_inner_dotdot_stays_inside_outdir);

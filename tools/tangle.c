@@ -1,7 +1,7 @@
 /*
  * tangle - extract the program of a literate book from its chapters.
  *
- * USAGE: tangle [--line] [--strict] -o OUTDIR CHAPTER.md...
+ * USAGE: tangle [--line] [--strict] [--skip-not-done] -o OUTDIR CHAPTER.md...
  *   Reads the chapters in the order given and writes every root file they
  *   define below OUTDIR, creating directories as needed.  A file is only
  *   rewritten when its bytes change (so make does not rebuild needlessly);
@@ -9,6 +9,11 @@
  *   --line    emit #line directives into .c and .h outputs, so that the
  *             compiler reports errors at CHAPTER.md:LINE
  *   --strict  a chunk that no root file uses is an error, not a warning
+ *   --skip-not-done
+ *             a block marked .exercise that holds a line starting with
+ *             "// NOT DONE" (blanks in front allowed) is skipped, as if it were an
+ *             illustration: a workbook exercise its reader has not started
+ *             (see EXERCISES)
  *   --help    print the usage
  *
  * CODE BLOCKS
@@ -26,6 +31,14 @@
  *   already exists may be a symbolic link (OUTDIR itself may be one): a
  *   link such as scenes/meshes -> the repository's meshes/ would make the
  *   tangler overwrite what it points at.
+ *
+ * EXERCISES
+ *   The class .exercise marks a block that the book's reader may write
+ *   themselves; key="value" pairs such as tests="..." describe it for the
+ *   workbook tools (tools/workbook.awk, tools/grade.sh).  To the tangler
+ *   it means nothing, except with --skip-not-done (above): the workbook's
+ *   stub of a chunk is a .replace with .exercise and a line "// NOT DONE",
+ *   and it replaces the book's code only once its reader deletes that line.
  *
  * REFERENCES
  *   A code line holding only <<name>> (blanks around it allowed) expands to
@@ -132,7 +145,7 @@ struct chunk {
 };
 
 struct tangle {
-    bool line_directives, strict;
+    bool line_directives, strict, skip_not_done;
     const char *outdir;
     struct source *sources;
     size_t n_sources;
@@ -439,7 +452,7 @@ static struct chunk *new_chunk(struct tangle *t, bool is_file, const char *name,
 
 /* ---- attributes: {.c chunk="name" .append} ------------------------- */
 
-struct attributes { char *chunk, *file; bool append, replace; };
+struct attributes { char *chunk, *file; bool append, replace, exercise; };
 
 /* Length of the word at P: it stops at a blank, '}' or STOP. */
 static size_t word_length(const char *p, const char *end, char stop)
@@ -518,6 +531,7 @@ static const char *parse_attributes(struct span info, struct attributes *a)
             return "empty class or id in attributes";
         a->append |= *p == '.' && span_is(word, "append");
         a->replace |= *p == '.' && span_is(word, "replace");
+        a->exercise |= *p == '.' && span_is(word, "exercise");
         p = word.text + word.len;
     }
     return is_blank((struct span){p + 1, (size_t)(end - p - 1)})
@@ -632,6 +646,17 @@ static bool closes_fence(struct span line, const struct fence *f)
     return n >= f->width && is_blank((struct span){line.text + n, line.len - n});
 }
 
+/* An exercise its reader has not started: a line "// NOT DONE" in it. */
+static bool is_not_done(const struct source *src, size_t fence, size_t count)
+{
+    for (size_t i = fence + 1; i <= fence + count; i++) {
+        struct span line = trim(src->lines[i]);
+        if (line.len >= 11 && memcmp(line.text, "// NOT DONE", 11) == 0)
+            return true;
+    }
+    return false;
+}
+
 static void handle_block(struct tangle *t, const struct source *src, size_t fence,
                          struct span info, size_t count)
 {
@@ -641,7 +666,8 @@ static void handle_block(struct tangle *t, const struct source *src, size_t fenc
     const char *err = parse_attributes(info, &a);
     if (err)
         diagnose(t, true, src->path, fence + 1, "%s", err);
-    else if (a.chunk || a.file)
+    else if ((a.chunk || a.file) &&
+             !(t->skip_not_done && a.exercise && is_not_done(src, fence, count)))
         define_piece(t, src, fence, count, &a);
     free(a.chunk);
     free(a.file);
@@ -1129,6 +1155,8 @@ static enum options_result parse_options(int argc, char **argv, struct tangle *t
             t->line_directives = true;
         else if (strcmp(a, "--strict") == 0)
             t->strict = true;
+        else if (strcmp(a, "--skip-not-done") == 0)
+            t->skip_not_done = true;
         else if (strcmp(a, "-o") == 0 && i + 1 < argc && argv[i + 1][0] != '\0')
             t->outdir = argv[++i];
         else
@@ -1140,7 +1168,8 @@ static enum options_result parse_options(int argc, char **argv, struct tangle *t
 int main(int argc, char **argv)
 {
     static const char usage[] =
-        "usage: tangle [--line] [--strict] -o OUTDIR CHAPTER.md...\n";
+        "usage: tangle [--line] [--strict] [--skip-not-done] -o OUTDIR "
+        "CHAPTER.md...\n";
     struct tangle t = {0};
     size_t n_inputs = 0;
     char **inputs = check_alloc(calloc((size_t)argc, sizeof *inputs));

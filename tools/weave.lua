@@ -157,12 +157,35 @@ local function piece_kind(block)
   return "define"
 end
 
--- The language class (e.g. "c"), skipping our own .append/.replace marks.
+-- The language class (e.g. "c"), skipping our own .append/.replace/.exercise
+-- marks.
 local function piece_language(block)
   for _, class in ipairs(block.classes) do
-    if class ~= "append" and class ~= "replace" then return class end
+    if class ~= "append" and class ~= "replace" and class ~= "exercise" then
+      return class
+    end
   end
   return nil
+end
+
+-- An exercise (class .exercise, see tools/exercises.awk): "Exercise 2.1",
+-- numbered from 1 in each chapter, and the tests that grade it.
+local exercises_in = {}   -- chapter number -> exercises so far
+local function exercise_of(block, chapter)
+  if not block.classes:includes("exercise") then return nil end
+  local number = chapter and chapter.number
+  if not number then
+    warn("an exercise outside a numbered chapter")
+    return nil
+  end
+  exercises_in[number] = (exercises_in[number] or 0) + 1
+  local tests = {}
+  for name in (block.attributes.tests or ""):gmatch("%S+") do
+    tests[#tests + 1] = name
+  end
+  if #tests == 0 then warn("exercise " .. number .. "." .. exercises_in[number]
+                           .. " names no tests") end
+  return { label = number .. "." .. exercises_in[number], tests = tests }
 end
 
 local function check_kind(piece, earlier_count)
@@ -190,6 +213,7 @@ local function new_piece(block)
     section = current_section,       -- nil before the first header
     lines = split_lines(block.text),
     refs = {},
+    exercise = exercise_of(block, chapters[#chapters]),
   }
   piece.key = is_file and file_key(piece.name) or chunk_key(piece.name)
   return piece
@@ -462,13 +486,46 @@ local function render_empty_piece(piece)
     .. '· <span class="chunk-where">' .. used_in_sentence(piece) .. '</span>\n</div>'
 end
 
+-- "Exercise 2.1 · graded by test_a, test_b · how the workbook works".
+local function render_exercise_label(exercise)
+  local tests = {}
+  for i, name in ipairs(exercise.tests) do
+    tests[i] = '<code>' .. escape_html(name) .. '</code>'
+  end
+  return '<div class="exercise-label"><strong>Exercise ' .. exercise.label
+    .. '</strong> · write it yourself: <code>make hint EX=' .. exercise.label
+    .. '</code>, <a href="#workbook">how the workbook works</a>'
+    .. '<br>graded by ' .. table.concat(tests, ", ") .. '</div>'
+end
+
 local function render_piece(piece)
   local lines = shown_lines(piece)
   if #lines == 0 then return render_empty_piece(piece) end
-  return chunk_div(piece, "")
+  return chunk_div(piece, piece.exercise and " chunk-exercise" or "")
+    .. (piece.exercise and render_exercise_label(piece.exercise) or "")
     .. render_header(piece) .. "\n"
     .. render_code(lines, piece.language) .. "\n"
     .. render_footer(piece) .. "\n</div>"
+end
+
+-- An exercise's notes: the task shown, the hint folded away.
+local function render_exercise_notes(div)
+  if not div.classes:includes("exercise-notes") then return nil end
+  local blocks = {}
+  for _, block in ipairs(div.content) do
+    local first = block.t == "Para" and block.content[1]
+    if first and first.t == "Strong" and pandoc.utils.stringify(first) == "Hint." then
+      table.remove(block.content, 1)
+      blocks[#blocks + 1] = pandoc.RawBlock("html",
+        '<details class="exercise-hint"><summary>Hint</summary>')
+      blocks[#blocks + 1] = block
+      blocks[#blocks + 1] = pandoc.RawBlock("html", '</details>')
+    else
+      blocks[#blocks + 1] = block
+    end
+  end
+  div.content = blocks
+  return div
 end
 
 local function render_code_block(block)
@@ -670,8 +727,8 @@ function Pandoc(doc)
   })
   assign_ids()
   warn_about_references()
-  if FORMAT:match("html") then
-    doc = doc:walk({ CodeBlock = render_code_block })
+  if FORMAT:match("html") or FORMAT:match("epub") then
+    doc = doc:walk({ CodeBlock = render_code_block, Div = render_exercise_notes })
     for _, block in ipairs(index_blocks()) do doc.blocks:insert(block) end
     doc.blocks = pandoc.List(with_chapter_navs(doc.blocks))
   end

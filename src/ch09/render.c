@@ -143,8 +143,8 @@ void render_in_bands(const scene *s, image *img, const render_settings *how,
     while (take_band(&q, &first, &last)) { /* this thread is worker 0 */
         render_band(&w[0], first, last);
         if (how->progress != NULL)
-            how->progress(how->progress_context,
-                          atomic_load(&q.rows_done), img->height);
+            how->progress(how->progress_context, atomic_load(&q.rows_done),
+                          img->height);
     }
     for (int k = 1; k < started; k++)
         pthread_join(w[k].thread, NULL);

@@ -1,0 +1,132 @@
+#!/bin/sh
+# check_workbook.sh -- the workbook's own tests (make check-workbook, in make test).
+#
+# Usage: MAKE=make tools/check_workbook.sh
+# Works in build/wbcheck/: writes workbooks there and grades them with
+# make grade WB_DIR=... WB_BUILD=build/wbcheck/build (incremental from one
+# run to the next). Checks that
+#   1. an untouched workbook grades "Progress: 0 of N", N >= 36, at least 4
+#      exercises a chapter, exit 0; make workbook overwrites no file;
+#   2. with every stub started, no exercise passes (each stub fails one of
+#      its tests), and the exit status is not 0;
+#   3. a SOLVED=1 workbook grades "Progress: N of N", exit 0;
+#   4. the course sheet's forms typed in as answers fail with a message
+#      naming the correction (sphere, half vector, tone map, normal, Snell),
+#      a loop is "timed out" and a null pointer "crashed (signal 11)";
+#   5. a syntax error is reported at its workbook line, a lost fence at its
+#      exercise's heading, and the other chapters are graded all the same.
+# Prints what went wrong and exits 1 at the first failed check.
+set -u
+MAKE=${MAKE:-make}
+t=build/wbcheck
+wb=$t/wb
+data=tests/data/workbook
+mkdir -p "$t"
+
+fail() {
+    echo "check-workbook: $*"
+    sed 's/^/  | /' "$t/out" | head -60
+    exit 1
+}
+
+fresh() {
+    rm -rf "$wb"
+    $MAKE -s --no-print-directory workbook WB_DIR="$wb" "$@" > "$t/out" 2>&1 ||
+        fail "make workbook failed"
+}
+
+grade() {
+    $MAKE -s --no-print-directory "grade$1" WB_DIR="$wb" WB_BUILD="$t/build" \
+        > "$t/out" 2>&1
+    status=$?
+}
+
+# The grader's line for exercise ID.
+verdict() { grep -E "^  $1 " "$t/out"; }
+
+expect_verdict() {
+    verdict "$1" | grep -qF -- "$2" ||
+        fail "exercise $1 should say '$2'"
+}
+
+# Replaces the code of exercise ID in workbook file FILE by the file ANSWER.
+answer() {
+    awk -v id="$2" -v answer="$3" '
+        !open && /^```/ && index($0, "ex=\"" id "\"") {
+            print; open = 1
+            while ((getline line < answer) > 0) print line
+            next
+        }
+        open && /^```[ \t]*$/ { open = 0 }
+        !open { print }' "$1" > "$1.new" && mv "$1.new" "$1"
+}
+
+# ---- 1. untouched
+awk -f tools/exercises.awk chapters/[0-9][0-9]-*.md > "$t/list" || exit 1
+n=$(wc -l < "$t/list")
+[ "$n" -ge 36 ] || { echo "check-workbook: only $n exercises, fewer than 36"; exit 1; }
+for c in chapters/[0-9][0-9]-*.md; do
+    k=$(awk -F '\t' -v c="$c" '$2 == c' "$t/list" | wc -l)
+    [ "$k" -ge 4 ] || { echo "check-workbook: $c has $k exercises, fewer than 4"; exit 1; }
+done
+fresh
+echo "my own line" >> "$wb/01-camera.md"
+$MAKE -s --no-print-directory workbook WB_DIR="$wb" > "$t/out" 2>&1
+grep -qx "my own line" "$wb/01-camera.md" || fail "make workbook overwrote a file"
+grade ""
+[ "$status" = 0 ] || fail "an untouched workbook should grade with status 0"
+grep -qx "Progress: 0 of $n exercises" "$t/out" || fail "expected Progress: 0 of $n"
+
+# ---- 2. every stub started: each one fails
+sed -i '/^\/\/ NOT DONE/d' "$wb"/*.md
+grade ""
+[ "$status" != 0 ] || fail "the stubs should not grade with status 0"
+passed=$(grep -cE '^  [0-9]+\.[0-9]+ .* done$' "$t/out")
+[ "$passed" = 0 ] || fail "$passed stubs pass their tests: those exercises cannot be graded"
+graded=$(grep -cE '^  [0-9]+\.[0-9]+ .* (failing|timed out|crashed)' "$t/out")
+[ "$graded" = "$n" ] || fail "only $graded of $n stubs were graded as failing"
+
+# ---- 3. the book's code passes
+fresh SOLVED=1
+grade ""
+[ "$status" = 0 ] || fail "a SOLVED=1 workbook should grade with status 0"
+grep -qx "Progress: $n of $n exercises" "$t/out" || fail "expected Progress: $n of $n"
+
+# ---- 4. the sheet's forms, a loop and a crash
+answer "$wb/02-spheres.md" 2.3 "$data/sheet-sphere.c"
+answer "$wb/03-phong.md" 3.1 "$data/sheet-half-vector.c"
+answer "$wb/03-phong.md" 3.3 "$data/sheet-tone-map.c"
+answer "$wb/05-transforms.md" 5.2 "$data/sheet-normal.c"
+answer "$wb/07-refraction.md" 7.1 "$data/sheet-snell.c"
+answer "$wb/01-camera.md" 1.2 "$data/loops.c"
+answer "$wb/07-refraction.md" 7.3 "$data/crashes.c"
+GRADE_TIMEOUT=4 grade ""
+[ "$status" != 0 ] || fail "wrong answers should not grade with status 0"
+expect_verdict 2.3 "measure from the ray's origin, c - o"
+expect_verdict 3.1 "h is the unit vector (l + v) / |l + v|"
+expect_verdict 3.3 "the tone map is min(alpha I^beta, 1), not the sheet's max"
+expect_verdict 5.2 "a normal moves by (M^-1)^T n, not by M n"
+expect_verdict 7.1 "sin1 / sin2 = eta2 / eta1, not the sheet's eta1 / eta2"
+expect_verdict 1.2 "timed out: test_gamma_22"
+expect_verdict 7.3 "crashed (signal 11): test_brewster_angle_of_glass_is_56_31_degrees"
+
+# ---- 5. a syntax error and a lost fence
+fresh SOLVED=1
+fence=$(grep -n 'ex="2.3"' "$wb/02-spheres.md" | cut -d: -f1)
+sed -i "$((fence + 1))i this is not C" "$wb/02-spheres.md"
+heading=$(grep -n '^## Exercise 3.1:' "$wb/03-phong.md" | cut -d: -f1)
+sed -i '/ex="3.1"/d' "$wb/03-phong.md"
+grade ""
+[ "$status" != 0 ] || fail "a broken workbook should not grade with status 0"
+grep -q "^$wb/02-spheres.md:$((fence + 1)):[0-9]*: error" "$t/out" ||
+    fail "the syntax error should be reported at $wb/02-spheres.md:$((fence + 1))"
+grep -q "^$wb/03-phong.md:$heading: error: exercise 3.1" "$t/out" ||
+    fail "the lost fence should be reported at $wb/03-phong.md:$heading"
+expect_verdict 2.3 "not graded"
+expect_verdict 3.1 "not graded"
+left=$(awk -F '\t' '$2 !~ /\/0[23]-/' "$t/list" | wc -l)
+grep -qx "Progress: $left of $n exercises" "$t/out" ||
+    fail "the other chapters should all be done: expected Progress: $left of $n"
+
+echo "check-workbook: $n exercises; stubs fail, the book's code passes, the sheet's" \
+     "forms are named, errors are located"

@@ -1,0 +1,172 @@
+#!/bin/sh
+# grade.sh -- grade the reader's workbook against the chapters' tests.
+#
+# Usage (the Makefile's grade and grade-chNN targets run it):
+#     tools/grade.sh NN CHAPTER.md...     (the chapters 01..NN, in order)
+# Environment: TANGLE (the tangler), MAKE, WB_DIR (the workbook, default
+# workbook), WB_BUILD (where it is built, default build/workbook),
+# GRADE_TIMEOUT (seconds a test may take, default 10), GRADE_TANGLE_ONLY
+# (1: check and tangle the workbook, build and run nothing).
+#
+# For every chapter its workbook file WB_DIR/NN-name.md (make workbook
+# writes them) is checked alone first: one the tangler rejects (a fence
+# deleted, a chunk renamed) is reported at its file and line and left out,
+# and its chapter is graded with the book's code. The chapters and the good
+# workbook files are then tangled together, the reader's started exercises
+# (no "// NOT DONE" line) replacing the book's chunks (tangle
+# --skip-not-done), so that #line directives send every compiler message to
+# the workbook line the reader typed. A workbook file that does not compile
+# is left out the same way. The program and the suites of chapters 01..NN
+# are built under WB_BUILD (make, incrementally) and the suites run in
+# Check's fork mode with a time limit per test. One line per exercise
+# follows: done, failing (its first failing test, in the order the
+# exercise names them, and the test's message), timed out, crashed (signal
+# N), not started; then "Progress: D of N exercises". The exit status is 0
+# only when every started exercise is done and every workbook file is good.
+set -u
+
+if [ "$#" -lt 2 ]; then
+    echo "usage: $0 NN CHAPTER.md..." >&2
+    exit 2
+fi
+target=$1
+shift
+TANGLE=${TANGLE:-build/rel/tools/tangle}
+MAKE=${MAKE:-make}
+WB_DIR=${WB_DIR:-workbook}
+WB_BUILD=${WB_BUILD:-build/workbook}
+GRADE_TIMEOUT=${GRADE_TIMEOUT:-10}
+tools_dir=$(dirname "$0")
+work=$WB_BUILD/ch$target
+mkdir -p "$work"
+list=$work/exercises.tsv     # ID CHAPTER LINE KIND KEY TESTS
+state=$work/state.tsv        # ID STATE WORKBOOK FIRST LAST
+bad_files=$work/bad-files    # workbook files left out
+: > "$state"
+: > "$bad_files"
+
+awk -f "$tools_dir/exercises.awk" "$@" > "$list" || exit 1
+
+workbook_of() { echo "$WB_DIR/$(basename "$1")"; }
+
+# The fence of exercise ID in FILE: "FIRST LAST STARTED", or nothing.
+find_fence() {
+    awk -v id="$2" '
+        !open && /^```/ && index($0, "ex=\"" id "\"") { open = NR; started = 1; next }
+        open && /^[ \t]*\/\/ NOT DONE/ { started = 0 }
+        open && /^```[ \t]*$/ { print open, NR, started; exit }' "$1"
+}
+
+# The line of exercise ID's heading in FILE (1 if it has none).
+heading_line() {
+    awk -v id="$2" 'index($0, "## Exercise " id ":") == 1 { print NR; found = 1; exit }
+                    END { if (!found) print 1 }' "$1"
+}
+
+# Checks one workbook file with the chapters; records its exercises.
+check_file() {
+    chapter=$1
+    shift
+    wb=$(workbook_of "$chapter")
+    if [ ! -f "$wb" ]; then
+        awk -F '\t' -v c="$chapter" '$2 == c { print $1 "\tabsent\t-\t0\t0" }' \
+            "$list" >> "$state"
+        return
+    fi
+    rm -rf "$work/check"
+    if ! "$TANGLE" --line --skip-not-done -o "$work/check" "$@" "$wb" \
+            > "$work/check.log" 2>&1; then
+        grep -v ': warning: ' "$work/check.log" >&2
+        echo "$wb: left out: the book's code of chapter $(basename "$wb" .md) stands in" >&2
+        echo "$wb" >> "$bad_files"
+    fi
+    awk -F '\t' -v c="$chapter" '$2 == c { print $1 }' "$list" |
+    while read -r id; do
+        fence=$(find_fence "$wb" "$id")
+        if [ -z "$fence" ]; then
+            echo "$wb:$(heading_line "$wb" "$id"): error: exercise $id has lost its" \
+                 "chunk fence (a line \`\`\`{.c ... .exercise ex=\"$id\"})" >&2
+            grep -qx "$wb" "$bad_files" || echo "$wb" >> "$bad_files"
+            printf '%s\tbroken\t%s\t0\t0\n' "$id" "$wb" >> "$state"
+            continue
+        fi
+        set -- $fence
+        kind=$([ "$3" = 1 ] && echo started || echo "not-started")
+        printf '%s\t%s\t%s\t%s\t%s\n' "$id" "$kind" "$wb" "$1" "$2" >> "$state"
+    done
+}
+
+good_files() {
+    for chapter in "$@"; do
+        wb=$(workbook_of "$chapter")
+        [ -f "$wb" ] && ! grep -qx "$wb" "$bad_files" && echo "$wb"
+    done
+}
+
+tangle_all() {
+    # shellcheck disable=SC2046  # one workbook path a word
+    "$TANGLE" --line --skip-not-done -o "$WB_BUILD/tangle/ch$target" "$@" \
+        $(good_files "$@") 2> "$work/tangle.log" || { cat "$work/tangle.log" >&2; return 1; }
+    if [ -d "$WB_BUILD/tangle/ch$target/scenes" ]; then
+        ln -sfn "$(pwd)/meshes" "$WB_BUILD/tangle/ch$target/scenes/meshes"
+    fi
+}
+
+# Two jobs, unless a parent make shares its own (make -j2 grade).
+case ${MAKEFLAGS:-} in
+    *jobserver*) jobs="" ;;
+    *) jobs="-j${GRADE_JOBS:-2}" ;;
+esac
+
+# Builds; a workbook file named by a compiler error is left out, once.
+build() {
+    for attempt in 1 2 3; do
+        tangle_all "$@" || return 1
+        if $MAKE $jobs --no-print-directory -s WB_DIR="$WB_DIR" WB_BUILD="$WB_BUILD" \
+                "$WB_BUILD/test/ch$target" "$WB_BUILD/bin/ch$target" \
+                > "$work/build.log" 2>&1; then
+            return 0
+        fi
+        cat "$work/build.log" >&2
+        culprits=$(sed -n "s|^\($WB_DIR/[^:]*\.md\):[0-9]*:.*error.*|\1|p" \
+                       "$work/build.log" | sort -u)
+        [ -n "$culprits" ] || return 1
+        for wb in $culprits; do
+            echo "$wb: does not compile: the book's code of chapter" \
+                 "$(basename "$wb" .md) stands in" >&2
+            echo "$wb" >> "$bad_files"
+        done
+    done
+    return 1
+}
+
+run_suites() {
+    CK_FORK=yes CK_VERBOSITY=verbose CK_TIMEOUT_MULTIPLIER=0.1 \
+    CK_DEFAULT_TIMEOUT=$((GRADE_TIMEOUT * 10)) \
+    CHAPTER_BIN=$WB_BUILD/bin/ch$target \
+        timeout 900 "$WB_BUILD/test/ch$target" > "$work/tests.log" 2>&1
+}
+
+for chapter in "$@"; do
+    check_file "$chapter" "$@"
+done
+
+# GRADE_TANGLE_ONLY=1 (make chart-ch02 WORKBOOK=1): the tangle and the state
+# of each exercise, in $work/state.tsv, and nothing else.
+if [ "${GRADE_TANGLE_ONLY:-}" = 1 ]; then
+    tangle_all "$@"
+    exit
+fi
+
+: > "$work/tests.log"
+started=$(awk -F '\t' '$2 == "started"' "$state" | wc -l)
+built=no
+if [ "$started" -gt 0 ]; then
+    if build "$@"; then
+        built=yes
+        run_suites
+    fi
+fi
+
+awk -v built="$built" -v bad_files="$bad_files" \
+    -f "$tools_dir/grade_report.awk" "$list" "$state" "$work/tests.log"
