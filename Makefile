@@ -83,7 +83,7 @@ suites_upto = $(foreach n,$(filter $(call nums_upto,$(1)),$(NUMS)),$(wildcard te
 # previous NN: the chapter before NN, empty for the first
 previous = $(lastword $(filter-out $(1),$(filter $(call nums_upto,$(1)),$(NUMS))))
 
-.PHONY: all test deps src figures charts book clean check-src check-figures check-map check-stray check-allocations \
+.PHONY: all test deps src figures charts book clean check-src check-figures check-map check-stray check-allocations check-test-width \
         check-book check-lines check-quotes test-tangle tools benches \
         book-check check-book-browser check-code-width check-commands
 
@@ -613,6 +613,13 @@ check-allocations: check-src
 	  echo "allocations outside memory.c: use memory.h"; exit 1; fi
 	@echo "every allocation goes through memory.h: ok"
 
+# The suites' lines stay within 80 columns, as the book's code does
+# (tests/.clang-format formats them so).
+check-test-width:
+	@if awk 'length($$0) > 80 { print FILENAME ":" FNR ": " length($$0) " columns"; bad = 1 } END { exit !bad }' \
+	    tests/*.c tests/*.h; then exit 1; fi
+	@echo "no line of tests/ is wider than 80 columns: ok"
+
 # No temporary file is tracked (outside a git checkout there is nothing to
 # check).
 check-stray:
@@ -622,7 +629,7 @@ check-stray:
 	  echo "no temporary file is tracked: ok"; fi
 
 test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures \
-      check-failures check-diagrams check-book check-map check-stray check-allocations \
+      check-failures check-diagrams check-book check-map check-stray check-allocations check-test-width \
       check-lines check-quotes check-commands check-workbook check-handout \
       check-epub check-pdf check-book-browser
 	@$(MAKE) --no-print-directory check-code-width

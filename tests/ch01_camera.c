@@ -23,13 +23,15 @@
 
 #define DEG (3.14159265358979323846L / 180.0L)
 
-/* Angle between two vectors in degrees, by atan2 (accurate for small angles too). */
+/* Angle between two vectors in degrees, by atan2 (accurate for small angles
+ * too). */
 static long double angle_deg(vec3 a, vec3 b)
 {
     long double cx = (long double)a.y * b.z - (long double)a.z * b.y;
     long double cy = (long double)a.z * b.x - (long double)a.x * b.z;
     long double cz = (long double)a.x * b.y - (long double)a.y * b.x;
-    long double dot = (long double)a.x * b.x + (long double)a.y * b.y + (long double)a.z * b.z;
+    long double dot = (long double)a.x * b.x + (long double)a.y * b.y +
+                      (long double)a.z * b.z;
     return atan2l(sqrtl(cx * cx + cy * cy + cz * cz), dot) / DEG;
 }
 
@@ -65,7 +67,8 @@ START_TEST(test_centre_pixel_of_odd_image_looks_down_z)
 END_TEST
 
 /* Pixel centre direction by the chapter's derivation, in long double. */
-static void reference_direction(double fov, int w, int h, int i, int j, long double d[3])
+static void reference_direction(double fov, int w, int h, int i, int j,
+                                long double d[3])
 {
     long double half = tanl(fov / 2 * DEG);
     long double s = 2 * half / w;
@@ -88,8 +91,10 @@ START_TEST(test_corner_pixel_rays_match_the_derivation)
         ck_assert_double_eq_tol(r.dir.z, (double)d[2], 8 * DBL_EPSILON);
     }
     /* Top-left looks left and up; bottom-right looks right and down. */
-    ck_assert(camera_ray(&cam, 0, 0).dir.x < 0 && camera_ray(&cam, 0, 0).dir.y > 0);
-    ck_assert(camera_ray(&cam, 319, 239).dir.x > 0 && camera_ray(&cam, 319, 239).dir.y < 0);
+    ck_assert(camera_ray(&cam, 0, 0).dir.x < 0 &&
+              camera_ray(&cam, 0, 0).dir.y > 0);
+    ck_assert(camera_ray(&cam, 319, 239).dir.x > 0 &&
+              camera_ray(&cam, 319, 239).dir.y < 0);
 }
 END_TEST
 
@@ -104,8 +109,8 @@ START_TEST(test_pixel_rays_span_the_field_of_view)
             vec3 right = camera_image_point(&cam, widths[k], 3.5);
             /* 1e-9 degrees: far below a pixel, far above rounding. */
             ck_assert_msg(fabsl(angle_deg(left, right) - fovs[f]) < 1e-9L,
-                          "fov %g, width %d: edges %Lg degrees apart", fovs[f], widths[k],
-                          angle_deg(left, right));
+                          "fov %g, width %d: edges %Lg degrees apart", fovs[f],
+                          widths[k], angle_deg(left, right));
         }
     }
 }
@@ -114,7 +119,8 @@ END_TEST
 START_TEST(test_sheet_pixel_size_does_not_span_the_field_of_view)
 {
     /* The sheet: s = (2 tan(a/2)) / 2, left edge X = -w s / 2. For a 640-pixel
-     * image at 60 degrees its edges are 2 atan(320 tan 30) = 179.38 degrees apart. */
+     * image at 60 degrees its edges are 2 atan(320 tan 30) = 179.38 degrees
+     * apart. */
     double w = 640, s = 2 * tan(30 * (double)DEG) / 2;
     vec3 left = {-w * s / 2, 0, 1}, right = {w * s / 2, 0, 1};
     long double span = angle_deg(left, right);
@@ -172,7 +178,8 @@ START_TEST(test_srgb_known_values)
     /* Hand values: 12.92 * 0.0031308 = 0.040449936 exactly in decimal;
      * 1.055 * 0.18^(1/2.4) - 0.055 = 0.4613561295004416 (50-digit decimal). */
     ck_assert(srgb_encode(0.0) == 0.0);
-    ck_assert_double_eq_tol(srgb_encode(0.0031308), 0.040449936, 4e-17); /* 3 roundings */
+    ck_assert_double_eq_tol(srgb_encode(0.0031308), 0.040449936,
+                            4e-17); /* 3 roundings */
     ck_assert_double_eq_tol(srgb_encode(0.18), 0.46135612950044165, 4e-16);
     ck_assert(srgb_encode(1.0) == 1.0);
     ck_assert_int_eq(srgb_to_byte(0.0), 0);
@@ -185,10 +192,12 @@ END_TEST
 START_TEST(test_srgb_pieces_meet_at_the_knee)
 {
     long double knee = 0.0031308L;
-    long double line = 12.92L * knee, curve = 1.055L * powl(knee, 1 / 2.4L) - 0.055L;
+    long double line = 12.92L * knee,
+                curve = 1.055L * powl(knee, 1 / 2.4L) - 0.055L;
     /* The standard rounds its constants: the pieces differ by 2.85e-8. */
     ck_assert(fabsl(line - curve) < 3e-8L);
-    ck_assert_double_eq_tol(srgb_encode(nextafter(0.0031308, 1)), (double)curve, 1e-15);
+    ck_assert_double_eq_tol(srgb_encode(nextafter(0.0031308, 1)), (double)curve,
+                            1e-15);
 }
 END_TEST
 
@@ -223,7 +232,8 @@ START_TEST(test_gamma_22_differs_from_srgb_by_8_5_codes_in_the_shadows)
     double shadows = 0, rest = 0;
     for (int k = 1; k <= 100000; k++) {
         double L = k * 1e-7; /* (0, 0.01] */
-        shadows = fmax(shadows, 255 * fabs(srgb_encode(L) - gamma_encode(L, 2.2)));
+        shadows =
+            fmax(shadows, 255 * fabs(srgb_encode(L) - gamma_encode(L, 2.2)));
         L = 0.1 + k * 9e-6; /* (0.1, 1] */
         rest = fmax(rest, 255 * fabs(srgb_encode(L) - gamma_encode(L, 2.2)));
     }
@@ -262,8 +272,10 @@ START_TEST(test_png_round_trip_through_libpng)
     for (int j = 0; j < 5; j++)
         for (int i = 0; i < 7; i++) {
             const unsigned char *px = bytes + 3 * (7 * j + i);
-            ck_assert_int_eq(px[0], (int)lroundl(255 * reference_srgb(i / 6.0L)));
-            ck_assert_int_eq(px[1], (int)lroundl(255 * reference_srgb(j / 4.0L)));
+            ck_assert_int_eq(px[0],
+                             (int)lroundl(255 * reference_srgb(i / 6.0L)));
+            ck_assert_int_eq(px[1],
+                             (int)lroundl(255 * reference_srgb(j / 4.0L)));
             ck_assert_int_eq(px[2], 118);
         }
     image_free(&img);
@@ -298,7 +310,8 @@ START_TEST(test_image_init_enforces_the_limits)
     ck_assert(!image_init(&img, 0, 10));
     ck_assert(!image_init(&img, 10, -1));
     ck_assert(!image_init(&img, IMAGE_MAX_SIDE + 1, 1));
-    ck_assert(!image_init(&img, IMAGE_MAX_SIDE, IMAGE_MAX_SIDE)); /* 2^28 > 2^24 pixels */
+    ck_assert(!image_init(&img, IMAGE_MAX_SIDE,
+                          IMAGE_MAX_SIDE)); /* 2^28 > 2^24 pixels */
     ck_assert(img.pixels == NULL);
     ck_assert(image_init(&img, 4096, 4096));
     image_free(&img);
@@ -328,20 +341,24 @@ START_TEST(test_scene_reads_every_statement)
                        "\timage 64 32\n"
                        "background 0.25 0.5 2\n"
                        "camera fov 1e1"; /* no final newline; later wins */
-    ck_assert_msg(parse_text(&s, text, &err), "%d:%d: %s", err.line, err.col, err.message);
+    ck_assert_msg(parse_text(&s, text, &err), "%d:%d: %s", err.line, err.col,
+                  err.message);
     ck_assert(s.cam.fov_deg == 10.0);
     ck_assert(s.cam.width == 64 && s.cam.height == 32);
     ck_assert(s.bg.kind == BACKGROUND_SOLID);
-    ck_assert(s.bg.bottom.x == 0.25 && s.bg.bottom.y == 0.5 && s.bg.bottom.z == 2);
+    ck_assert(s.bg.bottom.x == 0.25 && s.bg.bottom.y == 0.5 &&
+              s.bg.bottom.z == 2);
     ck_assert(parse_text(&s, "background gradient 0 0 0 1 1 1", &err));
-    ck_assert(s.bg.kind == BACKGROUND_GRADIENT && s.bg.top.y == 1 && s.bg.bottom.x == 0);
+    ck_assert(s.bg.kind == BACKGROUND_GRADIENT && s.bg.top.y == 1 &&
+              s.bg.bottom.x == 0);
     scene_free(&s);
 }
 END_TEST
 
 START_TEST(test_scene_rejects_unknown_keywords)
 {
-    expect_parse_error("camera fov 60\n  bogus 1\n", 2, 3, "expected a statement keyword, found 'bogus'");
+    expect_parse_error("camera fov 60\n  bogus 1\n", 2, 3,
+                       "expected a statement keyword, found 'bogus'");
     expect_parse_error("camera zoom 2", 1, 8, "found 'zoom'");
     expect_parse_error("camera", 1, 7, "found end of line");
 }
@@ -352,13 +369,18 @@ START_TEST(test_scene_rejects_missing_and_non_numeric_values)
     expect_parse_error("camera fov", 1, 11, "found end of line");
     expect_parse_error("camera fov abc", 1, 12, "found 'abc'");
     expect_parse_error("camera fov 12abc", 1, 12, "found '12abc'");
-    expect_parse_error("image 320", 1, 10, "expected an image height, found end of line");
+    expect_parse_error("image 320", 1, 10,
+                       "expected an image height, found end of line");
     expect_parse_error("image 320.5 240", 1, 7, "whole number");
     expect_parse_error("background 1 1", 1, 15, "found end of line");
-    expect_parse_error("background gradient 1 1 1 0 0", 1, 30, "found end of line");
-    expect_parse_error("background 1 1 1 # ok\nbackground 1 x 1", 2, 14, "found 'x'");
-    expect_parse_error("camera fov 1234567890123456789012345678901234567890123456789012345678901234567890",
-                 1, 12, "...'");
+    expect_parse_error("background gradient 1 1 1 0 0", 1, 30,
+                       "found end of line");
+    expect_parse_error("background 1 1 1 # ok\nbackground 1 x 1", 2, 14,
+                       "found 'x'");
+    expect_parse_error("camera fov "
+                       "1234567890123456789012345678901234567890123456789012345"
+                       "678901234567890",
+                       1, 12, "...'");
 }
 END_TEST
 
@@ -394,11 +416,13 @@ END_TEST
 
 START_TEST(test_scene_rejects_leftovers_and_negative_colours)
 {
-    expect_parse_error("image 320 240 1", 1, 15, "expected end of line, found '1'");
+    expect_parse_error("image 320 240 1", 1, 15,
+                       "expected end of line, found '1'");
     expect_parse_error("background -1 0 0", 1, 12, "from 0 to 1e6");
     expect_parse_error("background 0 2e6 0", 1, 14, "from 0 to 1e6");
     static const char with_nul[] = "camera\0 fov 30";
-    expect_parse_error_named("bad.scene", with_nul, sizeof with_nul - 1, 1, 7, "NUL");
+    expect_parse_error_named("bad.scene", with_nul, sizeof with_nul - 1, 1, 7,
+                             "NUL");
 }
 END_TEST
 
@@ -417,7 +441,8 @@ START_TEST(test_scene_load_reports_unreadable_files)
     snprintf(path, sizeof path, "%s/huge.scene", tmpdir);
     FILE *f = fopen(path, "w");
     ck_assert_ptr_nonnull(f);
-    ck_assert_int_eq(fseek(f, SCENE_MAX_BYTES, SEEK_SET), 0); /* sparse: 16 MiB + 1 */
+    ck_assert_int_eq(fseek(f, SCENE_MAX_BYTES, SEEK_SET),
+                     0); /* sparse: 16 MiB + 1 */
     fputc('\n', f);
     fclose(f);
     ck_assert(!scene_load(&s, path, &err));
@@ -453,14 +478,15 @@ static void expect_cli_error(const char *const *args, const char *message_part)
     fputs("old picture", f);
     fclose(f);
     ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
-    ck_assert_msg(strstr(errors, message_part) != NULL, "stderr '%s' lacks '%s'", errors,
-                  message_part);
+    ck_assert_msg(strstr(errors, message_part) != NULL,
+                  "stderr '%s' lacks '%s'", errors, message_part);
     char buf[32] = "";
     f = fopen(out, "r");
     ck_assert(fgets(buf, sizeof buf, f) != NULL);
     fclose(f);
     ck_assert_str_eq(buf, "old picture");
-    ck_assert_int_eq(count_entries(tmpdir), 2); /* keep.png, stderr.txt: no temporary */
+    ck_assert_int_eq(count_entries(tmpdir),
+                     2); /* keep.png, stderr.txt: no temporary */
 }
 
 START_TEST(test_cli_rejects_bad_arguments)
@@ -471,7 +497,8 @@ START_TEST(test_cli_rejects_bad_arguments)
     expect_cli_error(size0, "error: --size expects WIDTHxHEIGHT");
     const char *size_text[] = {"-o", out, "--size", "axb", NULL};
     expect_cli_error(size_text, "found 'axb'");
-    const char *size_huge[] = {"-o", out, "--size", "99999999999x99999999999", NULL};
+    const char *size_huge[] = {"-o", out, "--size", "99999999999x99999999999",
+                               NULL};
     expect_cli_error(size_huge, "--size expects");
     const char *size_half[] = {"-o", out, "--size", "640", NULL};
     expect_cli_error(size_half, "--size expects");
@@ -495,7 +522,8 @@ START_TEST(test_cli_reports_scene_errors_with_location)
     fputs("image 32 32\ncamera fov 200\n", f);
     fclose(f);
     char expected[200];
-    snprintf(expected, sizeof expected, "%s:2:12: error: expected a field of view", scene_path);
+    snprintf(expected, sizeof expected,
+             "%s:2:12: error: expected a field of view", scene_path);
     char errors[2048];
     const char *bad[] = {scene_path, "-o", out, NULL};
     ck_assert_int_eq(run_bin(bad, errors, sizeof errors), 1);
@@ -570,7 +598,8 @@ Suite *ch01_camera_suite(void)
     tcase_add_test(srgb, test_srgb_pieces_meet_at_the_knee);
     tcase_add_test(srgb, test_srgb_clamps_out_of_range_and_nan);
     tcase_add_test(srgb, test_srgb_bytes_never_decrease);
-    tcase_add_test(srgb, test_gamma_22_differs_from_srgb_by_8_5_codes_in_the_shadows);
+    tcase_add_test(srgb,
+                   test_gamma_22_differs_from_srgb_by_8_5_codes_in_the_shadows);
     suite_add_tcase(s, srgb);
 
     TCase *png = tcase_create("PNG output");
@@ -601,11 +630,12 @@ Suite *ch01_camera_suite(void)
     tcase_add_test(cli, test_cli_help_succeeds);
 #ifndef NDEBUG
     TCase *contracts = tcase_create("contracts");
-    tcase_add_test_raise_signal(contracts,
-                                test_a_pixel_outside_the_image_is_a_checked_mistake,
-                                SIGABRT);
     tcase_add_test_raise_signal(
-        contracts, test_rendering_into_an_image_of_another_size_is_a_checked_mistake,
+        contracts, test_a_pixel_outside_the_image_is_a_checked_mistake,
+        SIGABRT);
+    tcase_add_test_raise_signal(
+        contracts,
+        test_rendering_into_an_image_of_another_size_is_a_checked_mistake,
         SIGABRT);
     suite_add_tcase(s, contracts);
 #endif

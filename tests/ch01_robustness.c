@@ -33,7 +33,8 @@ static const char *const degenerate_scenes[] = {
     "image 9 7\nsphere center 0 0 5 radius 1e-300\n",
     "image 9 7\nsphere center 0 0 5 radius 1e300\n",
     /* the smallest and largest allowed, the small one on the centre ray */
-    "image 9 7\nsphere center 0 0 5 radius 1e-50\nsphere center 0 0 0 radius 1e50\n",
+    "image 9 7\nsphere center 0 0 5 radius 1e-50\nsphere center 0 0 0 radius "
+    "1e50\n",
     /* a triangle with three equal corners, on the centre ray */
     "image 9 7\ntriangle a 0 0 5 b 0 0 5 c 0 0 5\n",
     /* a light exactly at the point the centre ray hits */
@@ -42,7 +43,8 @@ static const char *const degenerate_scenes[] = {
     "image 9 7\nsphere center 0 0 0 radius 10\nlight point position 1 1 1\n"
     "light spot position 0 0 20 direction 0 0 -1 angle 179.999 exponent 0\n",
     /* the brightest lights and the most extreme tone map allowed */
-    "image 9 7\ntonemap alpha 1e300 beta 1e-300\nsphere center 0 0 5 radius 1 color 1e6 1e6 1e6\n"
+    "image 9 7\ntonemap alpha 1e300 beta 1e-300\nsphere center 0 0 5 radius 1 "
+    "color 1e6 1e6 1e6\n"
     "light point position 0 0 0 intensity 1e6 1e6 1e6 attenuation 1e-6 0 0\n",
     /* a nearly flat field of view and a nearly 180-degree one */
     "image 9 7\ncamera fov 179.999\nsphere center 0 0 5 radius 1\n",
@@ -54,16 +56,17 @@ START_TEST(test_degenerate_scenes_render_finite_or_are_rejected)
 {
     for (int k = 0; k < N_SCENES; k++) {
         char scene_path[192], out[192], errors[2048];
-        snprintf(scene_path, sizeof scene_path, "%s", write_file("degenerate.scene",
-                                                                 degenerate_scenes[k]));
+        snprintf(scene_path, sizeof scene_path, "%s",
+                 write_file("degenerate.scene", degenerate_scenes[k]));
         snprintf(out, sizeof out, "%s", tmp_path("out.png"));
         unlink(out);
         const char *args[] = {scene_path, "-o", out, NULL};
         int status = run_bin(args, errors, sizeof errors);
-        ck_assert_msg(status == 0 || status == 1, "scene %d: status %d, stderr: %s", k, status,
-                      errors);
+        ck_assert_msg(status == 0 || status == 1,
+                      "scene %d: status %d, stderr: %s", k, status, errors);
         if (status == 1) {
-            ck_assert_msg(strstr(errors, "degenerate.scene:") && strstr(errors, ": error: "),
+            ck_assert_msg(strstr(errors, "degenerate.scene:") &&
+                              strstr(errors, ": error: "),
                           "scene %d: no located error: %s", k, errors);
             ck_assert(!file_exists(out));
         } else {
@@ -84,7 +87,8 @@ START_TEST(test_degenerate_scenes_have_only_finite_pixels)
             ck_assert(image_init(&img, s.cam.width, s.cam.height));
             render(&s, &img, &stats);
             for (int p = 0; p < img.width * img.height; p++)
-                ck_assert_msg(isfinite(img.pixels[p].x) && isfinite(img.pixels[p].y) &&
+                ck_assert_msg(isfinite(img.pixels[p].x) &&
+                                  isfinite(img.pixels[p].y) &&
                                   isfinite(img.pixels[p].z),
                               "scene %d, pixel %d", k, p);
             image_free(&img);
@@ -107,12 +111,14 @@ static size_t read_bytes(const char *path, char *buf, size_t size)
 }
 
 /* Renders a first picture to tmpdir/keep/picture.png and returns its size. */
-static size_t first_picture(char *path, size_t path_size, char *bytes, size_t size)
+static size_t first_picture(char *path, size_t path_size, char *bytes,
+                            size_t size)
 {
     char folder[192], errors[1024];
     snprintf(folder, sizeof folder, "%s", tmp_path("keep"));
     ck_assert_int_eq(mkdir(folder, 0755), 0);
-    snprintf(path, path_size, "%.160s/picture.png", folder); /* tmpdir is 24 characters */
+    snprintf(path, path_size, "%.160s/picture.png",
+             folder); /* tmpdir is 24 characters */
     const char *args[] = {"-o", path, "--size", "160x120", NULL};
     ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
     size_t n = read_bytes(path, bytes, size);
@@ -126,7 +132,8 @@ static void expect_picture_kept(const char *path, const char *bytes, size_t n)
     static char now[65536];
     ck_assert_int_eq(read_bytes(path, now, sizeof now), n);
     ck_assert(memcmp(now, bytes, n) == 0);
-    ck_assert_int_eq(count_entries(tmp_path("keep")), 1); /* no temporary left */
+    ck_assert_int_eq(count_entries(tmp_path("keep")),
+                     1); /* no temporary left */
 }
 
 START_TEST(test_a_bad_scene_keeps_the_old_picture)
@@ -135,7 +142,8 @@ START_TEST(test_a_bad_scene_keeps_the_old_picture)
     char path[192], errors[1024];
     size_t n = first_picture(path, sizeof path, bytes, sizeof bytes);
     char scene_path[192];
-    snprintf(scene_path, sizeof scene_path, "%s", write_file("bad.scene", "camera fov 400\n"));
+    snprintf(scene_path, sizeof scene_path, "%s",
+             write_file("bad.scene", "camera fov 400\n"));
     const char *args[] = {scene_path, "-o", path, NULL};
     ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
     ck_assert(strstr(errors, "bad.scene:1:12: error:") != NULL);
@@ -158,7 +166,8 @@ static void copy_file(const char *from, const char *to)
 /* Runs the binary as nobody when the tests run as root (root ignores
  * permissions). Nobody may not reach the build folder, so a copy of the
  * binary in the (world-readable) test folder is run. */
-static int run_as_nobody(const char *const *args, char *errors, size_t size, run_limits limits)
+static int run_as_nobody(const char *const *args, char *errors, size_t size,
+                         run_limits limits)
 {
     ck_assert_int_eq(chmod(tmpdir, 0755), 0);
     char *original = strdup(getenv("CHAPTER_BIN"));
@@ -187,7 +196,8 @@ START_TEST(test_an_unwritable_folder_keeps_the_old_picture)
     const char *args[] = {"-o", path, "--size", "160x120", NULL};
     int status = run_as_nobody(args, errors, sizeof errors, (run_limits){0});
     ck_assert_int_eq(status, 1);
-    ck_assert_msg(strstr(errors, "error: cannot create") != NULL, "stderr: %s", errors);
+    ck_assert_msg(strstr(errors, "error: cannot create") != NULL, "stderr: %s",
+                  errors);
     chmod(tmp_path("keep"), 0755);
     expect_picture_kept(path, bytes, n);
 }
@@ -201,9 +211,11 @@ START_TEST(test_a_full_disk_keeps_the_old_picture)
     /* Files may not grow past 256 bytes (the new PNG has over 1900): it cannot
      * be written whole. The limit also cuts stderr there, after the message. */
     const char *args[] = {"-o", path, "--size", "160x120", NULL};
-    ck_assert_int_eq(
-        run_bin_limited(args, errors, sizeof errors, (run_limits){.max_file_bytes = 256}), 1);
-    ck_assert_msg(strstr(errors, "error: cannot write") != NULL, "stderr: %s", errors);
+    ck_assert_int_eq(run_bin_limited(args, errors, sizeof errors,
+                                     (run_limits){.max_file_bytes = 256}),
+                     1);
+    ck_assert_msg(strstr(errors, "error: cannot write") != NULL, "stderr: %s",
+                  errors);
     expect_picture_kept(path, bytes, n);
 }
 END_TEST
@@ -223,13 +235,14 @@ START_TEST(test_writing_to_dev_full_is_reported)
 }
 END_TEST
 
-
-/* ------------------------------------------------------------ where the output goes */
+/* ------------------------------------------------------------ where the output
+ * goes */
 
 static bool is_png(const char *path)
 {
     char head[8];
-    return read_bytes(path, head, sizeof head) == 8 && memcmp(head, "\x89PNG\r\n\x1a\n", 8) == 0;
+    return read_bytes(path, head, sizeof head) == 8 &&
+           memcmp(head, "\x89PNG\r\n\x1a\n", 8) == 0;
 }
 
 START_TEST(test_a_fifo_is_written_in_place)
@@ -241,7 +254,8 @@ START_TEST(test_a_fifo_is_written_in_place)
     run_limits no_hang = {.alarm_seconds = 30};
     /* No program reads from the FIFO: an error, not a wait. */
     ck_assert_int_eq(run_bin_limited(args, errors, sizeof errors, no_hang), 1);
-    ck_assert_msg(strstr(errors, "no program reads from it") != NULL, "stderr: %s", errors);
+    ck_assert_msg(strstr(errors, "no program reads from it") != NULL,
+                  "stderr: %s", errors);
     int reader = open(fifo, O_RDONLY | O_NONBLOCK);
     ck_assert_int_ge(reader, 0);
     ck_assert_int_eq(run_bin_limited(args, errors, sizeof errors, no_hang), 0);
@@ -272,8 +286,10 @@ START_TEST(test_dash_is_standard_output)
     char out[192], errors[1024];
     snprintf(out, sizeof out, "%s", tmp_path("stdout.png"));
     const char *args[] = {"-o", "-", "--size", "16x12", NULL};
-    int status = run_bin_limited(args, errors, sizeof errors, (run_limits){.stdout_path = out});
-    bool wrote_a_file = unlink("-") == 0; /* where "-" would go as a file name */
+    int status = run_bin_limited(args, errors, sizeof errors,
+                                 (run_limits){.stdout_path = out});
+    bool wrote_a_file =
+        unlink("-") == 0; /* where "-" would go as a file name */
     ck_assert_msg(status == 0, "stderr: %s", errors);
     ck_assert(!wrote_a_file);
     ck_assert(is_png(out));
@@ -290,7 +306,8 @@ START_TEST(test_dev_stdout_is_written_through_its_link)
     write_bytes("open/stdout.png", "", 0);
     ck_assert_int_eq(chmod(out, 0666), 0);
     const char *args[] = {"-o", "/dev/stdout", "--size", "16x12", NULL};
-    int status = run_as_nobody(args, errors, sizeof errors, (run_limits){.stdout_path = out});
+    int status = run_as_nobody(args, errors, sizeof errors,
+                               (run_limits){.stdout_path = out});
     ck_assert_msg(status == 0, "stderr: %s", errors);
     ck_assert(is_png(out));
     struct stat st;
@@ -303,15 +320,19 @@ START_TEST(test_output_errors_come_before_the_render)
 {
     char missing[192], errors[1024];
     snprintf(missing, sizeof missing, "%s", tmp_path("no/such/folder.png"));
-    const char *cases[][2] = {
-        {missing, "cannot create"}, {"", "-o expects a file name"}, {tmpdir, "Is a directory"}};
+    const char *cases[][2] = {{missing, "cannot create"},
+                              {"", "-o expects a file name"},
+                              {tmpdir, "Is a directory"}};
     for (int k = 0; k < 3; k++) {
-        /* A 4096 x 4096 render costs seconds of CPU; failing first costs none. */
+        /* A 4096 x 4096 render costs seconds of CPU; failing first costs none.
+         */
         const char *args[] = {"-o", cases[k][0], "--size", "4096x4096", NULL};
         ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
-        ck_assert_msg(strstr(errors, cases[k][1]) != NULL, "stderr: %s", errors);
-        ck_assert_msg(last_run_cpu_seconds < 0.3, "'%s': %.2f s of CPU before the error",
-                      cases[k][0], last_run_cpu_seconds);
+        ck_assert_msg(strstr(errors, cases[k][1]) != NULL, "stderr: %s",
+                      errors);
+        ck_assert_msg(last_run_cpu_seconds < 0.3,
+                      "'%s': %.2f s of CPU before the error", cases[k][0],
+                      last_run_cpu_seconds);
     }
 }
 END_TEST
@@ -328,7 +349,8 @@ START_TEST(test_a_replaced_file_keeps_its_mode)
     struct stat st;
     ck_assert_int_eq(stat(path, &st), 0);
     ck_assert_int_eq(st.st_mode & 0777, 0640);
-    ck_assert_uint_ne(read_bytes(path, now, sizeof now), n); /* a new, smaller picture */
+    ck_assert_uint_ne(read_bytes(path, now, sizeof now),
+                      n); /* a new, smaller picture */
 }
 END_TEST
 
@@ -337,13 +359,16 @@ START_TEST(test_a_read_only_file_is_not_replaced)
     static char bytes[65536];
     char path[192], errors[1024];
     size_t n = first_picture(path, sizeof path, bytes, sizeof bytes);
-    ck_assert_int_eq(chmod(tmp_path("keep"), 0777), 0); /* anyone may write the folder */
+    ck_assert_int_eq(chmod(tmp_path("keep"), 0777),
+                     0); /* anyone may write the folder */
     ck_assert_int_eq(chmod(path, 0444), 0);
     const char *args[] = {"-o", path, "--size", "80x60", NULL};
-    ck_assert_int_eq(run_as_nobody(args, errors, sizeof errors, (run_limits){0}), 1);
+    ck_assert_int_eq(
+        run_as_nobody(args, errors, sizeof errors, (run_limits){0}), 1);
     ck_assert_msg(strstr(errors, "read-only") != NULL, "stderr: %s", errors);
     expect_picture_kept(path, bytes, n);
-    if (geteuid() == 0) { /* root may write it, as cp may: replaced, still read only */
+    if (geteuid() ==
+        0) { /* root may write it, as cp may: replaced, still read only */
         ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
         struct stat st;
         ck_assert_int_eq(stat(path, &st), 0);
@@ -385,20 +410,24 @@ START_TEST(test_a_signal_leaves_no_temporary_file)
         /* The temporary file appears when the output is being made. */
         struct timespec ms = {0, 1000000};
         int waited = 0;
-        while (!has_entry_starting(folder, "out.png.tmp-") && waited++ < 60000) {
+        while (!has_entry_starting(folder, "out.png.tmp-") &&
+               waited++ < 60000) {
             /* a program that has stopped will make no file: no need to wait */
-            ck_assert_msg(!has_exited(pid), "the program ended before its output");
+            ck_assert_msg(!has_exited(pid),
+                          "the program ended before its output");
             nanosleep(&ms, NULL);
         }
         ck_assert_int_eq(kill(pid, stops[k]), 0);
-        ck_assert_int_eq(finish_bin(pid, errors, sizeof errors), 128 + stops[k]);
+        ck_assert_int_eq(finish_bin(pid, errors, sizeof errors),
+                         128 + stops[k]);
         ck_assert_msg(waited < 60000, "no temporary file appeared");
         ck_assert_int_eq(count_entries(folder), 0);
     }
 }
 END_TEST
 
-/* ------------------------------------------------------------ hostile input files */
+/* ------------------------------------------------------------ hostile input
+ * files */
 
 START_TEST(test_a_scene_must_be_a_regular_file)
 {
@@ -412,14 +441,18 @@ START_TEST(test_a_scene_must_be_a_regular_file)
         ck_assert_int_eq(run_bin_limited(args, errors, sizeof errors,
                                          (run_limits){.alarm_seconds = 30}),
                          1);
-        ck_assert_msg(strstr(errors, "not a regular file") != NULL, "stderr: %s", errors);
+        ck_assert_msg(strstr(errors, "not a regular file") != NULL,
+                      "stderr: %s", errors);
         ck_assert(!file_exists(out));
     }
     /* A file under /proc says it is empty but holds text: it is read whole. */
     const char *proc[] = {"/proc/self/status", "-o", out, NULL};
     ck_assert_int_eq(run_bin(proc, errors, sizeof errors), 1);
-    ck_assert_msg(strstr(errors, "status:1:1: error: expected a statement keyword, found 'Name:'"),
-                  "stderr: %s", errors);
+    ck_assert_msg(
+        strstr(
+            errors,
+            "status:1:1: error: expected a statement keyword, found 'Name:'"),
+        "stderr: %s", errors);
 }
 END_TEST
 
@@ -427,13 +460,19 @@ START_TEST(test_a_byte_order_mark_is_skipped)
 {
     scene s;
     scene_error err;
-    ck_assert_msg(parse_text(&s, "\xEF\xBB\xBF" "image 8 6\n", &err), "%s", err.message);
+    ck_assert_msg(parse_text(&s,
+                             "\xEF\xBB\xBF"
+                             "image 8 6\n",
+                             &err),
+                  "%s", err.message);
     ck_assert_int_eq(s.cam.width, 8);
     scene_free(&s);
     /* Columns count from after the mark, as an editor shows them. */
     expect_parse_error("\xEF\xBB\xBF" "camera fov x\n", 1, 12, "found 'x'");
     /* Only at the start of the file. */
-    expect_parse_error("image 8 6\n\xEF\xBB\xBF" "image 8 6\n", 2, 1, "statement keyword");
+    expect_parse_error("image 8 6\n\xEF\xBB\xBF"
+                       "image 8 6\n",
+                       2, 1, "statement keyword");
 }
 END_TEST
 
@@ -447,19 +486,23 @@ START_TEST(test_numbers_may_have_any_number_of_digits)
     strcpy(text + n + 603, "\n");
     scene s;
     scene_error err;
-    ck_assert_msg(parse_text(&s, text, &err), "%d:%d %s", err.line, err.col, err.message);
+    ck_assert_msg(parse_text(&s, text, &err), "%d:%d %s", err.line, err.col,
+                  err.message);
     ck_assert(s.cam.fov_deg == 60);
     scene_free(&s);
 }
 END_TEST
 
 /* Runs the binary on args; stderr must hold want and no byte of avoid. */
-static void expect_stderr(const char *const *args, const char *want, const char *avoid)
+static void expect_stderr(const char *const *args, const char *want,
+                          const char *avoid)
 {
     char errors[2048];
     ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
-    ck_assert_msg(strstr(errors, want) != NULL, "stderr '%s' lacks '%s'", errors, want);
-    ck_assert_msg(strpbrk(errors, avoid) == NULL, "stderr '%s' holds a raw control byte", errors);
+    ck_assert_msg(strstr(errors, want) != NULL, "stderr '%s' lacks '%s'",
+                  errors, want);
+    ck_assert_msg(strpbrk(errors, avoid) == NULL,
+                  "stderr '%s' holds a raw control byte", errors);
 }
 
 START_TEST(test_errors_escape_what_a_terminal_would_obey)
@@ -470,12 +513,15 @@ START_TEST(test_errors_escape_what_a_terminal_would_obey)
     snprintf(scene_path, sizeof scene_path, "%s",
              write_file("title.scene", "camera fov \x1b]0;owned\x07\n"));
     const char *token[] = {scene_path, "-o", out, NULL};
-    expect_stderr(token, ":1:12: error: expected a field of view in degrees, found "
-                         "'\\x1b]0;owned\\x07'", "\x1b\x07");
+    expect_stderr(token,
+                  ":1:12: error: expected a field of view in degrees, found "
+                  "'\\x1b]0;owned\\x07'",
+                  "\x1b\x07");
     /* A file name that would clear the screen, and one with a C1 control. */
     snprintf(name, sizeof name, "%s", tmp_path("x\x1b[2J\xc2\x9b.scene"));
     const char *path[] = {name, "-o", out, NULL};
-    expect_stderr(path, "x\\x1b[2J\\xc2\\x9b.scene: error: No such file", "\x1b");
+    expect_stderr(path, "x\\x1b[2J\\xc2\\x9b.scene: error: No such file",
+                  "\x1b");
     /* An option's value. */
     const char *size[] = {"--size", "\x1b[2J", "-o", out, NULL};
     expect_stderr(size, "found '\\x1b[2J'", "\x1b");
@@ -520,8 +566,8 @@ START_TEST(test_long_file_names_are_named_in_full)
 }
 END_TEST
 
-
-/* ------------------------------------------------------------ inputs and outputs */
+/* ------------------------------------------------------------ inputs and
+ * outputs */
 
 /* The output named as the scene, through a symbolic link to it, and through
  * a second hard link: refused, the scene kept, nothing left beside it. */
@@ -544,7 +590,8 @@ START_TEST(test_the_output_may_not_be_an_input)
     for (int k = 0; k < 3; k++) {
         const char *args[] = {scene_path, "-o", names[k], NULL};
         ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
-        ck_assert_msg(strstr(errors, "error: the output is an input:"), "%s", errors);
+        ck_assert_msg(strstr(errors, "error: the output is an input:"), "%s",
+                      errors);
         char now[64] = "";
         ck_assert_int_eq(read_bytes(scene_path, now, sizeof now), strlen(text));
         ck_assert(memcmp(now, text, strlen(text)) == 0);
@@ -572,22 +619,23 @@ END_TEST
 START_TEST(test_command_line_numbers_are_digits_only)
 {
     /* strtol would skip blanks and take a sign; the options take digits */
-    const char *sizes[] = {" 64x48", "+64x48", "-64x48", "64x 48", "64x+48", "64x48 ", ""};
+    const char *sizes[] = {" 64x48", "+64x48", "-64x48", "64x 48",
+                           "64x+48", "64x48 ", ""};
     char out[192], errors[1024];
     snprintf(out, sizeof out, "%s", tmp_path("out.png"));
     for (int k = 0; k < 7; k++) {
         const char *args[] = {"--size", sizes[k], "-o", out, NULL};
         ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
-        ck_assert_msg(strstr(errors, "--size expects WIDTHxHEIGHT"), "'%s': %s", sizes[k],
-                      errors);
+        ck_assert_msg(strstr(errors, "--size expects WIDTHxHEIGHT"), "'%s': %s",
+                      sizes[k], errors);
     }
     /* --threads (chapter 9) and, before it, an unknown option alike */
     const char *counts[] = {" 2", "+2", "2 ", "0x2", ""};
     for (int k = 0; k < 5; k++) {
         const char *args[] = {"--threads", counts[k], "-o", out, NULL};
         ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
-        ck_assert_msg(strstr(errors, ": error: ") && strstr(errors, "Try '"), "'%s': %s",
-                      counts[k], errors);
+        ck_assert_msg(strstr(errors, ": error: ") && strstr(errors, "Try '"),
+                      "'%s': %s", counts[k], errors);
     }
     ck_assert(!file_exists(out));
     const char *good[] = {"--size", "0064x048", "-o", out, NULL};
@@ -613,10 +661,12 @@ START_TEST(test_a_usage_error_is_two_documented_lines)
     const char *args[] = {"--sise", "64x48", NULL};
     ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
     snprintf(expected, sizeof expected,
-             "%s: error: unknown option, found '--sise'\nTry '%s --help'.\n", bin, bin);
+             "%s: error: unknown option, found '--sise'\nTry '%s --help'.\n",
+             bin, bin);
     ck_assert_str_eq(errors, expected);
-    ck_assert_msg(file_contains("README.md", "bin/chNN: error: unknown option, found "
-                                             "'--sise'\nTry 'bin/chNN --help'.\n"),
+    ck_assert_msg(file_contains("README.md",
+                                "bin/chNN: error: unknown option, found "
+                                "'--sise'\nTry 'bin/chNN --help'.\n"),
                   "README.md does not show the two lines");
 }
 END_TEST
@@ -652,7 +702,8 @@ START_TEST(test_a_long_render_shows_progress_lines_in_a_log)
     char folder[192], out[192], errors[4096];
     snprintf(folder, sizeof folder, "%s", tmp_path("log"));
     ck_assert_int_eq(mkdir(folder, 0755), 0);
-    snprintf(out, sizeof out, "%.160s/out.png", folder); /* tmpdir is 24 bytes */
+    snprintf(out, sizeof out, "%.160s/out.png",
+             folder); /* tmpdir is 24 bytes */
     const char *args[] = {"-o", out, "--size", "4096x4096", NULL};
     pid_t pid = start_bin(args, (run_limits){.alarm_seconds = 120});
     struct timespec ms = {0, 1000000};
@@ -668,9 +719,11 @@ START_TEST(test_a_long_render_shows_progress_lines_in_a_log)
     kill(pid, SIGTERM);
     int status = finish_bin(pid, errors, sizeof errors);
     ck_assert_msg(status == 0 || status == 128 + SIGTERM, "status %d", status);
-    ck_assert_msg(strchr(errors, '\r') == NULL, "a terminal's redrawn line: %s", errors);
+    ck_assert_msg(strchr(errors, '\r') == NULL, "a terminal's redrawn line: %s",
+                  errors);
     ck_assert_msg(stderr_lines() == 1, "%d lines: %s", stderr_lines(), errors);
-    ck_assert_msg(strstr(errors, "rendering: row ") || strstr(errors, "% "), "%s", errors);
+    ck_assert_msg(strstr(errors, "rendering: row ") || strstr(errors, "% "),
+                  "%s", errors);
 }
 END_TEST
 
@@ -680,7 +733,8 @@ Suite *ch01_robustness_suite(void)
     TCase *scenes = tcase_create("edge cases");
     tcase_add_checked_fixture(scenes, make_tmpdir, remove_tmpdir);
     tcase_set_timeout(scenes, 120);
-    tcase_add_test(scenes, test_degenerate_scenes_render_finite_or_are_rejected);
+    tcase_add_test(scenes,
+                   test_degenerate_scenes_render_finite_or_are_rejected);
     tcase_add_test(scenes, test_degenerate_scenes_have_only_finite_pixels);
     suite_add_tcase(s, scenes);
 

@@ -36,7 +36,10 @@ static const vec3 PLUS_Z = {0, 0, 1};
 
 static rng_state rng = {12345}; /* fixed seed: the same rays every run */
 
-static double uniform(double lo, double hi) { return rng_uniform(&rng, lo, hi); }
+static double uniform(double lo, double hi)
+{
+    return rng_uniform(&rng, lo, hi);
+}
 
 /* ------------------------------------------------------------ roots */
 
@@ -45,8 +48,10 @@ START_TEST(test_two_hits_at_4_and_6)
     /* Unit sphere 5 ahead: enters at 4, leaves at 6, exact in float too. */
     for (int f = 0; f < N_FORMS; f++) {
         double t[2];
-        ck_assert_int_eq(forms[f].roots((vec3){0, 0, 5}, 1, (ray){ORIGIN, PLUS_Z}, t), 2);
-        ck_assert_msg(t[0] == 4 && t[1] == 6, "%s: %g %g", forms[f].name, t[0], t[1]);
+        ck_assert_int_eq(
+            forms[f].roots((vec3){0, 0, 5}, 1, (ray){ORIGIN, PLUS_Z}, t), 2);
+        ck_assert_msg(t[0] == 4 && t[1] == 6, "%s: %g %g", forms[f].name, t[0],
+                      t[1]);
     }
 }
 END_TEST
@@ -56,10 +61,12 @@ START_TEST(test_tangent_ray_gives_a_double_root)
     /* The line x = 1 touches the unit sphere at (1, 0, 5). */
     for (int f = 0; f < N_FORMS; f++) {
         double t[2];
-        ck_assert_int_eq(forms[f].roots((vec3){0, 0, 5}, 1, (ray){{1, 0, 0}, PLUS_Z}, t), 2);
-        ck_assert_msg(t[0] == 5 && t[1] == 5, "%s: %g %g, not 5 5: measure from the ray's "
-                      "origin, c - o, not from (0, 0, 0) as sheet 1.4 does", forms[f].name,
-                      t[0], t[1]);
+        ck_assert_int_eq(
+            forms[f].roots((vec3){0, 0, 5}, 1, (ray){{1, 0, 0}, PLUS_Z}, t), 2);
+        ck_assert_msg(t[0] == 5 && t[1] == 5,
+                      "%s: %g %g, not 5 5: measure from the ray's "
+                      "origin, c - o, not from (0, 0, 0) as sheet 1.4 does",
+                      forms[f].name, t[0], t[1]);
     }
 }
 END_TEST
@@ -68,10 +75,15 @@ START_TEST(test_ray_beside_the_sphere_misses)
 {
     for (int f = 0; f < N_FORMS; f++) {
         double t[2];
-        int n = forms[f].roots((vec3){0, 0, 5}, 1, (ray){{1.5, 0, 0}, PLUS_Z}, t);
-        ck_assert_msg(n == 0, "%s: %d roots for a ray from (1.5, 0, 0) that passes beside "
-                      "the sphere: measure from the ray's origin, c - o, not from (0, 0, 0) "
-                      "as sheet 1.4 does", forms[f].name, n);
+        int n =
+            forms[f].roots((vec3){0, 0, 5}, 1, (ray){{1.5, 0, 0}, PLUS_Z}, t);
+        ck_assert_msg(
+            n == 0,
+            "%s: %d roots for a ray from (1.5, 0, 0) that passes beside "
+            "the sphere: measure from the ray's origin, c - o, not from (0, 0, "
+            "0) "
+            "as sheet 1.4 does",
+            forms[f].name, n);
     }
 }
 END_TEST
@@ -80,7 +92,8 @@ START_TEST(test_sphere_behind_the_origin_is_not_seen)
 {
     sphere sp = {.center = {0, 0, -5}, .radius = 1};
     double t[2], seen;
-    ck_assert_int_eq(sphere_roots_robust(sp.center, 1, (ray){ORIGIN, PLUS_Z}, t), 2);
+    ck_assert_int_eq(
+        sphere_roots_robust(sp.center, 1, (ray){ORIGIN, PLUS_Z}, t), 2);
     ck_assert(t[0] == -6 && t[1] == -4);
     ck_assert(!sphere_hit_t(&sp, (ray){ORIGIN, PLUS_Z}, 0, INFINITY, &seen));
 }
@@ -95,7 +108,8 @@ START_TEST(test_origin_inside_sees_the_far_side)
     ck_assert(t == 2); /* roots -2 and 2: the one in front */
     hit h;
     sphere_fill_hit(&sp, r, t, &h);
-    ck_assert(h.normal.x == 0 && h.normal.y == 0 && h.normal.z == 1); /* outward */
+    ck_assert(h.normal.x == 0 && h.normal.y == 0 &&
+              h.normal.z == 1); /* outward */
 }
 END_TEST
 
@@ -111,7 +125,8 @@ START_TEST(test_roots_are_ordered)
             double t[2];
             if (forms[f].roots(c, radius, r, t) == 2) {
                 two_roots[f]++;
-                ck_assert_msg(t[0] <= t[1], "%s: %g > %g", forms[f].name, t[0], t[1]);
+                ck_assert_msg(t[0] <= t[1], "%s: %g > %g", forms[f].name, t[0],
+                              t[1]);
             }
         }
     }
@@ -133,12 +148,16 @@ START_TEST(test_negative_d_squared_from_rounding_is_a_hit)
     double along = c.x * d.x + c.y * d.y + c.z * d.z;
     double D2 = c.x * c.x + c.y * c.y + c.z * c.z - along * along;
     ck_assert_msg(D2 < 0, "precondition: D^2 = %g should round below 0", D2);
-    ck_assert(isnan(sqrt(D2))); /* the sheet's D: every comparison with it is false */
+    ck_assert(
+        isnan(sqrt(D2))); /* the sheet's D: every comparison with it is false */
     double sheet_D = sqrt(D2);
-    ck_assert(!(sheet_D <= 1)); /* so the sheet's "D <= r: a hit" misses this head-on ray */
+    ck_assert(
+        !(sheet_D <=
+          1)); /* so the sheet's "D <= r: a hit" misses this head-on ray */
     double t_hit;
     sphere sp = {c, 1};
-    ck_assert(sphere_hit_t(&sp, (ray){ORIGIN, d}, 0, INFINITY, &t_hit)); /* the program hits */
+    ck_assert(sphere_hit_t(&sp, (ray){ORIGIN, d}, 0, INFINITY,
+                           &t_hit)); /* the program hits */
     for (int f = 0; f < 3; f++) { /* the double forms */
         double t[2];
         ck_assert_int_eq(forms[f].roots(c, 1, (ray){ORIGIN, d}, t), 2);
@@ -151,13 +170,16 @@ START_TEST(test_negative_d_squared_from_rounding_is_a_hit)
 }
 END_TEST
 
-/* ------------------------------------------------------------ where forms fail */
+/* ------------------------------------------------------------ where forms fail
+ */
 
 /* The visible root of the robust form in long double; false on a miss.
  * *gap: how far the ray's line passes from the silhouette, in radii. */
-static bool reference_t(vec3 c, double radius, ray r, long double *t, long double *gap)
+static bool reference_t(vec3 c, double radius, ray r, long double *t,
+                        long double *gap)
 {
-    long double f[3] = {(long double)r.origin.x - c.x, (long double)r.origin.y - c.y,
+    long double f[3] = {(long double)r.origin.x - c.x,
+                        (long double)r.origin.y - c.y,
                         (long double)r.origin.z - c.z};
     long double d[3] = {r.dir.x, r.dir.y, r.dir.z};
     long double a = 0, beta = 0, perp2 = 0, ff = 0;
@@ -202,7 +224,9 @@ static form_score score_form(roots_fn roots, double D, int n_rays)
     rng.state = 777;
     for (int k = 0; k < n_rays; k++) {
         double u = uniform(-1.2, 1.2), v = uniform(-1.2, 1.2);
-        ray r = {ORIGIN, vec3_normalize(vec3_add(c, vec3_add(vec3_scale(e1, u), vec3_scale(e2, v))))};
+        ray r = {ORIGIN,
+                 vec3_normalize(vec3_add(
+                     c, vec3_add(vec3_scale(e1, u), vec3_scale(e2, v))))};
         long double ref, gap;
         bool ref_hit = reference_t(c, 1, r, &ref, &gap);
         double t[2];
@@ -211,7 +235,8 @@ static form_score score_form(roots_fn roots, double D, int n_rays)
             s.misclassified += gap > GRAZING;
         } else if (hit) {
             double seen = t[0] > 0 ? t[0] : t[1];
-            s.max_rel_error = fmax(s.max_rel_error, (double)fabsl((seen - ref) / ref));
+            s.max_rel_error =
+                fmax(s.max_rel_error, (double)fabsl((seen - ref) / ref));
         }
     }
     return s;
@@ -223,12 +248,13 @@ START_TEST(test_naive_forms_fail_in_float_where_robust_holds)
     for (int f = 3; f < 5; f++) {
         form_score s = score_form(forms[f].roots, 1e3, 4000);
         ck_assert_msg(s.misclassified > 0 || s.max_rel_error > 1e-3,
-                      "%s: %d misclassified, max error %g", forms[f].name, s.misclassified,
-                      s.max_rel_error);
+                      "%s: %d misclassified, max error %g", forms[f].name,
+                      s.misclassified, s.max_rel_error);
     }
     form_score robust = score_form(sphere_roots_robust_float, 1e3, 4000);
     ck_assert_int_eq(robust.misclassified, 0);
-    ck_assert_msg(robust.max_rel_error < 1e-5, "robust float: %g", robust.max_rel_error);
+    ck_assert_msg(robust.max_rel_error < 1e-5, "robust float: %g",
+                  robust.max_rel_error);
 }
 END_TEST
 
@@ -237,11 +263,13 @@ START_TEST(test_double_forms_are_exact_near_and_robust_far)
     for (int f = 0; f < 3; f++) {
         form_score s = score_form(forms[f].roots, 10, 2000);
         ck_assert_int_eq(s.misclassified, 0);
-        ck_assert_msg(s.max_rel_error < 1e-13, "%s: %g", forms[f].name, s.max_rel_error);
+        ck_assert_msg(s.max_rel_error < 1e-13, "%s: %g", forms[f].name,
+                      s.max_rel_error);
     }
     form_score far = score_form(sphere_roots_robust, 1e7, 2000);
     ck_assert_int_eq(far.misclassified, 0);
-    ck_assert_msg(far.max_rel_error < 1e-14, "robust at 1e7: %g", far.max_rel_error);
+    ck_assert_msg(far.max_rel_error < 1e-14, "robust at 1e7: %g",
+                  far.max_rel_error);
 }
 END_TEST
 
@@ -251,21 +279,25 @@ START_TEST(test_normals_are_unit_and_outward)
 {
     const double distances[] = {3, 1e3, 1e6};
     for (int k = 0; k < 3; k++) {
-        sphere sp = {.center = vec3_scale(vec3_normalize((vec3){1, 2, 3}), distances[k]),
-                     .radius = 1};
+        sphere sp = {
+            .center = vec3_scale(vec3_normalize((vec3){1, 2, 3}), distances[k]),
+            .radius = 1};
         for (int n = 0; n < 500; n++) {
-            vec3 aim = vec3_add(sp.center, vec3_scale(rng_unit_vector(&rng, 1e-3), 0.9));
+            vec3 aim = vec3_add(sp.center,
+                                vec3_scale(rng_unit_vector(&rng, 1e-3), 0.9));
             ray r = {ORIGIN, vec3_normalize(aim)};
             double t;
             ck_assert(sphere_hit_t(&sp, r, 0, INFINITY, &t));
             hit h;
             sphere_fill_hit(&sp, r, t, &h);
-            ck_assert_double_eq_tol(vec3_length(h.normal), 1.0, 4 * DBL_EPSILON);
+            ck_assert_double_eq_tol(vec3_length(h.normal), 1.0,
+                                    4 * DBL_EPSILON);
             ck_assert(vec3_dot(h.normal, vec3_sub(h.point, sp.center)) > 0);
-            ck_assert(vec3_dot(h.normal, r.dir) < 0); /* seen from outside: facing us */
+            ck_assert(vec3_dot(h.normal, r.dir) <
+                      0); /* seen from outside: facing us */
             /* The point is on the sphere to the ray's own rounding error. */
-            ck_assert_double_eq_tol(vec3_length(vec3_sub(h.point, sp.center)), 1.0,
-                                    8 * DBL_EPSILON * distances[k]);
+            ck_assert_double_eq_tol(vec3_length(vec3_sub(h.point, sp.center)),
+                                    1.0, 8 * DBL_EPSILON * distances[k]);
         }
     }
 }
@@ -300,12 +332,16 @@ START_TEST(test_sphere_statement_defaults_and_settings)
 {
     scene s;
     scene_error err;
-    ck_assert(parse_text(&s, "sphere\nsphere radius 2 color 0 0.5 1 center -1 2.5 1e3\n", &err));
+    ck_assert(parse_text(
+        &s, "sphere\nsphere radius 2 color 0 0.5 1 center -1 2.5 1e3\n", &err));
     ck_assert_int_eq(s.object_count, 2);
-    ck_assert(s.objects[0].kind == SHAPE_SPHERE && s.objects[1].kind == SHAPE_SPHERE);
-    ck_assert(s.objects[0].sphere.radius == 1 && s.objects[0].sphere.center.z == 5);
-    ck_assert(s.objects[1].sphere.radius == 2 && s.objects[1].sphere.center.x == -1 &&
-              s.objects[1].sphere.center.z == 1000 && s.objects[1].color.z == 1);
+    ck_assert(s.objects[0].kind == SHAPE_SPHERE &&
+              s.objects[1].kind == SHAPE_SPHERE);
+    ck_assert(s.objects[0].sphere.radius == 1 &&
+              s.objects[0].sphere.center.z == 5);
+    ck_assert(
+        s.objects[1].sphere.radius == 2 && s.objects[1].sphere.center.x == -1 &&
+        s.objects[1].sphere.center.z == 1000 && s.objects[1].color.z == 1);
     scene_free(&s);
     ck_assert_ptr_null(s.objects);
 }
@@ -314,7 +350,8 @@ END_TEST
 
 START_TEST(test_sphere_statement_rejects_bad_radii)
 {
-    expect_parse_error("sphere radius 0", 1, 15, "radius from 1e-50 to 1e50, found '0'");
+    expect_parse_error("sphere radius 0", 1, 15,
+                       "radius from 1e-50 to 1e50, found '0'");
     expect_parse_error("sphere radius -1", 1, 15, "found '-1'");
     expect_parse_error("sphere radius nan", 1, 15, "finite");
     expect_parse_error("sphere radius inf", 1, 15, "finite");
@@ -328,8 +365,10 @@ START_TEST(test_sphere_statement_rejects_bad_centres_and_settings)
 {
     expect_parse_error("sphere center 1 nan 3", 1, 17, "finite");
     expect_parse_error("sphere center 1 2", 1, 18, "found end of line");
-    expect_parse_error("sphere center 1 2 1e60", 1, 19, "between -1e50 and 1e50");
-    expect_parse_error("sphere center 1 2 3 size 4", 1, 21, "expected a sphere setting");
+    expect_parse_error("sphere center 1 2 1e60", 1, 19,
+                       "between -1e50 and 1e50");
+    expect_parse_error("sphere center 1 2 3 size 4", 1, 21,
+                       "expected a sphere setting");
     expect_parse_error("\n\nsphere color 1 -1 0", 3, 16, "from 0 to 1e6");
 }
 END_TEST
@@ -355,7 +394,8 @@ START_TEST(test_the_method_table_names_each_form)
         char name[48];
         snprintf(name, sizeof name, "%s%s", m->name,
                  strcmp(m->precision, "float") == 0 ? " float" : "");
-        ck_assert_msg(m->roots == forms[f].roots && strcmp(name, forms[f].name) == 0,
+        ck_assert_msg(m->roots == forms[f].roots &&
+                          strcmp(name, forms[f].name) == 0,
                       "entry %d is %s", f, name);
     }
 }

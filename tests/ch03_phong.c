@@ -20,8 +20,8 @@ static const vec3 UP = {0, 0, 1}; /* the surface normal of every test hit */
 /* A scene with one white directional light arriving from direction l (unit,
  * towards the light), no ambient light, and a default material with the
  * given finish. */
-static void one_light_scene(scene *s, vec3 l, double ambient, double diffuse, double specular,
-                            double shininess)
+static void one_light_scene(scene *s, vec3 l, double ambient, double diffuse,
+                            double specular, double shininess)
 {
     scene_init(s);
     s->ambient = (vec3){0, 0, 0};
@@ -36,7 +36,11 @@ static void one_light_scene(scene *s, vec3 l, double ambient, double diffuse, do
 
 static hit white_hit_at_origin(void)
 {
-    return (hit){.t = 1, .point = {0, 0, 0}, .normal = UP, .color = {1, 1, 1}, .material = 0};
+    return (hit){.t = 1,
+                 .point = {0, 0, 0},
+                 .normal = UP,
+                 .color = {1, 1, 1},
+                 .material = 0};
 }
 
 static vec3 shade_at_origin(const scene *s, vec3 v)
@@ -63,7 +67,8 @@ END_TEST
 START_TEST(test_ambient_and_emission_terms_alone)
 {
     scene s;
-    one_light_scene(&s, (vec3){0, 0, -1}, 0.25, 0, 0, 1); /* the light is below: no direct term */
+    one_light_scene(&s, (vec3){0, 0, -1}, 0.25, 0, 0,
+                    1); /* the light is below: no direct term */
     s.ambient = (vec3){0.4, 0.8, 1.2};
     s.default_material.emission = (vec3){0.5, 0, 0.125};
     hit h = white_hit_at_origin();
@@ -81,20 +86,25 @@ END_TEST
 START_TEST(test_phong_highlight_at_the_mirror_direction_is_rho_s)
 {
     vec3 l = {sin(30 * DEG), 0, cos(30 * DEG)}, mirror = {-l.x, 0, l.z};
-    ck_assert_double_eq_tol(specular_phong(UP, l, mirror, 50), 1, 8 * DBL_EPSILON);
+    ck_assert_double_eq_tol(specular_phong(UP, l, mirror, 50), 1,
+                            8 * DBL_EPSILON);
     scene s;
     one_light_scene(&s, l, 0, 0, 0.75, 50);
-    ck_assert_double_eq_tol(shade_at_origin(&s, mirror).y, 0.75, 8 * DBL_EPSILON);
+    ck_assert_double_eq_tol(shade_at_origin(&s, mirror).y, 0.75,
+                            8 * DBL_EPSILON);
     scene_free(&s);
 }
 END_TEST
 
 START_TEST(test_phong_highlight_is_cos_alpha_to_the_k)
 {
-    /* l at 30 degrees, v 10 degrees past the mirror direction: <r,v> = cos 10. */
-    vec3 l = {sin(30 * DEG), 0, cos(30 * DEG)}, v = {-sin(40 * DEG), 0, cos(40 * DEG)};
+    /* l at 30 degrees, v 10 degrees past the mirror direction: <r,v> = cos 10.
+     */
+    vec3 l = {sin(30 * DEG), 0, cos(30 * DEG)},
+         v = {-sin(40 * DEG), 0, cos(40 * DEG)};
     long double expected = powl(cosl(10 * (long double)DEG), 20);
-    ck_assert_double_eq_tol(specular_phong(UP, l, v, 20), (double)expected, 1e-14);
+    ck_assert_double_eq_tol(specular_phong(UP, l, v, 20), (double)expected,
+                            1e-14);
 }
 END_TEST
 
@@ -102,21 +112,26 @@ START_TEST(test_blinn_agrees_with_phong_at_the_mirror_direction)
 {
     for (int angle = 0; angle < 90; angle += 7) {
         vec3 l = {sin(angle * DEG), 0, cos(angle * DEG)}, v = {-l.x, 0, l.z};
-        ck_assert_double_eq_tol(specular_blinn(UP, l, v, 10), 1, 8 * DBL_EPSILON);
-        ck_assert_double_eq_tol(specular_phong(UP, l, v, 10), 1, 8 * DBL_EPSILON);
+        ck_assert_double_eq_tol(specular_blinn(UP, l, v, 10), 1,
+                                8 * DBL_EPSILON);
+        ck_assert_double_eq_tol(specular_phong(UP, l, v, 10), 1,
+                                8 * DBL_EPSILON);
     }
 }
 END_TEST
 
 START_TEST(test_blinn_highlight_uses_the_unit_half_vector)
 {
-    /* l at 60 degrees, v along n: h is 30 degrees from n, so <n,h>^(4k) = cos^40 30. */
+    /* l at 60 degrees, v along n: h is 30 degrees from n, so <n,h>^(4k) =
+     * cos^40 30. */
     vec3 l = {sin(60 * DEG), 0, cos(60 * DEG)};
     long double expected = powl(cosl(30 * (long double)DEG), 40);
     double got = specular_blinn(UP, l, UP, 10);
     ck_assert_msg(fabs(got - (double)expected) < 1e-15,
-                  "<n,h>^40 = %g, not cos^40 30 = %g: h is the unit vector (l + v) / |l + v|, "
-                  "not the sheet's (l + v) / 2 (sheet 2.4)", got, (double)expected);
+                  "<n,h>^40 = %g, not cos^40 30 = %g: h is the unit vector (l "
+                  "+ v) / |l + v|, "
+                  "not the sheet's (l + v) / 2 (sheet 2.4)",
+                  got, (double)expected);
 }
 END_TEST
 
@@ -148,7 +163,8 @@ START_TEST(test_no_highlight_from_a_light_below_the_horizon)
 {
     /* l 10 degrees below the horizon; v low on the far side. r and v agree
      * (<r,v> = 0.97), so an unclamped sum would show a highlight. */
-    vec3 l = {sin(100 * DEG), 0, cos(100 * DEG)}, v = vec3_normalize((vec3){-1, 0, 0.05});
+    vec3 l = {sin(100 * DEG), 0, cos(100 * DEG)},
+         v = vec3_normalize((vec3){-1, 0, 0.05});
     ck_assert(phong_cosine(UP, l, v) > 0.9);
     scene s;
     one_light_scene(&s, l, 0, 0, 1, 10);
@@ -176,12 +192,16 @@ START_TEST(test_spot_intensity_inside_at_and_beyond_the_cone)
 {
     scene s;
     scene_error err;
-    ck_assert(parse_text(&s, "light spot position 0 0 0 direction 0 0 1 angle 60 exponent 2\n", &err));
+    ck_assert(parse_text(
+        &s, "light spot position 0 0 0 direction 0 0 1 angle 60 exponent 2\n",
+        &err));
     const light *L = &s.lights[0];
     /* Points at distance 2, at angles from the axis; attenuation is 1. */
     double inside = 59.9 * DEG, outside = 60.1 * DEG;
-    vec3 p_in = {2 * sin(inside), 0, 2 * cos(inside)}, p_out = {2 * sin(outside), 0, 2 * cos(outside)};
-    ck_assert_double_eq_tol(light_toward(L, p_in).intensity.x, pow(cos(inside), 2), 1e-15);
+    vec3 p_in = {2 * sin(inside), 0, 2 * cos(inside)},
+         p_out = {2 * sin(outside), 0, 2 * cos(outside)};
+    ck_assert_double_eq_tol(light_toward(L, p_in).intensity.x,
+                            pow(cos(inside), 2), 1e-15);
     ck_assert(light_toward(L, p_out).intensity.x == 0);
     /* Exactly on the edge: cos = 1/2; all or nothing, never in between. */
     double edge = light_toward(L, (vec3){sqrt(3.0), 0, 1}).intensity.x;
@@ -194,12 +214,17 @@ END_TEST
 
 START_TEST(test_attenuation_values)
 {
-    light L = {.kind = LIGHT_POINT, .attenuation = {1, 0.5, 0.25}, .intensity = {1, 1, 1}};
+    light L = {.kind = LIGHT_POINT,
+               .attenuation = {1, 0.5, 0.25},
+               .intensity = {1, 1, 1}};
     ck_assert(light_attenuation(&L, 0) == 1);
-    ck_assert_double_eq_tol(light_attenuation(&L, 2), 1.0 / 3, 1e-16); /* 1 + 1 + 1 */
-    ck_assert_double_eq_tol(light_attenuation(&L, 4), 1.0 / 7, 1e-16); /* 1 + 2 + 4 */
+    ck_assert_double_eq_tol(light_attenuation(&L, 2), 1.0 / 3,
+                            1e-16); /* 1 + 1 + 1 */
+    ck_assert_double_eq_tol(light_attenuation(&L, 4), 1.0 / 7,
+                            1e-16); /* 1 + 2 + 4 */
     light near_physical = {.kind = LIGHT_POINT, .attenuation = {0.01, 0, 1}};
-    ck_assert_double_eq_tol(light_attenuation(&near_physical, 0), 100, 1e-12); /* finite */
+    ck_assert_double_eq_tol(light_attenuation(&near_physical, 0), 100,
+                            1e-12); /* finite */
     light_sample at_two = light_toward(&L, (vec3){2, 0, 0});
     ck_assert_double_eq_tol(at_two.intensity.y, 1.0 / 3, 1e-16);
     ck_assert(at_two.distance == 2 && at_two.l.x == -1);
@@ -210,11 +235,15 @@ START_TEST(test_point_at_the_light_is_finite)
 {
     scene s;
     one_light_scene(&s, UP, 0.1, 0.9, 0.5, 10);
-    s.lights[0] = (light){.kind = LIGHT_POINT, .position = {0, 0, 0}, .intensity = {1, 1, 1},
+    s.lights[0] = (light){.kind = LIGHT_POINT,
+                          .position = {0, 0, 0},
+                          .intensity = {1, 1, 1},
                           .attenuation = {1, 0, 0}};
     vec3 c = shade_at_origin(&s, UP);
     ck_assert(isfinite(c.x) && isfinite(c.y) && isfinite(c.z));
-    ck_assert(c.x == 0); /* no ambient light in this scene, no direction to the light */
+    ck_assert(
+        c.x ==
+        0); /* no ambient light in this scene, no direction to the light */
     scene_free(&s);
 }
 END_TEST
@@ -241,8 +270,10 @@ START_TEST(test_tone_map_keeps_values_below_one_below_one)
     for (int b = 0; b < 4; b++) {
         for (double I = 0.001; I < 1; I += 0.001)
             ck_assert_msg(tone_map(I, 1, betas[b]) < 1,
-                          "I %g beta %g maps to %g: the tone map is min(alpha I^beta, 1), "
-                          "not the sheet's max (sheet 3.2), which makes every pixel white",
+                          "I %g beta %g maps to %g: the tone map is min(alpha "
+                          "I^beta, 1), "
+                          "not the sheet's max (sheet 3.2), which makes every "
+                          "pixel white",
                           I, betas[b], tone_map(I, 1, betas[b]));
         for (double I = 1; I < 1e6; I *= 1.7)
             ck_assert(tone_map(I, 1, betas[b]) == 1);
@@ -261,25 +292,30 @@ START_TEST(test_material_light_and_tonemap_statements)
 {
     scene s;
     scene_error err;
-    const char *text = "ambient 0.1 0.2 0.3\n"
-                       "tonemap beta 0.8 alpha 1.5\n"
-                       "material shiny specular 0.9 shininess 80 highlight blinn emission 1 0 0\n"
-                       "material default diffuse 0.5\n"
-                       "sphere material shiny\n"
-                       "sphere\n"
-                       "light point position 1 2 3 intensity 2 2 2 attenuation 1 0.5 0.25\n"
-                       "light directional direction 0 -2 0\n";
-    ck_assert_msg(parse_text(&s, text, &err), "%d:%d %s", err.line, err.col, err.message);
+    const char *text =
+        "ambient 0.1 0.2 0.3\n"
+        "tonemap beta 0.8 alpha 1.5\n"
+        "material shiny specular 0.9 shininess 80 highlight blinn emission 1 0 "
+        "0\n"
+        "material default diffuse 0.5\n"
+        "sphere material shiny\n"
+        "sphere\n"
+        "light point position 1 2 3 intensity 2 2 2 attenuation 1 0.5 0.25\n"
+        "light directional direction 0 -2 0\n";
+    ck_assert_msg(parse_text(&s, text, &err), "%d:%d %s", err.line, err.col,
+                  err.message);
     ck_assert(s.ambient.z == 0.3 && s.tone.alpha == 1.5 && s.tone.beta == 0.8);
     ck_assert_int_eq(s.material_count, 1);
     const material *shiny = scene_material(&s, s.objects[0].material);
     ck_assert_str_eq(shiny->name, "shiny");
     ck_assert(shiny->specular == 0.9 && shiny->shininess == 80 &&
               shiny->highlight == HIGHLIGHT_BLINN && shiny->emission.x == 1);
-    ck_assert(shiny->diffuse == 0.8); /* the built-in default, not the redefined one */
+    ck_assert(shiny->diffuse ==
+              0.8); /* the built-in default, not the redefined one */
     ck_assert(scene_material(&s, s.objects[1].material)->diffuse == 0.5);
     ck_assert_int_eq(s.light_count, 2);
-    ck_assert(s.lights[0].attenuation[1] == 0.5 && s.lights[0].attenuation[2] == 0.25);
+    ck_assert(s.lights[0].attenuation[1] == 0.5 &&
+              s.lights[0].attenuation[2] == 0.25);
     ck_assert(s.lights[1].direction.y == -1);    /* normalised */
     scene_free(&s);
 }
@@ -288,24 +324,31 @@ END_TEST
 
 START_TEST(test_scene_rejects_unknown_and_duplicate_materials)
 {
-    expect_parse_error("sphere material shiny", 1, 17, "material defined above, found 'shiny'");
+    expect_parse_error("sphere material shiny", 1, 17,
+                       "material defined above, found 'shiny'");
     expect_parse_error("sphere material", 1, 16, "found end of line");
-    expect_parse_error("material a\nsphere\nmaterial a specular 1", 3, 10, "defined on line 1");
-    expect_parse_error("material default\nmaterial default", 2, 10, "defined on line 1");
-    expect_parse_error("material abcdefghijabcdefghijabcdefghijxy", 1, 10, "1 to 31 characters");
+    expect_parse_error("material a\nsphere\nmaterial a specular 1", 3, 10,
+                       "defined on line 1");
+    expect_parse_error("material default\nmaterial default", 2, 10,
+                       "defined on line 1");
+    expect_parse_error("material abcdefghijabcdefghijabcdefghijxy", 1, 10,
+                       "1 to 31 characters");
 }
 END_TEST
 
 START_TEST(test_scene_rejects_bad_coefficients)
 {
-    expect_parse_error("material m diffuse -0.1", 1, 20, "from 0 to 1, found '-0.1'");
+    expect_parse_error("material m diffuse -0.1", 1, 20,
+                       "from 0 to 1, found '-0.1'");
     expect_parse_error("material m specular 1.5", 1, 21, "from 0 to 1");
     expect_parse_error("material m ambient nan", 1, 20, "finite");
     expect_parse_error("material m emission 1 inf 0", 1, 23, "finite");
     expect_parse_error("material m emission 1 -1 0", 1, 23, "from 0 to 1e6");
     expect_parse_error("material m shininess 0.5", 1, 22, "at least 1");
-    expect_parse_error("material m highlight torrance", 1, 22, "'phong' or 'blinn'");
-    expect_parse_error("material m gloss 1", 1, 12, "expected a material setting");
+    expect_parse_error("material m highlight torrance", 1, 22,
+                       "'phong' or 'blinn'");
+    expect_parse_error("material m gloss 1", 1, 12,
+                       "expected a material setting");
 }
 END_TEST
 
@@ -313,29 +356,39 @@ START_TEST(test_scene_rejects_bad_lights)
 {
     expect_parse_error("light", 1, 6, "kind of light");
     expect_parse_error("light laser", 1, 7, "kind of light");
-    expect_parse_error("light point angle 30", 1, 13, "(position, intensity, attenuation)");
-    expect_parse_error("light directional position 0 0 0", 1, 19, "(direction, intensity)");
+    expect_parse_error("light point angle 30", 1, 13,
+                       "(position, intensity, attenuation)");
+    expect_parse_error("light directional position 0 0 0", 1, 19,
+                       "(direction, intensity)");
     expect_parse_error("light spot angle 0", 1, 18, "between 0 and 180");
     expect_parse_error("light spot angle 180", 1, 18, "between 0 and 180");
     expect_parse_error("light spot angle -20", 1, 18, "between 0 and 180");
     expect_parse_error("light spot exponent -1", 1, 21, "at least 0");
-    expect_parse_error("light directional direction 0 0 0", 1, 29, "non-zero length");
-    expect_parse_error("light spot direction -0 0 -0", 1, 22, "non-zero length");
+    expect_parse_error("light directional direction 0 0 0", 1, 29,
+                       "non-zero length");
+    expect_parse_error("light spot direction -0 0 -0", 1, 22,
+                       "non-zero length");
     expect_parse_error("light point intensity -1 1 1", 1, 23, "from 0 to 1e6");
 }
 END_TEST
 
 START_TEST(test_scene_rejects_attenuation_that_reaches_zero)
 {
-    expect_parse_error("light point attenuation 0 0 1", 1, 25, "a1 from 1e-6 to 1e6");
+    expect_parse_error("light point attenuation 0 0 1", 1, 25,
+                       "a1 from 1e-6 to 1e6");
     expect_parse_error("light point attenuation -1 0 1", 1, 25, "a1 from 1e-6");
-    expect_parse_error("light point attenuation 1e-300 0 1", 1, 25, "a1 from 1e-6");
-    expect_parse_error("light point attenuation 1 0 -0.01", 1, 29, "a3 from 0 to 1e6");
-    expect_parse_error("light point attenuation 1 -1 0", 1, 27, "a2 from 0 to 1e6");
-    /* (1 - r)^2 is 0 at r = 1; 1 - 1.9r + r^2 > 0 only by a rounding-sized margin */
+    expect_parse_error("light point attenuation 1e-300 0 1", 1, 25,
+                       "a1 from 1e-6");
+    expect_parse_error("light point attenuation 1 0 -0.01", 1, 29,
+                       "a3 from 0 to 1e6");
+    expect_parse_error("light point attenuation 1 -1 0", 1, 27,
+                       "a2 from 0 to 1e6");
+    /* (1 - r)^2 is 0 at r = 1; 1 - 1.9r + r^2 > 0 only by a rounding-sized
+     * margin */
     expect_parse_error("light spot attenuation 1 -2 1", 1, 26, "a2 from 0");
     expect_parse_error("light spot attenuation 1 -1.9 1", 1, 26, "a2 from 0");
-    expect_parse_error("light point attenuation 1 1e7 0", 1, 27, "a2 from 0 to 1e6");
+    expect_parse_error("light point attenuation 1 1e7 0", 1, 27,
+                       "a2 from 0 to 1e6");
     expect_parse_error("light point attenuation 1 0 nan", 1, 29, "finite");
 }
 END_TEST
@@ -356,7 +409,8 @@ Suite *ch03_phong_suite(void)
     TCase *terms = tcase_create("formulas");
     tcase_add_test(terms, test_diffuse_term_follows_lamberts_cosine);
     tcase_add_test(terms, test_ambient_and_emission_terms_alone);
-    tcase_add_test(terms, test_phong_highlight_at_the_mirror_direction_is_rho_s);
+    tcase_add_test(terms,
+                   test_phong_highlight_at_the_mirror_direction_is_rho_s);
     tcase_add_test(terms, test_phong_highlight_is_cos_alpha_to_the_k);
     tcase_add_test(terms, test_blinn_agrees_with_phong_at_the_mirror_direction);
     tcase_add_test(terms, test_blinn_highlight_uses_the_unit_half_vector);
@@ -366,7 +420,8 @@ Suite *ch03_phong_suite(void)
     suite_add_tcase(s, terms);
 
     TCase *edges = tcase_create("edge cases");
-    tcase_add_test(edges, test_sheet_half_vector_kills_the_highlight_at_90_degrees);
+    tcase_add_test(edges,
+                   test_sheet_half_vector_kills_the_highlight_at_90_degrees);
     tcase_add_test(edges, test_light_behind_the_surface_adds_nothing);
     tcase_add_test(edges, test_no_highlight_from_a_light_below_the_horizon);
     tcase_add_test(edges, test_back_of_a_surface_is_shaded_like_its_front);

@@ -16,8 +16,8 @@ static vec3 light_direction(const char *text)
 {
     scene s;
     scene_error err;
-    ck_assert_msg(parse_text(&s, text, &err), "%s: %d:%d %s", text, err.line, err.col,
-                  err.message);
+    ck_assert_msg(parse_text(&s, text, &err), "%s: %d:%d %s", text, err.line,
+                  err.col, err.message);
     ck_assert_int_eq(s.light_count, 1);
     vec3 d = s.lights[0].direction;
     scene_free(&s);
@@ -34,15 +34,17 @@ START_TEST(test_a_tiny_direction_is_a_direction)
          "light directional direction 1 -1 0\n"},
         {"light directional direction 2e-162 2e-162 0\n",
          "light directional direction 1 1 0\n"},
-        {"light spot direction 0 -4.9e-324 0\n", "light spot direction 0 -1 0\n"},
+        {"light spot direction 0 -4.9e-324 0\n",
+         "light spot direction 0 -1 0\n"},
     };
     for (int k = 0; k < 3; k++) {
         vec3 a = light_direction(tiny[k][0]), b = light_direction(tiny[k][1]);
-        ck_assert_msg(memcmp(&a, &b, sizeof a) == 0, "%s: %.17g %.17g %.17g", tiny[k][0], a.x,
-                      a.y, a.z);
+        ck_assert_msg(memcmp(&a, &b, sizeof a) == 0, "%s: %.17g %.17g %.17g",
+                      tiny[k][0], a.x, a.y, a.z);
     }
     /* zero is still no direction */
-    expect_parse_error("light directional direction 0 0 -0\n", 1, 29, "non-zero length");
+    expect_parse_error("light directional direction 0 0 -0\n", 1, 29,
+                       "non-zero length");
 }
 END_TEST
 

@@ -59,12 +59,14 @@ START_TEST(test_a_binary_mesh_stops_at_its_first_nul)
              write_file("s.scene", "image 8 6\nmesh file zeros.obj\n"));
     const char *args[] = {scene_path, "-o", tmp_path("out.png"), NULL};
 #if defined(__SANITIZE_ADDRESS__)
-    run_limits limits = {0}; /* AddressSanitizer reserves terabytes of addresses */
+    run_limits limits = {
+        0}; /* AddressSanitizer reserves terabytes of addresses */
 #else
     run_limits limits = {.max_memory_bytes = 256L << 20};
 #endif
     ck_assert_int_eq(run_bin_limited(args, errors, sizeof errors, limits), 1);
-    ck_assert_msg(strstr(errors, "zeros.obj:1:1: error: unexpected NUL byte"), "%s", errors);
+    ck_assert_msg(strstr(errors, "zeros.obj:1:1: error: unexpected NUL byte"),
+                  "%s", errors);
 }
 END_TEST
 
@@ -77,17 +79,19 @@ START_TEST(test_an_obj_with_no_face_is_warned_of_and_costs_nothing)
              write_file("self.scene", "image 8 6\nmesh file self.scene\n"));
     const char *args[] = {scene_path, "-o", tmp_path("out.png"), NULL};
     ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
-    ck_assert_msg(strstr(errors, "self.scene: warning: no face in this OBJ file"), "%s",
-                  errors);
+    ck_assert_msg(
+        strstr(errors, "self.scene: warning: no face in this OBJ file"), "%s",
+        errors);
     /* a thousand empty meshes, each placed differently: no object, so no
      * ray tests a box */
     static char text[64 * 1000 + 64];
     int n = snprintf(text, sizeof text, "image 8 6\n");
     for (int k = 0; k < 1000; k++)
-        n += snprintf(text + n, sizeof text - (size_t)n, "mesh file empty.obj scale %d\n",
-                      k + 1);
+        n += snprintf(text + n, sizeof text - (size_t)n,
+                      "mesh file empty.obj scale %d\n", k + 1);
     write_file("empty.obj", "v 0 0 1\nv 1 0 1\n# no face\n");
-    snprintf(scene_path, sizeof scene_path, "%s", write_file("many.scene", text));
+    snprintf(scene_path, sizeof scene_path, "%s",
+             write_file("many.scene", text));
     scene s;
     scene_error err;
     scene_init(&s);
@@ -102,9 +106,10 @@ START_TEST(test_an_obj_with_no_face_is_warned_of_and_costs_nothing)
     scene_free(&s);
     const char *many[] = {scene_path, "-o", tmp_path("out.png"), NULL};
     ck_assert_int_eq(run_bin(many, errors, sizeof errors), 0);
-    ck_assert_msg(strstr(errors, "empty.obj: warning: no face in this OBJ file: it shows "
-                                 "nothing (nor 999 more meshes like it)\n"),
-                  "%s", errors);
+    ck_assert_msg(
+        strstr(errors, "empty.obj: warning: no face in this OBJ file: it shows "
+                       "nothing (nor 999 more meshes like it)\n"),
+        "%s", errors);
 }
 END_TEST
 
@@ -115,7 +120,8 @@ Suite *ch04_robustness_suite(void)
     tcase_add_checked_fixture(files, make_tmpdir, remove_tmpdir);
     tcase_add_test(files, test_the_output_may_not_be_a_mesh);
     tcase_add_test(files, test_a_binary_mesh_stops_at_its_first_nul);
-    tcase_add_test(files, test_an_obj_with_no_face_is_warned_of_and_costs_nothing);
+    tcase_add_test(files,
+                   test_an_obj_with_no_face_is_warned_of_and_costs_nothing);
     suite_add_tcase(s, files);
     return s;
 }

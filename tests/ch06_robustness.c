@@ -24,7 +24,8 @@ static char *many_lights(int n, int samples)
     int at = snprintf(text, size, "sphere center 0 0 1e4 radius 9990\n");
     for (int k = 0; k < n; k++)
         at += snprintf(text + at, size - (size_t)at,
-                       "light area position %d 5 0 radius 0.5 samples %d\n", k % 50, samples);
+                       "light area position %d 5 0 radius 0.5 samples %d\n",
+                       k % 50, samples);
     return text;
 }
 
@@ -72,13 +73,16 @@ START_TEST(test_stats_count_the_samples_the_budget_took)
 {
     char scene_path[192], errors[4096];
     char *text = many_lights(5, 1024);
-    snprintf(scene_path, sizeof scene_path, "%s", write_file("lights.scene", text));
+    snprintf(scene_path, sizeof scene_path, "%s",
+             write_file("lights.scene", text));
     free(text);
-    const char *args[] = {scene_path, "--size", "2x2", "--stats", "-o", tmp_path("o.png"), NULL};
+    const char *args[] = {scene_path, "--size",          "2x2", "--stats",
+                          "-o",       tmp_path("o.png"), NULL};
     ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
     /* four pixels, each one shaded point: 4 x (5,120 - 4,095) */
-    ck_assert_msg(strstr(errors, "light samples cut  4100 at the shadow-ray budget"), "%s",
-                  errors);
+    ck_assert_msg(
+        strstr(errors, "light samples cut  4100 at the shadow-ray budget"),
+        "%s", errors);
 }
 END_TEST
 

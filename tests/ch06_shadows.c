@@ -22,8 +22,8 @@
 static void scene_of(scene *s, const char *text)
 {
     scene_error err;
-    ck_assert_msg(parse_text(s, text, &err), "%s:%d:%d: %s", err.file, err.line, err.col,
-                  err.message);
+    ck_assert_msg(parse_text(s, text, &err), "%s:%d:%d: %s", err.file, err.line,
+                  err.col, err.message);
 }
 
 /* What the ray from the eye at the origin towards target sees. */
@@ -165,7 +165,8 @@ START_TEST(test_no_shadow_ray_when_nothing_can_block)
         scene_free(&s);
     }
     scene s;
-    scene_of(&s, "sphere center 0 0 5 radius 1\nsphere center 9 9 9 radius 1\n");
+    scene_of(&s,
+             "sphere center 0 0 5 radius 1\nsphere center 9 9 9 radius 1\n");
     render_stats stats = {0};
     color_towards(&s, (vec3){0, 0, 1}, &stats);
     ck_assert_int_eq(stats.shadow_rays, 1);
@@ -179,7 +180,8 @@ START_TEST(test_lone_sphere_shadows_its_own_inside)
      * the light is shadowed by the sphere itself, so a ray must be cast;
      * and this is where skipping the primitive would be wrong. */
     scene s;
-    scene_of(&s, "sphere center 0 0 0 radius 10\nlight point position 0 0 -50\n");
+    scene_of(&s,
+             "sphere center 0 0 0 radius 10\nlight point position 0 0 -50\n");
     hit h = hit_towards(&s, (vec3){0, 0, 0}, (vec3){0, 0, 1});
     ck_assert(h.inside);
     ck_assert(scene_can_shadow(&s, &h));
@@ -197,12 +199,13 @@ static void scaled_scene(scene *s, double scale)
     char text[1024];
     double k = scale;
     snprintf(text, sizeof text,
-             "triangle a %.17g %.17g %.17g  b %.17g %.17g %.17g  c %.17g %.17g %.17g\n"
-             "triangle a %.17g %.17g %.17g  b %.17g %.17g %.17g  c %.17g %.17g %.17g\n"
+             "triangle a %.17g %.17g %.17g  b %.17g %.17g %.17g  c %.17g %.17g "
+             "%.17g\n"
+             "triangle a %.17g %.17g %.17g  b %.17g %.17g %.17g  c %.17g %.17g "
+             "%.17g\n"
              "sphere center %.17g %.17g %.17g radius %.17g\n",
-             k * -20, -k, k, k * 20, -k, k, k * -20, -k, k * 40,
-             k * 20, -k, k, k * 20, -k, k * 40, k * -20, -k, k * 40,
-             0.0, k * 0.5, k * 6, k);
+             k * -20, -k, k, k * 20, -k, k, k * -20, -k, k * 40, k * 20, -k, k,
+             k * 20, -k, k * 40, k * -20, -k, k * 40, 0.0, k * 0.5, k * 6, k);
     scene_of(s, text);
 }
 
@@ -211,11 +214,14 @@ static void scaled_scene(scene *s, double scale)
 static void placed_scene(scene *s, double scale)
 {
     char text[1024];
-    snprintf(text, sizeof text,
-             "triangle a -20 -1 1  b 20 -1 1  c -20 -1 40 transform scale %.17g %.17g %.17g\n"
-             "triangle a 20 -1 1  b 20 -1 40  c -20 -1 40 transform scale %.17g %.17g %.17g\n"
-             "sphere center 0 0.5 6 radius 1 transform scale %.17g %.17g %.17g\n",
-             scale, scale, scale, scale, scale, scale, scale, scale, scale);
+    snprintf(
+        text, sizeof text,
+        "triangle a -20 -1 1  b 20 -1 1  c -20 -1 40 transform scale %.17g "
+        "%.17g %.17g\n"
+        "triangle a 20 -1 1  b 20 -1 40  c -20 -1 40 transform scale %.17g "
+        "%.17g %.17g\n"
+        "sphere center 0 0.5 6 radius 1 transform scale %.17g %.17g %.17g\n",
+        scale, scale, scale, scale, scale, scale, scale, scale, scale);
     scene_of(s, text);
 }
 
@@ -223,7 +229,8 @@ static void placed_scene(scene *s, double scale)
  * towards a light straight above, how many report a hit, starting as the
  * program does (fixed_epsilon 0) or at the hit point with t > epsilon,
  * the point rounded to float as a float renderer has it. */
-static int self_hits_in(void (*build)(scene *, double), double scale, double fixed_epsilon)
+static int self_hits_in(void (*build)(scene *, double), double scale,
+                        double fixed_epsilon)
 {
     scene s;
     build(&s, scale);
@@ -232,8 +239,10 @@ static int self_hits_in(void (*build)(scene *, double), double scale, double fix
     render_stats stats = {0};
     for (int k = 0; k < 400; k++) {
         double x = -9 + 18 * (k % 20) / 20.0, z = 12 + (k / 20);
-        vec3 target = k % 2 ? (vec3){x * scale, -scale, z * scale}
-                            : vec3_scale((vec3){0.02 * x, 1.3, 6 + 0.02 * (z - 21)}, scale);
+        vec3 target =
+            k % 2
+                ? (vec3){x * scale, -scale, z * scale}
+                : vec3_scale((vec3){0.02 * x, 1.3, 6 + 0.02 * (z - 21)}, scale);
         hit h = hit_towards(&s, (vec3){0, 0, 0}, target);
         if (vec3_dot(h.normal, up) <= 0)
             continue; /* the sphere's underside, where the floor was aimed at */
@@ -261,8 +270,8 @@ START_TEST(test_placed_objects_have_no_acne)
      * it, the object-space bound of a scaled-up floor is far too small. */
     const double scales[] = {1, 1e2, 1e4, 1e6};
     for (int k = 0; k < 4; k++)
-        ck_assert_msg(self_hits_in(placed_scene, scales[k], 0) == 0, "self-hits at scale %g",
-                      scales[k]);
+        ck_assert_msg(self_hits_in(placed_scene, scales[k], 0) == 0,
+                      "self-hits at scale %g", scales[k]);
     /* The control: the same rays from the float-rounded point with a fixed
      * t > 1e-4 do hit the placed floor, so the count above can see them. */
     ck_assert_int_gt(self_hits_in(placed_scene, 1e4, 1e-4), 20);
@@ -282,7 +291,8 @@ START_TEST(test_program_offset_has_no_acne_at_1e4)
 {
     const double scales[] = {1, 1e2, 1e4, 1e6, 1e12};
     for (int k = 0; k < 5; k++)
-        ck_assert_msg(self_hits(scales[k], 0) == 0, "self-hits at scale %g", scales[k]);
+        ck_assert_msg(self_hits(scales[k], 0) == 0, "self-hits at scale %g",
+                      scales[k]);
 }
 END_TEST
 
@@ -302,9 +312,11 @@ START_TEST(test_contact_shadow_is_kept)
         hit h = hit_towards(&s, (vec3){0, -0.8, 6.8}, (vec3){0.1, -1, 5 + x});
         ck_assert_double_eq_tol(h.point.y, -1, 1e-15);
         vec3 up = {0, 1, 0};
-        ck_assert_msg(scene_occluded(&s, ray_leaving(&h, up), 0, INFINITY, &stats),
-                      "contact shadow lost at x = %g", x);
-        ck_assert(!scene_occluded(&s, (ray){h.point, up}, 1e-4, INFINITY, &stats));
+        ck_assert_msg(
+            scene_occluded(&s, ray_leaving(&h, up), 0, INFINITY, &stats),
+            "contact shadow lost at x = %g", x);
+        ck_assert(
+            !scene_occluded(&s, (ray){h.point, up}, 1e-4, INFINITY, &stats));
     }
     scene_free(&s);
 }
@@ -332,8 +344,13 @@ START_TEST(test_area_light_samples_cover_the_disc_evenly)
      * 1/n; every pattern: every sample on the disc. The mean of many
      * uniform samples' squared radius is R^2 / 2 (area for area). */
     const int n = 37;
-    light L = {.kind = LIGHT_AREA, .position = {1, 2, 3}, .direction = {0, -1, 0},
-               .radius = 2, .samples = n, .intensity = {1, 1, 1}, .attenuation = {1, 0, 0}};
+    light L = {.kind = LIGHT_AREA,
+               .position = {1, 2, 3},
+               .direction = {0, -1, 0},
+               .radius = 2,
+               .samples = n,
+               .intensity = {1, 1, 1},
+               .attenuation = {1, 0, 0}};
     for (int pattern = SAMPLE_UNIFORM; pattern <= SAMPLE_GRID; pattern++) {
         L.pattern = pattern;
         sample_stream g = sample_stream_at((vec3){0, 0, 0}, L.position);
@@ -400,18 +417,22 @@ START_TEST(test_reflection_angle_equals_incidence_in_the_plane)
     for (int k = 0; k < 1000; k++) {
         double a = 0.0061 * k, b = 0.0037 * k + 0.3;
         vec3 n = {sin(a) * cos(b), cos(a), sin(a) * sin(b)};
-        vec3 i = vec3_normalize((vec3){cos(3.1 * k), -0.4 - sin(0.7 * k), sin(1.3 * k)});
+        vec3 i = vec3_normalize(
+            (vec3){cos(3.1 * k), -0.4 - sin(0.7 * k), sin(1.3 * k)});
         vec3 r = vec3_reflect(i, n);
-        long double ni = (long double)n.x * i.x + (long double)n.y * i.y + (long double)n.z * i.z;
-        long double nr = (long double)n.x * r.x + (long double)n.y * r.y + (long double)n.z * r.z;
+        long double ni = (long double)n.x * i.x + (long double)n.y * i.y +
+                         (long double)n.z * i.z;
+        long double nr = (long double)n.x * r.x + (long double)n.y * r.y +
+                         (long double)n.z * r.z;
         vec3 c = vec3_cross(i, n);
-        long double in_plane =
-            (long double)r.x * c.x + (long double)r.y * c.y + (long double)r.z * c.z;
+        long double in_plane = (long double)r.x * c.x + (long double)r.y * c.y +
+                               (long double)r.z * c.z;
         ck_assert(fabsl(nr + ni) < 8 * DBL_EPSILON);
         ck_assert(fabsl(in_plane) < 8 * DBL_EPSILON);
         ck_assert(fabs(vec3_length(r) - 1) < 8 * DBL_EPSILON);
         vec3 r2 = vec3_reflect(i, vec3_scale(n, -1)); /* either normal */
-        ck_assert(fabs(r2.x - r.x) + fabs(r2.y - r.y) + fabs(r2.z - r.z) < 8 * DBL_EPSILON);
+        ck_assert(fabs(r2.x - r.x) + fabs(r2.y - r.y) + fabs(r2.z - r.z) <
+                  8 * DBL_EPSILON);
     }
     /* 30 degrees in, 30 degrees out: i = (sin 30, -cos 30, 0), n = y. */
     vec3 r = vec3_reflect((vec3){0.5, -sqrt(0.75), 0}, (vec3){0, 1, 0});
@@ -481,8 +502,10 @@ END_TEST
 
 START_TEST(test_bad_reflectivity_samples_radius_and_recursion)
 {
-    expect_parse_error("material m reflect 1.5\n", 1, 20, "reflectivity from 0 to 1");
-    expect_parse_error("material m reflect -0.1\n", 1, 20, "reflectivity from 0 to 1");
+    expect_parse_error("material m reflect 1.5\n", 1, 20,
+                       "reflectivity from 0 to 1");
+    expect_parse_error("material m reflect -0.1\n", 1, 20,
+                       "reflectivity from 0 to 1");
     expect_parse_error("material m reflect nan\n", 1, 20, "reflectivity");
     expect_parse_error("light area samples 0\n", 1, 20, "from 1 to 1024");
     expect_parse_error("light area samples -3\n", 1, 20, "from 1 to 1024");
@@ -492,8 +515,10 @@ START_TEST(test_bad_reflectivity_samples_radius_and_recursion)
     expect_parse_error("light area radius -1\n", 1, 19, "greater than 0");
     expect_parse_error("light area radius inf\n", 1, 19, "finite");
     expect_parse_error("light area radius 1e51\n", 1, 19, "at most 1e50");
-    expect_parse_error("light area pattern halton\n", 1, 20, "'uniform', 'stratified'");
-    expect_parse_error("light area angle 30\n", 1, 12, "position, direction, radius");
+    expect_parse_error("light area pattern halton\n", 1, 20,
+                       "'uniform', 'stratified'");
+    expect_parse_error("light area angle 30\n", 1, 12,
+                       "position, direction, radius");
     expect_parse_error("light disc\n", 1, 7, "area");
     expect_parse_error("recursion depth -1\n", 1, 17, "from 0 to 100");
     expect_parse_error("recursion depth 101\n", 1, 17, "from 0 to 100");
@@ -508,7 +533,8 @@ END_TEST
 START_TEST(test_cli_rejects_bad_area_light_and_writes_nothing)
 {
     make_tmpdir();
-    const char *path = write_file("bad.scene", "sphere\nlight area radius 0 samples 4\n");
+    const char *path =
+        write_file("bad.scene", "sphere\nlight area radius 0 samples 4\n");
     char scene_path[256], errors[1024];
     snprintf(scene_path, sizeof scene_path, "%s", path);
     const char *out = tmp_path("out.png");
@@ -516,7 +542,8 @@ START_TEST(test_cli_rejects_bad_area_light_and_writes_nothing)
     snprintf(out_path, sizeof out_path, "%s", out);
     const char *args[] = {scene_path, "-o", out_path, NULL};
     ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
-    ck_assert_msg(strstr(errors, "bad.scene:2:19: error:") != NULL, "%s", errors);
+    ck_assert_msg(strstr(errors, "bad.scene:2:19: error:") != NULL, "%s",
+                  errors);
     ck_assert(!file_exists(out_path));
     remove_tmpdir();
 }
@@ -528,9 +555,11 @@ Suite *ch06_shadows_suite(void)
     TCase *shadows = tcase_create("shadows");
     tcase_add_test(shadows, test_point_behind_an_occluder_is_in_shadow);
     tcase_add_test(shadows, test_occluder_beyond_the_light_casts_no_shadow);
-    tcase_add_test(shadows, test_directional_light_is_blocked_along_its_whole_direction);
+    tcase_add_test(shadows,
+                   test_directional_light_is_blocked_along_its_whole_direction);
     tcase_add_test(shadows, test_shadow_keeps_ambient_and_emission);
-    tcase_add_test(shadows, test_no_shadow_ray_where_the_light_cannot_contribute);
+    tcase_add_test(shadows,
+                   test_no_shadow_ray_where_the_light_cannot_contribute);
     tcase_add_test(shadows, test_no_shadow_ray_when_nothing_can_block);
     tcase_add_test(shadows, test_lone_sphere_shadows_its_own_inside);
     suite_add_tcase(s, shadows);
@@ -543,8 +572,10 @@ Suite *ch06_shadows_suite(void)
     suite_add_tcase(s, acne);
     TCase *formulas = tcase_create("formulas");
     tcase_add_test(formulas, test_area_light_samples_cover_the_disc_evenly);
-    tcase_add_test(formulas, test_area_light_gives_a_penumbra_and_is_reproducible);
-    tcase_add_test(formulas, test_reflection_angle_equals_incidence_in_the_plane);
+    tcase_add_test(formulas,
+                   test_area_light_gives_a_penumbra_and_is_reproducible);
+    tcase_add_test(formulas,
+                   test_reflection_angle_equals_incidence_in_the_plane);
     tcase_add_test(formulas, test_perfect_mirror_shows_the_lit_sphere);
     tcase_add_test(formulas, test_recursion_ends_between_parallel_mirrors);
     suite_add_tcase(s, formulas);

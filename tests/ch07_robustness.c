@@ -29,8 +29,8 @@
 static void scene_of(scene *s, const char *text)
 {
     scene_error err;
-    ck_assert_msg(parse_text(s, text, &err), "%s:%d:%d: %s", err.file, err.line, err.col,
-                  err.message);
+    ck_assert_msg(parse_text(s, text, &err), "%s:%d:%d: %s", err.file, err.line,
+                  err.col, err.message);
 }
 
 /* The counts and the colour of the ray from the eye along d. */
@@ -58,10 +58,12 @@ START_TEST(test_a_clear_mirror_traces_no_mirror_ray)
     const vec3 dirs[] = {{0, 0, 1}, {0.3, -0.2, 1}};
     for (int k = 0; k < 2; k++) {
         vec3 both, glass;
-        render_stats a = trace_once("material m reflect 1 transparency 1 ior 1.5\n"
-                                    THREE_SHEETS, dirs[k], &both);
-        render_stats b = trace_once("material m transparency 1 ior 1.5\n" THREE_SHEETS,
-                                    dirs[k], &glass);
+        render_stats a = trace_once(
+            "material m reflect 1 transparency 1 ior 1.5\n" THREE_SHEETS,
+            dirs[k], &both);
+        render_stats b =
+            trace_once("material m transparency 1 ior 1.5\n" THREE_SHEETS,
+                       dirs[k], &glass);
         ck_assert_int_eq(a.reflection_rays, b.reflection_rays);
         ck_assert_int_eq(a.refraction_rays, b.refraction_rays);
         ck_assert_int_eq(a.ray_trees_cut, 0);
@@ -96,9 +98,11 @@ START_TEST(test_glass_without_a_cutoff_stops_at_the_budget)
     /* With cutoff 0 only the depth bounds a tree, and glass doubles it
      * at every hit: 2^100 rays. The budget stops each at BUDGET rays. */
     const char *scenes[] = {
-        "recursion depth 100 cutoff 0\nmaterial m transparency 1 ior 1.5\n" THREE_SHEETS,
+        "recursion depth 100 cutoff 0\nmaterial m transparency 1 ior "
+        "1.5\n" THREE_SHEETS,
         "recursion depth 100 cutoff 0\nmaterial m transparency 1 ior 1000\n"
-        "sphere center 0 0 5 radius 2 material m\nsphere center 0 0 5 radius 1 material m\n",
+        "sphere center 0 0 5 radius 2 material m\nsphere center 0 0 5 radius 1 "
+        "material m\n",
     };
     for (int k = 0; k < 2; k++) {
         vec3 seen;
@@ -126,21 +130,29 @@ START_TEST(test_cli_renders_the_endless_scenes_and_counts_the_cuts)
      * alone bounds it now, and --stats says that no tree was cut. */
     char scene_path[192], out[192], errors[4096];
     snprintf(scene_path, sizeof scene_path, "%s",
-             write_file("sheets.scene", "material m reflect 1 transparency 1 ior 1.5\n"
-                                        THREE_SHEETS));
+             write_file(
+                 "sheets.scene",
+                 "material m reflect 1 transparency 1 ior 1.5\n" THREE_SHEETS));
     snprintf(out, sizeof out, "%s", tmp_path("out.png"));
-    const char *args[] = {scene_path, "-o", out, "--size", "64x48", "--stats", NULL};
-    int status = run_bin_limited(args, errors, sizeof errors, (run_limits){.alarm_seconds = 30});
+    const char *args[] = {scene_path, "-o",      out, "--size",
+                          "64x48",    "--stats", NULL};
+    int status = run_bin_limited(args, errors, sizeof errors,
+                                 (run_limits){.alarm_seconds = 30});
     ck_assert_msg(status == 0, "status %d: %s", status, errors);
-    ck_assert_msg(strstr(errors, "ray trees cut      0 at the budget"), "%s", errors);
+    ck_assert_msg(strstr(errors, "ray trees cut      0 at the budget"), "%s",
+                  errors);
     /* without a cutoff, 2 x 2 pixels: each tree is cut at the budget */
     snprintf(scene_path, sizeof scene_path, "%s",
-             write_file("nocut.scene", "recursion depth 100 cutoff 0\n"
-                                       "material m transparency 1 ior 1.5\n" THREE_SHEETS));
-    const char *small[] = {scene_path, "-o", out, "--size", "2x2", "--stats", NULL};
-    status = run_bin_limited(small, errors, sizeof errors, (run_limits){.alarm_seconds = 30});
+             write_file("nocut.scene",
+                        "recursion depth 100 cutoff 0\n"
+                        "material m transparency 1 ior 1.5\n" THREE_SHEETS));
+    const char *small[] = {scene_path, "-o",      out, "--size",
+                           "2x2",      "--stats", NULL};
+    status = run_bin_limited(small, errors, sizeof errors,
+                             (run_limits){.alarm_seconds = 30});
     ck_assert_msg(status == 0, "status %d: %s", status, errors);
-    ck_assert_msg(strstr(errors, "ray trees cut      4 at the budget"), "%s", errors);
+    ck_assert_msg(strstr(errors, "ray trees cut      4 at the budget"), "%s",
+                  errors);
 }
 END_TEST
 
@@ -153,7 +165,8 @@ Suite *ch07_robustness_suite(void)
     tcase_add_test(trees, test_a_clear_mirror_traces_no_mirror_ray);
     tcase_add_test(trees, test_a_half_clear_mirror_weighs_its_share);
     tcase_add_test(trees, test_glass_without_a_cutoff_stops_at_the_budget);
-    tcase_add_test(trees, test_cli_renders_the_endless_scenes_and_counts_the_cuts);
+    tcase_add_test(trees,
+                   test_cli_renders_the_endless_scenes_and_counts_the_cuts);
     suite_add_tcase(s, trees);
     return s;
 }

@@ -17,17 +17,22 @@ START_TEST(test_a_mesh_within_a_pixel_gets_a_sensible_hint)
     strcat(link, "/meshes");
     ck_assert_int_eq(symlink(link, tmp_path("meshes")), 0);
     char scene_path[192], errors[4096];
-    snprintf(scene_path, sizeof scene_path, "%s",
-             write_file("far.scene", "mesh file meshes/bunny.obj scale 12 offset 0 0 600\n"));
-    const char *args[] = {scene_path, "--size", "1x1", "--stats", "-o", tmp_path("b.png"), NULL};
+    snprintf(
+        scene_path, sizeof scene_path, "%s",
+        write_file("far.scene",
+                   "mesh file meshes/bunny.obj scale 12 offset 0 0 600\n"));
+    const char *args[] = {scene_path, "--size",          "1x1", "--stats",
+                          "-o",       tmp_path("b.png"), NULL};
     ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
     const char *hint = strstr(errors, "hint: object 1, a mesh of ");
     ck_assert_msg(hint != NULL, "%s", errors);
-    long triangles = strtol(hint + strlen("hint: object 1, a mesh of "), NULL, 10);
+    long triangles =
+        strtol(hint + strlen("hint: object 1, a mesh of "), NULL, 10);
     char expected[128];
-    snprintf(expected, sizeof expected, "covers at most 1 pixel: %ld triangles a pixel,",
-             triangles);
-    ck_assert_msg(strstr(hint, expected) != NULL, "'%s' lacks '%s'", hint, expected);
+    snprintf(expected, sizeof expected,
+             "covers at most 1 pixel: %ld triangles a pixel,", triangles);
+    ck_assert_msg(strstr(hint, expected) != NULL, "'%s' lacks '%s'", hint,
+                  expected);
 }
 END_TEST
 

@@ -26,11 +26,12 @@ static const char *teapot_scene(void)
     ck_assert_ptr_nonnull(getcwd(target, sizeof target - 16));
     strcat(target, "/meshes");
     ck_assert_int_eq(symlink(target, tmp_path("meshes")), 0);
-    return write_file("teapot.scene",
-                      "image 96 72\n"
-                      "sphere center 0 -1001 6 radius 1000\n"
-                      "mesh file meshes/teapot-8.obj scale 0.5 offset 0 -1 6 smooth\n"
-                      "sphere center 1.5 0 7 radius 0.5\n");
+    return write_file(
+        "teapot.scene",
+        "image 96 72\n"
+        "sphere center 0 -1001 6 radius 1000\n"
+        "mesh file meshes/teapot-8.obj scale 0.5 offset 0 -1 6 smooth\n"
+        "sphere center 1.5 0 7 radius 0.5\n");
 }
 
 static char *read_all(const char *path, size_t *length)
@@ -45,7 +46,8 @@ static char *read_all(const char *path, size_t *length)
 }
 
 /* What the chapter's program renders of scene_path on `threads` threads. */
-static char *render_on(const char *scene_path, const char *threads, size_t *length)
+static char *render_on(const char *scene_path, const char *threads,
+                       size_t *length)
 {
     char errors[4096];
     const char *out = tmp_path("threads.png");
@@ -55,14 +57,15 @@ static char *render_on(const char *scene_path, const char *threads, size_t *leng
 }
 
 /* scene_path drawn on 1 thread and on each of others[0..n): the same bytes. */
-static void expect_same_on_threads(const char *scene_path, const char *const *others, int n)
+static void expect_same_on_threads(const char *scene_path,
+                                   const char *const *others, int n)
 {
     size_t n1, nk;
     char *one = render_on(scene_path, "1", &n1);
     for (int k = 0; k < n; k++) {
         char *other = render_on(scene_path, others[k], &nk);
-        ck_assert_msg(nk == n1 && memcmp(one, other, n1) == 0, "%s: --threads %s differs",
-                      scene_path, others[k]);
+        ck_assert_msg(nk == n1 && memcmp(one, other, n1) == 0,
+                      "%s: --threads %s differs", scene_path, others[k]);
         free(other);
     }
     free(one);
@@ -84,7 +87,8 @@ START_TEST(test_ties_come_out_alike_on_any_number_of_threads)
     write_file("fans.obj", obj);
     char mesh_path[192], lone_path[192];
     snprintf(mesh_path, sizeof mesh_path, "%s",
-             write_file("mesh.scene", "image 48 36\nmesh file fans.obj color 0.9 0.7 0.4\n"));
+             write_file("mesh.scene",
+                        "image 48 36\nmesh file fans.obj color 0.9 0.7 0.4\n"));
     snprintf(lone_path, sizeof lone_path, "%s", write_file("lone.scene", lone));
     const char *others[] = {"3"};
     expect_same_on_threads(mesh_path, others, 1);
@@ -94,15 +98,19 @@ END_TEST
 
 /* The counts --stats prints (no times, no rates: "time", "rays/s") for
  * --threads n. */
-static void stats_counts(const char *scene_path, const char *n, char *counts, size_t size)
+static void stats_counts(const char *scene_path, const char *n, char *counts,
+                         size_t size)
 {
     char errors[4096];
-    const char *args[] = {scene_path, "--threads", n, "--stats", "-o", tmp_path("s.png"), NULL};
+    const char *args[] = {scene_path, "--threads",       n,   "--stats",
+                          "-o",       tmp_path("s.png"), NULL};
     ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
     counts[0] = '\0';
     for (char *line = strtok(errors, "\n"); line; line = strtok(NULL, "\n"))
-        if (!strstr(line, "time") && !strstr(line, "rays/s") && !strstr(line, "built in"))
-            strncat(counts, line, size - strlen(counts) - 2), strcat(counts, "\n");
+        if (!strstr(line, "time") && !strstr(line, "rays/s") &&
+            !strstr(line, "built in"))
+            strncat(counts, line, size - strlen(counts) - 2),
+                strcat(counts, "\n");
 }
 
 START_TEST(test_statistics_add_up_whatever_the_thread_count)
@@ -124,7 +132,9 @@ START_TEST(test_bad_thread_counts_are_usage_errors)
         const char *out = tmp_path("never.png");
         const char *args[] = {"--threads", bad[k], "-o", out, NULL};
         ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
-        ck_assert_msg(strstr(errors, "--threads expects a whole number") != NULL, "%s", errors);
+        ck_assert_msg(strstr(errors, "--threads expects a whole number") !=
+                          NULL,
+                      "%s", errors);
         ck_assert(!file_exists(out));
     }
     char errors[1024];
@@ -172,7 +182,8 @@ START_TEST(test_bands_on_threads_draw_what_one_render_draws)
     for (int k = 0; k < 2; k++) {
         draw_on(&s, counts[k], &banded, &stats);
         size_t n = (size_t)whole.width * whole.height;
-        ck_assert_msg(memcmp(whole.pixels, banded.pixels, n * sizeof(vec3)) == 0,
+        ck_assert_msg(memcmp(whole.pixels, banded.pixels, n * sizeof(vec3)) ==
+                          0,
                       "%d threads draw another picture", counts[k]);
         image_free(&banded);
     }

@@ -89,7 +89,8 @@ static void assert_file(const char *name, const char *expected)
     char *actual = slurp(name, &len);
     ck_assert_msg(actual != NULL, "%s was not written", name);
     ck_assert_msg(len == strlen(expected) && memcmp(actual, expected, len) == 0,
-                  "%s holds:\n%s\n--- but expected:\n%s", name, actual, expected);
+                  "%s holds:\n%s\n--- but expected:\n%s", name, actual,
+                  expected);
     free(actual);
 }
 
@@ -128,7 +129,8 @@ static void assert_nothing_written(void)
     if (!dir)
         return;
     for (struct dirent *e; (e = readdir(dir));)
-        ck_assert_msg(strcmp(e->d_name, ".") == 0 || strcmp(e->d_name, "..") == 0,
+        ck_assert_msg(strcmp(e->d_name, ".") == 0 ||
+                          strcmp(e->d_name, "..") == 0,
                       "out/%s was written despite an error", e->d_name);
     closedir(dir);
 }
@@ -143,7 +145,8 @@ struct run_options {
 };
 
 /* Runs ARGV inside the test directory, capturing stdout and stderr. */
-static struct run run_with(const struct run_options *options, char *const argv[])
+static struct run run_with(const struct run_options *options,
+                           char *const argv[])
 {
     pid_t pid = fork();
     ck_assert_int_ne(pid, -1);
@@ -155,7 +158,8 @@ static struct run run_with(const struct run_options *options, char *const argv[]
         }
         if (out < 0 || err < 0 || dup2(out, 1) < 0 || dup2(err, 2) < 0)
             _exit(126);
-        if (options->stdin_pipe && (pipe(pipe_ends) != 0 || dup2(pipe_ends[0], 0) < 0))
+        if (options->stdin_pipe &&
+            (pipe(pipe_ends) != 0 || dup2(pipe_ends[0], 0) < 0))
             _exit(126);
         alarm(options->deadline); /* survives exec */
         execvp(argv[0], argv);
@@ -164,9 +168,11 @@ static struct run run_with(const struct run_options *options, char *const argv[]
     int status;
     while (waitpid(pid, &status, 0) < 0)
         ck_assert_int_eq(errno, EINTR);
-    struct run r = {WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status),
+    struct run r = {WIFEXITED(status) ? WEXITSTATUS(status)
+                                      : 128 + WTERMSIG(status),
                     slurp(".stdout", NULL), slurp(".stderr", NULL)};
-    ck_assert_msg(r.out && r.err, "could not capture the output of %s", argv[0]);
+    ck_assert_msg(r.out && r.err, "could not capture the output of %s",
+                  argv[0]);
     char *out = work_path(".stdout"), *err = work_path(".stderr");
     unlink(out);
     unlink(err);
@@ -232,8 +238,9 @@ static void expect_failure(struct run r, const char *messages)
 static void setup(void)
 {
     const char *tangle_env = getenv("TANGLE");
-    ck_assert_msg(tangle_env && *tangle_env,
-                  "TANGLE is not set: run the tests as TANGLE=path/to/tangle ...");
+    ck_assert_msg(
+        tangle_env && *tangle_env,
+        "TANGLE is not set: run the tests as TANGLE=path/to/tangle ...");
     /* The tangler runs inside the test directory: make its path absolute. */
     char cwd[4096] = "";
     if (tangle_env[0] != '/')
@@ -331,7 +338,8 @@ START_TEST(test_append_works_across_chapter_files)
         "```{.c chunk=\"body\" .append}\n"
         "second();\n"
         "```\n");
-    expect_success(tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL));
+    expect_success(
+        tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL));
     assert_file("out/a.c",
                 "/* <<body>> ch01 */\n"
                 "first();\n"
@@ -356,7 +364,8 @@ START_TEST(test_file_roots_can_be_appended_and_replaced)
         "```{.c file=\"b.c\" .replace}\n"
         "b2;\n"
         "```\n");
-    expect_success(tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL));
+    expect_success(
+        tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL));
     assert_file("out/a.c", "a1;\na2;\n");
     assert_file("out/b.c", "b2;\n");
 }
@@ -449,7 +458,8 @@ START_TEST(test_empty_lines_are_not_indented)
         "b();\n"
         "```\n");
     expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
-    assert_file("out/f.c", "{\n    /* <<body>> ch01 */\n    a();\n\n    b();\n}\n");
+    assert_file("out/f.c",
+                "{\n    /* <<body>> ch01 */\n    a();\n\n    b();\n}\n");
 }
 END_TEST
 
@@ -570,7 +580,8 @@ START_TEST(test_nul_bytes_and_long_lines_are_copied)
 {
     const char head[] = "```{.c file=\"f.c\"}\nab\0cd\n";
     size_t long_len = 200000;
-    char *md = malloc(sizeof head + long_len + 8), *expected = malloc(long_len + 16);
+    char *md = malloc(sizeof head + long_len + 8),
+         *expected = malloc(long_len + 16);
     memcpy(md, head, sizeof head - 1);
     memset(md + sizeof head - 1, 'x', long_len);
     memcpy(md + sizeof head - 1 + long_len, "\n```\n", 5);
@@ -595,7 +606,8 @@ START_TEST(test_many_chunks_are_tangled)
     enum { N = 20000 };
     char *md = NULL, *expected = NULL;
     size_t md_len, expected_len;
-    FILE *m = open_memstream(&md, &md_len), *e = open_memstream(&expected, &expected_len);
+    FILE *m = open_memstream(&md, &md_len),
+         *e = open_memstream(&expected, &expected_len);
     fputs("```{.c file=\"many.c\"}\n", m);
     for (int i = 0; i < N; i++)
         fprintf(m, "<<c%d>>\n", i);
@@ -670,7 +682,8 @@ START_TEST(test_unused_chunk_is_only_a_warning)
         "```\n");
     struct run r = tangle("-o", "out", "chapters/01-a.md", NULL);
     ck_assert_int_eq(r.status, 0);
-    ck_assert_str_eq(r.err, "chapters/01-a.md:5: warning: chunk 'spare' is defined but never used\n");
+    ck_assert_str_eq(r.err, "chapters/01-a.md:5: warning: chunk 'spare' is "
+                            "defined but never used\n");
     free_run(&r);
     assert_file("out/a.c", "a;\n");
 }
@@ -678,7 +691,8 @@ END_TEST
 
 START_TEST(test_bad_usage_exits_with_status_2)
 {
-    const char *usage = "usage: tangle [--line] [--strict] [--skip-not-done] -o OUTDIR CHAPTER.md...\n";
+    const char *usage = "usage: tangle [--line] [--strict] [--skip-not-done] "
+                        "-o OUTDIR CHAPTER.md...\n";
     struct run runs[] = {
         tangle(NULL),
         tangle("--bogus", "-o", "out", "a.md", NULL),
@@ -698,7 +712,8 @@ START_TEST(test_help_prints_usage_and_succeeds)
 {
     struct run r = tangle("--help", NULL);
     ck_assert_int_eq(r.status, 0);
-    ck_assert_str_eq(r.out, "usage: tangle [--line] [--strict] [--skip-not-done] -o OUTDIR CHAPTER.md...\n");
+    ck_assert_str_eq(r.out, "usage: tangle [--line] [--strict] "
+                            "[--skip-not-done] -o OUTDIR CHAPTER.md...\n");
     free_run(&r);
 }
 END_TEST
@@ -721,8 +736,10 @@ START_TEST(test_exercise_class_means_nothing_without_skip_option)
         "stub;\n"
         "// NOT DONE: delete this line\n"
         "```\n");
-    expect_success(tangle("-o", "out", "chapters/01-a.md", "workbook/01-a.md", NULL));
-    assert_file("out/a.c", "/* <<x>> ch01 */\nstub;\n// NOT DONE: delete this line\n");
+    expect_success(
+        tangle("-o", "out", "chapters/01-a.md", "workbook/01-a.md", NULL));
+    assert_file("out/a.c",
+                "/* <<x>> ch01 */\nstub;\n// NOT DONE: delete this line\n");
 }
 END_TEST
 
@@ -842,7 +859,8 @@ START_TEST(test_line_directives_name_each_chapter_file)
         "```{.c chunk=\"body\" .append}\n"
         "second;\n"
         "```\n");
-    expect_success(tangle("--line", "-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL));
+    expect_success(tangle("--line", "-o", "out", "chapters/01-a.md",
+                          "chapters/02-b.md", NULL));
     assert_file("out/a.c",
                 "#line 6 \"chapters/01-a.md\"\n"
                 "first;\n"
@@ -927,7 +945,8 @@ START_TEST(test_syntax_error_is_reported_at_its_markdown_line)
                           "chapters/02-shade.md", NULL));
     struct run cc = compile("out/main.c");
     ck_assert_int_ne(cc.status, 0);
-    ck_assert_msg(strstr(cc.err, "chapters/02-shade.md:11:"), "cc said:\n%s", cc.err);
+    ck_assert_msg(strstr(cc.err, "chapters/02-shade.md:11:"), "cc said:\n%s",
+                  cc.err);
     free_run(&cc);
 }
 END_TEST
@@ -946,10 +965,12 @@ START_TEST(test_syntax_error_after_reference_is_reported_at_its_markdown_line)
         "int a = 1;\n"
         "(void)a;\n"
         "```\n");
-    expect_success(tangle("--line", "-o", "out", "chapters/01-camera.md", NULL));
+    expect_success(
+        tangle("--line", "-o", "out", "chapters/01-camera.md", NULL));
     struct run cc = compile("out/main.c");
     ck_assert_int_ne(cc.status, 0);
-    ck_assert_msg(strstr(cc.err, "chapters/01-camera.md:5:"), "cc said:\n%s", cc.err);
+    ck_assert_msg(strstr(cc.err, "chapters/01-camera.md:5:"), "cc said:\n%s",
+                  cc.err);
     ck_assert_msg(!strstr(cc.err, "out/main.c"), "cc said:\n%s", cc.err);
     free_run(&cc);
 }
@@ -971,7 +992,8 @@ START_TEST(test_reference_to_undefined_chunk_is_an_error)
         "  <<missing piece>>\n"
         "```\n");
     expect_failure(tangle("-o", "out", "chapters/01-a.md", NULL),
-                   "chapters/01-a.md:3: error: reference to undefined chunk 'missing piece'\n");
+                   "chapters/01-a.md:3: error: reference to undefined chunk "
+                   "'missing piece'\n");
 }
 END_TEST
 
@@ -992,7 +1014,8 @@ START_TEST(test_cycle_of_references_names_its_chunks)
         "<<a>>\n"
         "```\n");
     expect_failure(tangle("-o", "out", "chapters/01-a.md", NULL),
-                   "chapters/01-a.md:12: error: cycle of references: 'a' -> 'b' -> 'c' -> 'a'\n");
+                   "chapters/01-a.md:12: error: cycle of references: 'a' -> "
+                   "'b' -> 'c' -> 'a'\n");
 }
 END_TEST
 
@@ -1003,9 +1026,11 @@ START_TEST(test_chunk_referring_to_itself_is_a_cycle)
         "```{.c chunk=\"self\"}\n"
         "<<self>>\n"
         "```\n");
-    expect_failure(tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL),
-                   "chapters/02-b.md:2: error: cycle of references: 'self' -> 'self'\n"
-                   "chapters/02-b.md:1: warning: chunk 'self' is defined but never used\n");
+    expect_failure(
+        tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL),
+        "chapters/02-b.md:2: error: cycle of references: 'self' -> 'self'\n"
+        "chapters/02-b.md:1: warning: chunk 'self' is defined but never "
+        "used\n");
 }
 END_TEST
 
@@ -1023,9 +1048,10 @@ START_TEST(test_second_definition_without_append_is_an_error)
         "```{.c chunk=\"x\"}\n"
         "two;\n"
         "```\n");
-    expect_failure(tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL),
-                   "chapters/02-b.md:2: error: chunk 'x' is already defined at "
-                   "chapters/01-a.md:4 (use .append or .replace)\n");
+    expect_failure(
+        tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL),
+        "chapters/02-b.md:2: error: chunk 'x' is already defined at "
+        "chapters/01-a.md:4 (use .append or .replace)\n");
 }
 END_TEST
 
@@ -1038,9 +1064,10 @@ START_TEST(test_second_definition_of_a_file_is_an_error)
         "```{.c file=\"./good.c\"}\n"
         "two;\n"
         "```\n");
-    expect_failure(tangle("-o", "out", "chapters/01-a.md", NULL),
-                   "chapters/01-a.md:4: error: file 'good.c' is already defined at "
-                   "chapters/01-a.md:1 (use .append or .replace)\n");
+    expect_failure(
+        tangle("-o", "out", "chapters/01-a.md", NULL),
+        "chapters/01-a.md:4: error: file 'good.c' is already defined at "
+        "chapters/01-a.md:1 (use .append or .replace)\n");
 }
 END_TEST
 
@@ -1057,7 +1084,8 @@ START_TEST(test_append_to_undefined_chunk_is_an_error)
         "y;\n"
         "```\n");
     expect_failure(tangle("-o", "out", "chapters/01-a.md", NULL),
-                   "chapters/01-a.md:4: error: cannot append to undefined chunk 'later'\n");
+                   "chapters/01-a.md:4: error: cannot append to undefined "
+                   "chunk 'later'\n");
 }
 END_TEST
 
@@ -1068,8 +1096,9 @@ START_TEST(test_replace_of_undefined_file_is_an_error)
         "```{.c file=\"other.c\" .replace}\n"
         "x;\n"
         "```\n");
-    expect_failure(tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL),
-                   "chapters/02-b.md:1: error: cannot replace undefined file 'other.c'\n");
+    expect_failure(
+        tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL),
+        "chapters/02-b.md:1: error: cannot replace undefined file 'other.c'\n");
 }
 END_TEST
 
@@ -1082,8 +1111,9 @@ START_TEST(test_append_together_with_replace_is_an_error)
         "```{.c file=\"good.c\" .append .replace}\n"
         "x;\n"
         "```\n");
-    expect_failure(tangle("-o", "out", "chapters/01-a.md", NULL),
-                   "chapters/01-a.md:4: error: .append and .replace cannot be combined\n");
+    expect_failure(
+        tangle("-o", "out", "chapters/01-a.md", NULL),
+        "chapters/01-a.md:4: error: .append and .replace cannot be combined\n");
 }
 END_TEST
 
@@ -1094,8 +1124,9 @@ START_TEST(test_chunk_together_with_file_is_an_error)
         "```{.c chunk=\"x\" file=\"x.c\"}\n"
         "x;\n"
         "```\n");
-    expect_failure(tangle("-o", "out", "chapters/01-a.md", NULL),
-                   "chapters/01-a.md:2: error: chunk= and file= cannot be combined\n");
+    expect_failure(
+        tangle("-o", "out", "chapters/01-a.md", NULL),
+        "chapters/01-a.md:2: error: chunk= and file= cannot be combined\n");
 }
 END_TEST
 
@@ -1134,8 +1165,9 @@ START_TEST(test_unterminated_quote_is_an_error)
 {
     put("chapters/01-a.md", good_root);
     put("chapters/02-b.md", "```{.c chunk=\"open}\nx;\n```\n");
-    expect_failure(tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL),
-                   "chapters/02-b.md:1: error: unterminated quote in attributes\n");
+    expect_failure(
+        tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL),
+        "chapters/02-b.md:1: error: unterminated quote in attributes\n");
 }
 END_TEST
 
@@ -1143,8 +1175,9 @@ START_TEST(test_missing_closing_brace_is_an_error)
 {
     put("chapters/01-a.md", good_root);
     put("chapters/02-b.md", "text\n```{.c chunk=\"x\"\nx;\n```\n");
-    expect_failure(tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL),
-                   "chapters/02-b.md:2: error: missing '}' in attributes\n");
+    expect_failure(
+        tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL),
+        "chapters/02-b.md:2: error: missing '}' in attributes\n");
 }
 END_TEST
 
@@ -1152,7 +1185,8 @@ START_TEST(test_absolute_path_is_an_error)
 {
     put("chapters/01-a.md", "```{.c file=\"/tmp/tangle-escape.c\"}\nx;\n```\n");
     expect_failure(tangle("-o", "out", "chapters/01-a.md", NULL),
-                   "chapters/01-a.md:1: error: file path '/tmp/tangle-escape.c' is absolute\n");
+                   "chapters/01-a.md:1: error: file path "
+                   "'/tmp/tangle-escape.c' is absolute\n");
 }
 END_TEST
 
@@ -1166,8 +1200,10 @@ START_TEST(test_path_leaving_outdir_is_an_error)
         "y;\n"
         "```\n");
     expect_failure(tangle("-o", "out", "chapters/01-a.md", NULL),
-                   "chapters/01-a.md:1: error: file path '../x.c' leaves the output directory\n"
-                   "chapters/01-a.md:4: error: file path 'a/../../y.c' leaves the output directory\n");
+                   "chapters/01-a.md:1: error: file path '../x.c' leaves the "
+                   "output directory\n"
+                   "chapters/01-a.md:4: error: file path 'a/../../y.c' leaves "
+                   "the output directory\n");
     ck_assert(!exists("x.c") && !exists("y.c"));
 }
 END_TEST
@@ -1178,9 +1214,12 @@ START_TEST(test_unreadable_input_is_an_error)
     char *dir = work_path("adir");
     ck_assert_int_eq(mkdir(dir, 0777), 0);
     free(dir);
-    expect_failure(tangle("-o", "out", "chapters/01-a.md", "chapters/02-missing.md", "adir", NULL),
-                   "chapters/02-missing.md: error: cannot read: No such file or directory\n"
-                   "adir: error: cannot read: not a regular file but a directory\n");
+    expect_failure(
+        tangle("-o", "out", "chapters/01-a.md", "chapters/02-missing.md",
+               "adir", NULL),
+        "chapters/02-missing.md: error: cannot read: No such file or "
+        "directory\n"
+        "adir: error: cannot read: not a regular file but a directory\n");
 }
 END_TEST
 
@@ -1190,7 +1229,8 @@ START_TEST(test_unwritable_output_is_an_error)
     put("blocker", "a file where the output directory should be\n");
     struct run r = tangle("-o", "blocker", "chapters/01-a.md", NULL);
     ck_assert_int_eq(r.status, 1);
-    ck_assert_str_eq(r.err, "blocker/good.c: error: cannot write: Not a directory\n");
+    ck_assert_str_eq(r.err,
+                     "blocker/good.c: error: cannot write: Not a directory\n");
     free_run(&r);
 }
 END_TEST
@@ -1202,8 +1242,10 @@ START_TEST(test_unused_chunk_is_an_error_with_strict)
         "\n"
         "```{.c chunk=\"spare\"}\n"
         "```\n");
-    expect_failure(tangle("--strict", "-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL),
-                   "chapters/02-b.md:2: error: chunk 'spare' is defined but never used\n");
+    expect_failure(
+        tangle("--strict", "-o", "out", "chapters/01-a.md", "chapters/02-b.md",
+               NULL),
+        "chapters/02-b.md:2: error: chunk 'spare' is defined but never used\n");
 }
 END_TEST
 
@@ -1221,12 +1263,13 @@ START_TEST(test_every_error_is_reported_not_only_the_first)
         "```\n"
         "```{.c file=\"/abs\"}\n"
         "```\n");
-    expect_failure(tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL),
-                   "chapters/01-a.md:5: error: empty chunk name\n"
-                   "chapters/02-b.md:1: error: cannot replace undefined chunk 'x'\n"
-                   "chapters/02-b.md:3: error: file path '/abs' is absolute\n"
-                   "chapters/01-a.md:2: error: reference to undefined chunk 'one'\n"
-                   "chapters/01-a.md:3: error: reference to undefined chunk 'two'\n");
+    expect_failure(
+        tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL),
+        "chapters/01-a.md:5: error: empty chunk name\n"
+        "chapters/02-b.md:1: error: cannot replace undefined chunk 'x'\n"
+        "chapters/02-b.md:3: error: file path '/abs' is absolute\n"
+        "chapters/01-a.md:2: error: reference to undefined chunk 'one'\n"
+        "chapters/01-a.md:3: error: reference to undefined chunk 'two'\n");
 }
 END_TEST
 
@@ -1263,9 +1306,11 @@ END_TEST
 
 START_TEST(test_nesting_deeper_than_1000_levels_is_an_error)
 {
-    put_chain(1000); /* the root plus 1000 chunks: c999's reference is too deep */
+    put_chain(
+        1000); /* the root plus 1000 chunks: c999's reference is too deep */
     expect_failure(tangle("-o", "out", "chapters/01-a.md", NULL),
-                   "chapters/01-a.md:2999: error: references nested deeper than 1000 levels\n");
+                   "chapters/01-a.md:2999: error: references nested deeper "
+                   "than 1000 levels\n");
 }
 END_TEST
 
@@ -1276,13 +1321,15 @@ START_TEST(test_exponential_expansion_is_stopped)
     FILE *f = open_memstream(&md, &len);
     fputs("```{.c file=\"big.c\"}\n<<l0>>\n```\n", f);
     for (int i = 0; i < 40; i++)
-        fprintf(f, "```{.c chunk=\"l%d\"}\n<<l%d>>\n<<l%d>>\n```\n", i, i + 1, i + 1);
+        fprintf(f, "```{.c chunk=\"l%d\"}\n<<l%d>>\n<<l%d>>\n```\n", i, i + 1,
+                i + 1);
     fputs("```{.c chunk=\"l40\"}\nint x;\n```\n", f);
     fclose(f);
     put("chapters/01-a.md", md);
     free(md);
     expect_failure(tangle("-o", "out", "chapters/01-a.md", NULL),
-                   "chapters/01-a.md:1: error: file 'big.c' would be larger than 67108864 bytes\n");
+                   "chapters/01-a.md:1: error: file 'big.c' would be larger "
+                   "than 67108864 bytes\n");
 }
 END_TEST
 
@@ -1368,7 +1415,8 @@ START_TEST(test_empty_hook_gets_no_marker)
         "```{.c chunk=\"hook\" .append}\n"
         "filled;\n"
         "```\n");
-    expect_success(tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL));
+    expect_success(
+        tangle("-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL));
     /* the hook's lines come from chapter 02, and its marker says so */
     assert_file("out/a.c", "/* <<hook>> ch02 */\nfilled;\nend;\n");
 }
@@ -1442,7 +1490,8 @@ START_TEST(test_line_option_writes_no_markers)
         "```{.c chunk=\"x\" .append}\n"
         "y;\n"
         "```\n");
-    expect_success(tangle("--line", "-o", "out", "chapters/01-a.md", "chapters/02-b.md", NULL));
+    expect_success(tangle("--line", "-o", "out", "chapters/01-a.md",
+                          "chapters/02-b.md", NULL));
     assert_file("out/a.c",
                 "#line 5 \"chapters/01-a.md\"\n"
                 "    x;\n"
@@ -1514,7 +1563,8 @@ END_TEST
 START_TEST(test_plain_output_with_markers_compiles_with_cc)
 {
     put_book("puts(\"done\");");
-    expect_success(tangle("-o", "out", "chapters/01-camera.md", "chapters/02-shade.md", NULL));
+    expect_success(tangle("-o", "out", "chapters/01-camera.md",
+                          "chapters/02-shade.md", NULL));
     char *text = slurp("out/main.c", NULL);
     ck_assert_ptr_nonnull(strstr(text, "    /* <<main body>> ch01 */\n"));
     ck_assert_ptr_nonnull(strstr(text, "    /* <<main body>> += ch02 */\n"));
@@ -1531,14 +1581,16 @@ END_TEST
 static void make_link(const char *target, const char *name)
 {
     char *path = work_path(name);
-    ck_assert_msg(symlink(target, path) == 0, "symlink %s: %s", path, strerror(errno));
+    ck_assert_msg(symlink(target, path) == 0, "symlink %s: %s", path,
+                  strerror(errno));
     free(path);
 }
 
 static void make_dir(const char *name)
 {
     char *path = work_path(name);
-    ck_assert_msg(mkdir(path, 0777) == 0, "mkdir %s: %s", path, strerror(errno));
+    ck_assert_msg(mkdir(path, 0777) == 0, "mkdir %s: %s", path,
+                  strerror(errno));
     free(path);
 }
 
@@ -1557,8 +1609,9 @@ START_TEST(test_output_through_a_symbolic_link_is_refused)
         "```\n");
     struct run r = tangle("-o", "out", "chapters/01-a.md", NULL);
     ck_assert_int_eq(r.status, 1);
-    ck_assert_str_eq(r.err, "chapters/01-a.md:4: error: output path "
-                            "'scenes/meshes/bunny.obj' passes through a symbolic link\n");
+    ck_assert_str_eq(
+        r.err, "chapters/01-a.md:4: error: output path "
+               "'scenes/meshes/bunny.obj' passes through a symbolic link\n");
     free_run(&r);
     assert_file("meshes/bunny.obj", "v 0 0 0\n");
     ck_assert(!exists("out/a.c"));
@@ -1606,9 +1659,11 @@ START_TEST(test_output_through_a_plain_file_is_refused_before_writing)
         "```\n");
     struct run r = tangle("-o", "out", "chapters/01-a.md", NULL);
     ck_assert_int_eq(r.status, 1);
-    ck_assert_str_eq(r.err, "chapters/01-a.md:4: error: output path 'sub/x.c' "
-                            "passes through a file that is not a directory\n"
-                            "chapters/01-a.md:7: error: output path 'd.c' names a directory\n");
+    ck_assert_str_eq(
+        r.err,
+        "chapters/01-a.md:4: error: output path 'sub/x.c' "
+        "passes through a file that is not a directory\n"
+        "chapters/01-a.md:7: error: output path 'd.c' names a directory\n");
     free_run(&r);
     ck_assert(!exists("out/first.c"));
 }
@@ -1625,7 +1680,8 @@ START_TEST(test_outputs_over_256_mib_in_all_are_refused)
     for (int i = 1; i <= 5; i++)
         fprintf(f, "```{.txt file=\"f%d.txt\"}\n<<d0>>\n```\n", i);
     for (int i = 0; i < 6; i++)
-        fprintf(f, "```{.txt chunk=\"d%d\"}\n<<d%d>>\n<<d%d>>\n```\n", i, i + 1, i + 1);
+        fprintf(f, "```{.txt chunk=\"d%d\"}\n<<d%d>>\n<<d%d>>\n```\n", i, i + 1,
+                i + 1);
     fputs("```{.txt chunk=\"d6\"}\n", f);
     for (int i = 0; i < LINE - 1; i++)
         putc('x', f);
@@ -1633,9 +1689,10 @@ START_TEST(test_outputs_over_256_mib_in_all_are_refused)
     fclose(f);
     put("chapters/01-a.md", md);
     free(md);
-    expect_failure(tangle("-o", "out", "chapters/01-a.md", NULL),
-                   "chapters/01-a.md:13: error: file 'f5.txt' would take all outputs "
-                   "together over 268435456 bytes\n");
+    expect_failure(
+        tangle("-o", "out", "chapters/01-a.md", NULL),
+        "chapters/01-a.md:13: error: file 'f5.txt' would take all outputs "
+        "together over 268435456 bytes\n");
 }
 END_TEST
 
@@ -1646,9 +1703,11 @@ START_TEST(test_fifo_as_chapter_is_refused_without_hanging)
     ck_assert_int_eq(mkfifo(fifo, 0600), 0);
     free(fifo);
     struct run_options deadline = {.deadline = 10};
-    char *argv[] = {NULL, "-o", "out", "chapters/01-a.md", "chapters/02-fifo.md", NULL};
+    char *argv[] = {
+        NULL, "-o", "out", "chapters/01-a.md", "chapters/02-fifo.md", NULL};
     expect_failure(tangle_with(&deadline, argv),
-                   "chapters/02-fifo.md: error: cannot read: not a regular file but a FIFO\n");
+                   "chapters/02-fifo.md: error: cannot read: not a regular "
+                   "file but a FIFO\n");
 }
 END_TEST
 
@@ -1657,8 +1716,9 @@ START_TEST(test_endless_stdin_as_chapter_is_refused_without_hanging)
     put("chapters/01-a.md", good_root);
     struct run_options endless_pipe = {.deadline = 10, .stdin_pipe = true};
     char *argv[] = {NULL, "-o", "out", "chapters/01-a.md", "/dev/stdin", NULL};
-    expect_failure(tangle_with(&endless_pipe, argv),
-                   "/dev/stdin: error: cannot read: not a regular file but a FIFO\n");
+    expect_failure(
+        tangle_with(&endless_pipe, argv),
+        "/dev/stdin: error: cannot read: not a regular file but a FIFO\n");
 }
 END_TEST
 
@@ -1667,8 +1727,9 @@ START_TEST(test_device_as_chapter_is_refused)
     put("chapters/01-a.md", good_root);
     struct run_options deadline = {.deadline = 10};
     char *argv[] = {NULL, "-o", "out", "chapters/01-a.md", "/dev/zero", NULL};
-    expect_failure(tangle_with(&deadline, argv),
-                   "/dev/zero: error: cannot read: not a regular file but a device\n");
+    expect_failure(
+        tangle_with(&deadline, argv),
+        "/dev/zero: error: cannot read: not a regular file but a device\n");
 }
 END_TEST
 
@@ -1679,9 +1740,10 @@ START_TEST(test_chapter_over_16_mib_is_refused)
     char *big = work_path("chapters/02-big.md");
     ck_assert_int_eq(truncate(big, (16 << 20) + 1), 0); /* sparse: quick */
     free(big);
-    expect_failure(tangle("-o", "out", "chapters/01-a.md", "chapters/02-big.md", NULL),
-                   "chapters/02-big.md: error: cannot read: larger than 16777216 bytes, "
-                   "too large for a chapter\n");
+    expect_failure(
+        tangle("-o", "out", "chapters/01-a.md", "chapters/02-big.md", NULL),
+        "chapters/02-big.md: error: cannot read: larger than 16777216 bytes, "
+        "too large for a chapter\n");
 }
 END_TEST
 
@@ -1689,7 +1751,8 @@ START_TEST(test_chapter_of_exactly_16_mib_is_read)
 {
     put("chapters/01-a.md", good_root);
     char *path = work_path("chapters/01-a.md");
-    ck_assert_int_eq(truncate(path, 16 << 20), 0); /* NUL bytes after the block */
+    ck_assert_int_eq(truncate(path, 16 << 20),
+                     0); /* NUL bytes after the block */
     free(path);
     expect_success(tangle("-o", "out", "chapters/01-a.md", NULL));
     assert_file("out/good.c", "good;\n");
@@ -1715,7 +1778,8 @@ START_TEST(test_long_paths_and_names_are_not_cut_short)
     fprintf(f, "```{.c file=\"a.c\"}\n<<%s>>\n```\n", name);
     fclose(f);
     f = open_memstream(&expected, &len);
-    fprintf(f, "%s:2: error: reference to undefined chunk '%s'\n", chapter, name);
+    fprintf(f, "%s:2: error: reference to undefined chunk '%s'\n", chapter,
+            name);
     fclose(f);
     put(chapter, md);
     expect_failure(tangle("-o", "out", chapter, NULL), expected);
@@ -1736,17 +1800,20 @@ START_TEST(test_unprintable_bytes_in_messages_are_escaped)
         "```\n";
     put_bytes("chapters/01-\033[2J.md", md, sizeof md - 1);
     put("chapters/02-b.md", "```{.c file=\"/abs\a.c\"}\nx;\n```\n");
-    expect_failure(tangle("-o", "out", "chapters/01-\033[2J.md", "chapters/02-b.md",
-                          "chapters/03-\033]0;title\a.md", NULL),
-                   "chapters/02-b.md:1: error: file path '/abs\\x07.c' is absolute\n"
-                   "chapters/03-\\x1B]0;title\\x07.md: error: cannot read: "
-                   "No such file or directory\n"
-                   "chapters/01-\\x1B[2J.md:2: error: reference to undefined chunk 'esc\\x1B[31m'\n"
-                   "chapters/01-\\x1B[2J.md:3: error: reference to undefined chunk 'nul\\x00byte'\n"
-                   "chapters/01-\\x1B[2J.md:4: error: reference to undefined chunk "
-                   "'bad\\xFF utf8 \\xC2\\x9B c1'\n"
-                   "chapters/01-\\x1B[2J.md:5: error: reference to undefined chunk "
-                   "'fine \303\251'\n");
+    expect_failure(
+        tangle("-o", "out", "chapters/01-\033[2J.md", "chapters/02-b.md",
+               "chapters/03-\033]0;title\a.md", NULL),
+        "chapters/02-b.md:1: error: file path '/abs\\x07.c' is absolute\n"
+        "chapters/03-\\x1B]0;title\\x07.md: error: cannot read: "
+        "No such file or directory\n"
+        "chapters/01-\\x1B[2J.md:2: error: reference to undefined chunk "
+        "'esc\\x1B[31m'\n"
+        "chapters/01-\\x1B[2J.md:3: error: reference to undefined chunk "
+        "'nul\\x00byte'\n"
+        "chapters/01-\\x1B[2J.md:4: error: reference to undefined chunk "
+        "'bad\\xFF utf8 \\xC2\\x9B c1'\n"
+        "chapters/01-\\x1B[2J.md:5: error: reference to undefined chunk "
+        "'fine \303\251'\n");
 }
 END_TEST
 
@@ -1768,10 +1835,12 @@ Suite *tangle_suite(void)
 
     tcase_add_test(rules, test_file_block_is_written_to_outdir);
     tcase_add_test(rules, test_append_adds_to_end_of_definition);
-    tcase_add_test(rules, test_replace_discards_whole_body_and_later_append_extends_it);
+    tcase_add_test(
+        rules, test_replace_discards_whole_body_and_later_append_extends_it);
     tcase_add_test(rules, test_append_works_across_chapter_files);
     tcase_add_test(rules, test_file_roots_can_be_appended_and_replaced);
-    tcase_add_test(rules, test_exercise_class_means_nothing_without_skip_option);
+    tcase_add_test(rules,
+                   test_exercise_class_means_nothing_without_skip_option);
     tcase_add_test(rules, test_skip_not_done_leaves_an_unstarted_exercise_out);
     tcase_add_test(rules, test_skip_not_done_uses_a_started_exercise);
     tcase_add_test(rules, test_skip_not_done_keeps_blocks_not_marked_exercise);
@@ -1804,7 +1873,9 @@ Suite *tangle_suite(void)
     tcase_add_test(lines, test_scene_files_get_no_line_directives);
     tcase_add_test(lines, test_line_output_compiles_with_cc);
     tcase_add_test(lines, test_syntax_error_is_reported_at_its_markdown_line);
-    tcase_add_test(lines, test_syntax_error_after_reference_is_reported_at_its_markdown_line);
+    tcase_add_test(
+        lines,
+        test_syntax_error_after_reference_is_reported_at_its_markdown_line);
 
     tcase_add_test(errors, test_reference_to_undefined_chunk_is_an_error);
     tcase_add_test(errors, test_cycle_of_references_names_its_chunks);
@@ -1829,10 +1900,13 @@ Suite *tangle_suite(void)
     tcase_add_test(errors, test_nesting_deeper_than_1000_levels_is_an_error);
     tcase_add_test(errors, test_exponential_expansion_is_stopped);
 
-    tcase_add_test(markers, test_marker_names_chunk_and_chapter_at_expansion_indent);
-    tcase_add_test(markers, test_marker_names_chapter_by_leading_digits_or_file_name);
+    tcase_add_test(markers,
+                   test_marker_names_chunk_and_chapter_at_expansion_indent);
+    tcase_add_test(markers,
+                   test_marker_names_chapter_by_leading_digits_or_file_name);
     tcase_add_test(markers, test_empty_hook_gets_no_marker);
-    tcase_add_test(markers, test_later_chapters_pieces_are_marked_after_replace);
+    tcase_add_test(markers,
+                   test_later_chapters_pieces_are_marked_after_replace);
     tcase_add_test(markers, test_markers_only_in_c_and_h_files);
     tcase_add_test(markers, test_line_option_writes_no_markers);
     tcase_add_test(markers, test_no_marker_inside_a_comment_or_a_spliced_line);
@@ -1842,10 +1916,12 @@ Suite *tangle_suite(void)
     tcase_add_test(files, test_output_through_a_symbolic_link_is_refused);
     tcase_add_test(files, test_output_file_that_is_a_symbolic_link_is_refused);
     tcase_add_test(files, test_outdir_itself_may_be_a_symbolic_link);
-    tcase_add_test(files, test_output_through_a_plain_file_is_refused_before_writing);
+    tcase_add_test(files,
+                   test_output_through_a_plain_file_is_refused_before_writing);
     tcase_add_test(files, test_outputs_over_256_mib_in_all_are_refused);
     tcase_add_test(files, test_fifo_as_chapter_is_refused_without_hanging);
-    tcase_add_test(files, test_endless_stdin_as_chapter_is_refused_without_hanging);
+    tcase_add_test(files,
+                   test_endless_stdin_as_chapter_is_refused_without_hanging);
     tcase_add_test(files, test_device_as_chapter_is_refused);
     tcase_add_test(files, test_chapter_over_16_mib_is_refused);
     tcase_add_test(files, test_chapter_of_exactly_16_mib_is_read);

@@ -46,7 +46,8 @@ static inline const char *tmp_path(const char *name)
 }
 
 /* Writes length bytes of text to tmpdir/name; returns the path. */
-static inline const char *write_bytes(const char *name, const char *text, size_t length)
+static inline const char *write_bytes(const char *name, const char *text,
+                                      size_t length)
 {
     const char *path = tmp_path(name);
     FILE *f = fopen(path, "wb");
@@ -84,8 +85,9 @@ static inline int count_entries(const char *dir)
 /* How run_bin_limited restricts the child before it runs the binary. */
 typedef struct {
     bool as_nobody;          /* when run as root: drop to uid/gid 65534 */
-    long max_file_bytes;     /* > 0: RLIMIT_FSIZE, a disk that is full past this */
-    long max_memory_bytes;   /* > 0: RLIMIT_AS, a machine with that little memory */
+    long max_file_bytes; /* > 0: RLIMIT_FSIZE, a disk that is full past this */
+    long max_memory_bytes; /* > 0: RLIMIT_AS, a machine with that little memory
+                            */
     unsigned alarm_seconds;  /* > 0: SIGALRM ends a binary that hangs */
     const char *stdout_path; /* where its stdout goes; NULL: /dev/null */
 } run_limits;
@@ -93,17 +95,21 @@ typedef struct {
 static inline void apply_limits(run_limits limits)
 {
     if (limits.max_file_bytes > 0) {
-        struct rlimit r = {(rlim_t)limits.max_file_bytes, (rlim_t)limits.max_file_bytes};
-        signal(SIGXFSZ, SIG_IGN); /* a write past the limit fails instead of killing */
+        struct rlimit r = {(rlim_t)limits.max_file_bytes,
+                           (rlim_t)limits.max_file_bytes};
+        signal(SIGXFSZ,
+               SIG_IGN); /* a write past the limit fails instead of killing */
         if (setrlimit(RLIMIT_FSIZE, &r) != 0)
             _exit(126);
     }
     if (limits.max_memory_bytes > 0) {
-        struct rlimit r = {(rlim_t)limits.max_memory_bytes, (rlim_t)limits.max_memory_bytes};
+        struct rlimit r = {(rlim_t)limits.max_memory_bytes,
+                           (rlim_t)limits.max_memory_bytes};
         if (setrlimit(RLIMIT_AS, &r) != 0)
             _exit(126);
     }
-    if (limits.as_nobody && geteuid() == 0 && (setgid(65534) != 0 || setuid(65534) != 0))
+    if (limits.as_nobody && geteuid() == 0 &&
+        (setgid(65534) != 0 || setuid(65534) != 0))
         _exit(126);
     signal(SIGINT, SIG_DFL); /* a background shell may have ignored them */
     signal(SIGTERM, SIG_DFL);
@@ -118,14 +124,16 @@ static inline pid_t start_bin(const char *const *args, run_limits limits)
     ck_assert_msg(bin != NULL, "set CHAPTER_BIN to the chapter's binary");
     char err_path[128];
     snprintf(err_path, sizeof err_path, "%s/stderr.txt", tmpdir);
-    const char *out_path = limits.stdout_path ? limits.stdout_path : "/dev/null";
+    const char *out_path =
+        limits.stdout_path ? limits.stdout_path : "/dev/null";
     pid_t pid = fork();
     ck_assert(pid >= 0);
     if (pid == 0) {
         const char *argv[16] = {bin};
         for (int k = 0; args[k] != NULL && k < 14; k++)
             argv[k + 1] = args[k];
-        if (freopen(err_path, "w", stderr) == NULL || freopen(out_path, "w", stdout) == NULL)
+        if (freopen(err_path, "w", stderr) == NULL ||
+            freopen(out_path, "w", stdout) == NULL)
             _exit(127);
         apply_limits(limits);
         execv(bin, (char *const *)argv);
@@ -165,8 +173,8 @@ static inline int finish_bin(pid_t pid, char *errors, size_t size)
 
 /* Runs $CHAPTER_BIN with the NULL-ended args under the limits; returns its
  * exit status and puts what it wrote on stderr into errors[size]. */
-static inline int run_bin_limited(const char *const *args, char *errors, size_t size,
-                                  run_limits limits)
+static inline int run_bin_limited(const char *const *args, char *errors,
+                                  size_t size, run_limits limits)
 {
     return finish_bin(start_bin(args, limits), errors, size);
 }
@@ -177,8 +185,8 @@ static inline int run_bin(const char *const *args, char *errors, size_t size)
 }
 
 /* scene_init, then parse text[0..length) as the file called name. */
-static inline bool parse_named(scene *s, const char *text, size_t length, const char *name,
-                               scene_error *err)
+static inline bool parse_named(scene *s, const char *text, size_t length,
+                               const char *name, scene_error *err)
 {
     scene_init(s);
     return scene_parse(s, text, length, name, err);
@@ -191,29 +199,34 @@ static inline bool parse_text(scene *s, const char *text, scene_error *err)
 
 /* Asserts that err is an error in file at line:col whose message contains
  * part; what names the rejected input in a failure message. */
-static inline void expect_error_at(const parse_error *err, const char *file, int line, int col,
-                                   const char *part, const char *what)
+static inline void expect_error_at(const parse_error *err, const char *file,
+                                   int line, int col, const char *part,
+                                   const char *what)
 {
     ck_assert_str_eq(err->file, file);
-    ck_assert_msg(err->line == line && err->col == col, "'%s': error at %d:%d (%s), expected %d:%d",
-                  what, err->line, err->col, err->message, line, col);
-    ck_assert_msg(strstr(err->message, part) != NULL, "'%s': message '%s' lacks '%s'", what,
-                  err->message, part);
+    ck_assert_msg(err->line == line && err->col == col,
+                  "'%s': error at %d:%d (%s), expected %d:%d", what, err->line,
+                  err->col, err->message, line, col);
+    ck_assert_msg(strstr(err->message, part) != NULL,
+                  "'%s': message '%s' lacks '%s'", what, err->message, part);
 }
 
 /* Asserts that the text is rejected with an error at line:col of the file
  * called name, whose message contains part. */
-static inline void expect_parse_error_named(const char *name, const char *text, size_t length,
-                                            int line, int col, const char *part)
+static inline void expect_parse_error_named(const char *name, const char *text,
+                                            size_t length, int line, int col,
+                                            const char *part)
 {
     scene s;
     scene_error err;
-    ck_assert_msg(!parse_named(&s, text, length, name, &err), "accepted: %s", text);
+    ck_assert_msg(!parse_named(&s, text, length, name, &err), "accepted: %s",
+                  text);
     expect_error_at(&err, name, line, col, part, text);
     scene_free(&s);
 }
 
-#define expect_parse_error(text, line, col, part) \
-    expect_parse_error_named("bad.scene", (text), strlen(text), (line), (col), (part))
+#define expect_parse_error(text, line, col, part)                              \
+    expect_parse_error_named("bad.scene", (text), strlen(text), (line), (col), \
+                             (part))
 
 #endif
