@@ -1034,10 +1034,7 @@ END_TEST
 
 START_TEST(test_stats_hint_an_over_fine_mesh)
 {
-    char link[4096];
-    ck_assert_ptr_nonnull(getcwd(link, sizeof link - 16));
-    strcat(link, "/meshes");
-    ck_assert_int_eq(symlink(link, tmp_path("meshes")), 0);
+    link_meshes();
     char scene_path[192], errors[4096];
     snprintf(
         scene_path, sizeof scene_path, "%s",

@@ -12,10 +12,7 @@ START_TEST(test_a_mesh_within_a_pixel_gets_a_sensible_hint)
     /* The bunny 600 units away on a 1 x 1 image: its box covers a small
      * part of the one pixel. The hint may not claim 0 pixels, nor more
      * triangles a pixel than the mesh has. */
-    char link[4096];
-    ck_assert_ptr_nonnull(getcwd(link, sizeof link - 16));
-    strcat(link, "/meshes");
-    ck_assert_int_eq(symlink(link, tmp_path("meshes")), 0);
+    link_meshes();
     char scene_path[192], errors[4096];
     snprintf(
         scene_path, sizeof scene_path, "%s",

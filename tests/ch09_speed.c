@@ -22,10 +22,7 @@ void tie_scene_texts(char *obj, size_t obj_size, char *lone, size_t lone_size);
 /* Writes a scene with the teapot, and a link to meshes/ beside it. */
 static const char *teapot_scene(void)
 {
-    char target[4096];
-    ck_assert_ptr_nonnull(getcwd(target, sizeof target - 16));
-    strcat(target, "/meshes");
-    ck_assert_int_eq(symlink(target, tmp_path("meshes")), 0);
+    link_meshes();
     return write_file(
         "teapot.scene",
         "image 96 72\n"
@@ -159,6 +156,15 @@ static void small_scene(scene *s)
                   err.message);
 }
 
+/* The small scene, and what chapter 1's render draws of it in one go. */
+static void small_scene_drawn_whole(scene *s, image *img, render_stats *stats)
+{
+    small_scene(s);
+    ck_assert(image_init(img, s->cam.width, s->cam.height));
+    *stats = (render_stats){0};
+    render(s, img, stats);
+}
+
 /* img and stats drawn by render_in_bands on `threads` threads. */
 static void draw_on(const scene *s, int threads, image *img,
                     render_stats *stats)
@@ -173,11 +179,9 @@ START_TEST(test_bands_on_threads_draw_what_one_render_draws)
     /* The bands, on one thread or three (23 rows: the last band is short),
      * draw every pixel that chapter 1's render draws, the same. */
     scene s;
-    small_scene(&s);
     image whole, banded;
-    render_stats whole_stats = {0}, stats;
-    ck_assert(image_init(&whole, s.cam.width, s.cam.height));
-    render(&s, &whole, &whole_stats);
+    render_stats whole_stats, stats;
+    small_scene_drawn_whole(&s, &whole, &whole_stats);
     const int counts[] = {1, 3};
     for (int k = 0; k < 2; k++) {
         draw_on(&s, counts[k], &banded, &stats);
@@ -197,11 +201,9 @@ START_TEST(test_the_threads_counts_add_up_to_one_renders)
     /* Each thread counts on its own; added up, the counts are those of one
      * render of the whole image, member by member. */
     scene s;
-    small_scene(&s);
     image whole, banded;
-    render_stats whole_stats = {0}, stats;
-    ck_assert(image_init(&whole, s.cam.width, s.cam.height));
-    render(&s, &whole, &whole_stats);
+    render_stats whole_stats, stats;
+    small_scene_drawn_whole(&s, &whole, &whole_stats);
     ck_assert_int_eq(whole_stats.primary_rays, 37 * 23);
     draw_on(&s, 3, &banded, &stats);
     ck_assert_int_eq(stats.primary_rays, whole_stats.primary_rays);

@@ -62,6 +62,16 @@ static inline const char *write_file(const char *name, const char *text)
     return write_bytes(name, text, strlen(text));
 }
 
+/* tmpdir/meshes: a link to the project's meshes/, so that a scene written
+ * to tmpdir finds them as the chapters' scenes do. */
+static inline void link_meshes(void)
+{
+    char target[4096];
+    ck_assert_ptr_nonnull(getcwd(target, sizeof target - 16));
+    strcat(target, "/meshes");
+    ck_assert_int_eq(symlink(target, tmp_path("meshes")), 0);
+}
+
 static inline bool file_exists(const char *path)
 {
     struct stat st;
