@@ -376,6 +376,9 @@ YOURS_SYMS_ch02_sphere := $(foreach f,geometric quadratic robust,sphere_roots_$(
 YOURS_ch03_specular      := 3.1=YOURS_HIGHLIGHTS
 YOURS_OBJS_ch03_specular := shade.o
 YOURS_SYMS_ch03_specular := phong_cosine blinn_cosine specular_phong specular_blinn
+YOURS_ch04_triangle      := 4.1=YOURS_SHEET 4.2=YOURS_MOLLER_TRUMBORE 4.3=YOURS_WATERTIGHT 4.4=YOURS_WATERTIGHT
+YOURS_OBJS_ch04_triangle := triangle_methods.o triangle_methods_float.o
+YOURS_SYMS_ch04_triangle := $(foreach f,sheet moller_trumbore watertight,triangle_hit_$(f) triangle_hit_$(f)_float)
 YOURS_BENCHES := $(patsubst YOURS_OBJS_%,%,$(filter YOURS_OBJS_%,$(.VARIABLES)))
 YOURS_NUMS    := $(sort $(foreach b,$(YOURS_BENCHES),$(patsubst ch%,%,$(firstword $(subst _, ,$(b))))))
 
