@@ -22,7 +22,7 @@
 #   make workbook     workbook/NN-name.md, the exercises to write (SOLVED=1:
 #                     the book's code); make grade, grade-chNN, hint EX=2.1,
 #                     watch; make chart-ch02 WORKBOOK=1 charts your forms
-#                     (chapters 1, 2 and 3)
+#                     (chapters 1 to 7)
 #   make handout      build/handout/ and its .tar.gz: no solutions in it
 #   make pdf, epub    the book's and the handout's editions
 #   make SAN=1 test   the same with AddressSanitizer and UBSan
@@ -320,6 +320,20 @@ charts-check: deps $(BENCHES)
 
 .PHONY: charts-check
 
+# The committed charts must be what bench/*.gp draws from the committed CSVs
+# (a .gp that learns to draw "yours" must not move a line of the book's).
+.PHONY: check-charts
+check-charts: | deps
+	@rm -rf build/chartcheck && mkdir -p build/chartcheck
+	@for gp in bench/ch*.gp; do s=$$(basename $$gp .gp | tr _ -); \
+	  [ -f figures/$$s.csv ] || continue; \
+	  gnuplot -e "csv='figures/$$s.csv'; stem='build/chartcheck/$$s'" $$gp || exit 1; done
+	@for f in build/chartcheck/*.svg; do \
+	  cmp -s $$f figures/$$(basename $$f) || \
+	    { echo "figures/$$(basename $$f) is not what its .gp draws from its CSV"; exit 1; }; \
+	done
+	@echo "check-charts: $$(ls build/chartcheck | wc -l) charts redraw byte for byte from their CSVs"
+
 # ---------------------------------------------------------------- workbook
 # The reader writes the chunks a chapter marks .exercise (tools/exercises.awk
 # lists them) in workbook/NN-name.md, and the chapters' tests grade them.
@@ -376,6 +390,21 @@ YOURS_SYMS_ch02_sphere := $(foreach f,geometric quadratic robust,sphere_roots_$(
 YOURS_ch03_specular      := 3.1=YOURS_HIGHLIGHTS
 YOURS_OBJS_ch03_specular := shade.o
 YOURS_SYMS_ch03_specular := phong_cosine blinn_cosine specular_phong specular_blinn
+YOURS_ch04_triangle      := 4.1=YOURS_SHEET 4.2=YOURS_MOLLER_TRUMBORE 4.3=YOURS_WATERTIGHT 4.4=YOURS_WATERTIGHT
+YOURS_OBJS_ch04_triangle := triangle_methods.o triangle_methods_float.o
+YOURS_SYMS_ch04_triangle := $(foreach f,sheet moller_trumbore watertight,triangle_hit_$(f) triangle_hit_$(f)_float)
+YOURS_ch05_transform      := 5.3=YOURS_PRODUCTS
+YOURS_OBJS_ch05_transform := mat4.o
+YOURS_SYMS_ch05_transform := mat4_mul
+YOURS_ch06_offset      := 6.1=YOURS_OFFSET
+YOURS_OBJS_ch06_offset := offset.o
+YOURS_SYMS_ch06_offset := offset_origin ray_leaving
+YOURS_ch07_refract      := 7.1=YOURS_STANDARD 7.2=YOURS_SHEET
+YOURS_OBJS_ch07_refract := optics.o
+YOURS_SYMS_ch07_refract := refract_standard refract_sheet
+YOURS_ch07_fresnel      := 7.3=YOURS_FRESNEL
+YOURS_OBJS_ch07_fresnel := optics.o
+YOURS_SYMS_ch07_fresnel := fresnel_exact fresnel_schlick fresnel_schlick_tir
 YOURS_BENCHES := $(patsubst YOURS_OBJS_%,%,$(filter YOURS_OBJS_%,$(.VARIABLES)))
 YOURS_NUMS    := $(sort $(foreach b,$(YOURS_BENCHES),$(patsubst ch%,%,$(firstword $(subst _, ,$(b))))))
 
@@ -387,11 +416,15 @@ chart-ch$(1): $(TANGLE) $$(LIB$(1)) $$(O$(1))/bench/timing.o | deps
 	  sh tools/grade.sh $(1) $$(call chapters_upto,$(1))
 	@$(MAKE) --no-print-directory -s WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) \
 	  $$(foreach b,$$(filter ch$(1)_%,$(YOURS_BENCHES)),$$(addprefix $$(WO$(1))/,$$(YOURS_OBJS_$$(b))))
-	$$(foreach b,$$(filter ch$(1)_%,$(YOURS_BENCHES)),sh tools/chart_yours.sh $$(b) \
+	@drew=; $$(foreach b,$$(filter ch$(1)_%,$(YOURS_BENCHES)),sh tools/chart_yours.sh $$(b) \
 	  $(WB_BUILD)/ch$(1)/state.tsv $(WB_BUILD)/charts "$$(YOURS_$$(b))" \
 	  "$$(addprefix $$(WO$(1))/,$$(YOURS_OBJS_$$(b)))" "$$(YOURS_SYMS_$$(b))" "$(CC)" \
 	  "$(ALL_CFLAGS) $(LTO_LINK) $(PNG_CFLAGS) -Ibench -I$$(T$(1))" \
-	  $$(O$(1))/bench/timing.o $$(LIB$(1)) $(PNG_LIBS) &&) true
+	  $$(O$(1))/bench/timing.o $$(LIB$(1)) $(PNG_LIBS); \
+	  case $$$$? in (0) drew=1 ;; (3) ;; (*) exit 1 ;; esac;) \
+	[ -n "$$$$drew" ] || { echo "chart: start one of the exercises \
+	  $$(foreach b,$$(filter ch$(1)_%,$(YOURS_BENCHES)),$$(foreach s,$$(YOURS_$$(b)),$$(firstword $$(subst =, ,$$(s))))) \
+	  in the workbook first" >&2; exit 1; }
 endef
 $(foreach n,$(YOURS_NUMS),$(eval $(call yours_chart_rule,$(n))))
 
@@ -629,7 +662,7 @@ check-stray:
 	  echo "no temporary file is tracked: ok"; fi
 
 test: deps test-tangle $(foreach n,$(NUMS),test-ch$(n)) benches check-src check-figures \
-      check-failures check-diagrams check-book check-map check-stray check-allocations check-test-width \
+      check-failures check-diagrams check-charts check-book check-map check-stray check-allocations check-test-width \
       check-lines check-quotes check-commands check-workbook check-handout \
       check-epub check-pdf check-book-browser
 	@$(MAKE) --no-print-directory check-code-width

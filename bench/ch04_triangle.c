@@ -34,9 +34,38 @@
 #include "../tests/rng.h"
 #include "timing.h"
 
+#if defined(YOURS_SHEET) || defined(YOURS_MOLLER_TRUMBORE) || defined(YOURS_WATERTIGHT)
+/* make chart-ch04 WORKBOOK=1 defines YOURS_NAME for each method the reader
+ * has started (exercises 4.1-4.4): their functions, renamed yours_... in
+ * copies of the workbook's objects, are measured and timed in the same
+ * rounds as the book's six, as "yours-NAME". */
+#define YOURS_METHODS
+#define Y(name) \
+    bool yours_triangle_hit_##name(vec3, vec3, vec3, ray, double, double, triangle_hit *); \
+    bool yours_triangle_hit_##name##_float(vec3, vec3, vec3, ray, double, double, triangle_hit *);
+Y(sheet) Y(moller_trumbore) Y(watertight)
+#undef Y
+#define Y(name, label) {"yours-" label, "double", yours_triangle_hit_##name}, \
+                       {"yours-" label, "float", yours_triangle_hit_##name##_float},
+static const triangle_method_entry yours[] = {
+#ifdef YOURS_SHEET
+    Y(sheet, "sheet")
+#endif
+#ifdef YOURS_MOLLER_TRUMBORE
+    Y(moller_trumbore, "moller-trumbore")
+#endif
+#ifdef YOURS_WATERTIGHT
+    Y(watertight, "watertight")
+#endif
+};
+#undef Y
+#define N_METHODS (TRIANGLE_METHOD_COUNT + (int)(sizeof yours / sizeof yours[0]))
+static triangle_method_entry methods[N_METHODS]; /* the book's six, then yours */
+#else
 /* The six methods as chapter 4 lists them: name, precision, function. */
 #define methods TRIANGLE_METHODS
 #define N_METHODS TRIANGLE_METHOD_COUNT
+#endif
 
 /* ---------------------------------------------------------------- the closed mesh */
 
@@ -192,6 +221,11 @@ static void leaks_and_speed(void)
     static char names[N_METHODS][48];
     bench_case cases[N_METHODS];
     bench_timing timing[N_METHODS];
+#ifdef YOURS_METHODS
+    for (int m = 0; m < N_METHODS; m++)
+        methods[m] = m < TRIANGLE_METHOD_COUNT ? TRIANGLE_METHODS[m]
+                                               : yours[m - TRIANGLE_METHOD_COUNT];
+#endif
     make_rays((vec3){0, 0, 0});
     for (int m = 0; m < N_METHODS; m++) {
         tests[m] = methods[m].hit;

@@ -327,6 +327,21 @@ static NOINLINE mat4 inverse_closed_form(const test_transform *t, mat4 m)
     return x;
 }
 
+#ifdef YOURS_PRODUCTS
+/* make chart-ch05 WORKBOOK=1: the closed form composed by the reader's
+ * products (exercise 5.3), mat4_mul renamed yours_mat4_mul in a copy of the
+ * workbook's mat4.o, timed among the others as "yours-closed-form". */
+mat4 yours_mat4_mul(mat4 a, mat4 b);
+static NOINLINE mat4 inverse_yours_closed_form(const test_transform *t, mat4 m)
+{
+    (void)m;
+    mat4 x = t->steps[0].inv;
+    for (int k = 1; k < 4; k++)
+        x = yours_mat4_mul(x, t->steps[k].inv);
+    return x;
+}
+#endif
+
 static const struct {
     const char *name;
     inverse_method invert;
@@ -334,6 +349,9 @@ static const struct {
     {"gauss-jordan", inverse_gauss_jordan},
     {"affine-cofactor", inverse_affine},
     {"closed-form", inverse_closed_form},
+#ifdef YOURS_PRODUCTS
+    {"yours-closed-form", inverse_yours_closed_form},
+#endif
 };
 #define N_INVERSE_METHODS (int)(sizeof inverse_methods / sizeof inverse_methods[0])
 

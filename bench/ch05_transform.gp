@@ -38,6 +38,14 @@ im = "gauss-jordan affine-cofactor closed-form"
 il = "'Gauss-Jordan, partial pivoting' 'affine: cofactors / det' 'closed form, step by step (used)'"
 ic = "#7570b3 #d95f02 #1b9e77"
 ip = "9 5 7"
+# make chart-ch05 WORKBOOK=1 passes yours (exercise 5.3 started): the closed
+# form composed by the reader's products, in black.
+if (exists("yours")) {
+  im = im." yours-closed-form"
+  il = il." 'yours: closed form, your products (exercise 5.3)'"
+  ic = ic." #000000"
+  ip = ip." 3"
+}
 set xrange [30:200]
 set xtics ("30" 30, "40" 40, "50" 50, "70" 70, "100" 100, "150" 150, "200" 200)
 set yrange [1e-16:100]
@@ -45,7 +53,7 @@ set xlabel "time per inverse (ns, log scale; bars: interquartile range)"
 set ylabel "error of M^{-1}: ||X - X*|| / ||X*|| (log scale)"
 set title "inverses of T R S R at condition numbers 1 to 10^{12}" font ",11"
 set key at screen 0.75, screen 0.06 center bottom box font ",9"
-plot for [k=1:3] csv using (strcol(1) eq word(im,k) && strcol(5) eq "forward" ? $3 : NaN):(positive($4)) \
+plot for [k=1:words(im)] csv using (strcol(1) eq word(im,k) && strcol(5) eq "forward" ? $3 : NaN):(positive($4)) \
        with points pt (word(ip,k)+0) ps 1.4 lc rgb word(ic,k) title word(il,k), \
      csv using (strcol(1) eq "affine-cofactor" && strcol(5) eq "forward" ? $3 : NaN):(positive($4)):(strcol(2)) \
        with labels left offset 1,0 font ",8" notitle, \

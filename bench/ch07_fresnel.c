@@ -34,6 +34,15 @@
 
 typedef double (*fresnel_fn)(double cos_i, double eta1, double eta2);
 
+#ifdef YOURS_FRESNEL
+/* make chart-ch07 WORKBOOK=1: the reader's reflectances (exercise 7.3),
+ * renamed yours_... in a copy of the workbook's optics.o, timed among the
+ * others as "yours-exact", "yours-schlick" and "yours-schlick-tir". */
+double yours_fresnel_exact(double cos_i, double eta1, double eta2);
+double yours_fresnel_schlick(double cos_i, double eta1, double eta2);
+double yours_fresnel_schlick_tir(double cos_i, double eta1, double eta2);
+#endif
+
 static const struct {
     const char *name;
     fresnel_fn f;
@@ -41,6 +50,11 @@ static const struct {
     {"exact", fresnel_exact},
     {"schlick", fresnel_schlick},
     {"schlick-tir", fresnel_schlick_tir},
+#ifdef YOURS_FRESNEL
+    {"yours-exact", yours_fresnel_exact},
+    {"yours-schlick", yours_fresnel_schlick},
+    {"yours-schlick-tir", yours_fresnel_schlick_tir},
+#endif
 };
 #define N_METHODS (int)(sizeof methods / sizeof methods[0])
 

@@ -16,6 +16,14 @@ colors = "#1b9e77 #d95f02 #7570b3"
 media = "1.33 1.5 2.42"
 mnames = "'water 1.33' 'glass 1.5' 'diamond 2.42'"
 points = "5 7 9"  # square, circle, triangle: filled; the open one is one less
+# make chart-ch07 WORKBOOK=1 passes yours (exercise 7.3 started): the
+# reader's three, in darker shades of the book's colours.
+if (exists("yours")) {
+  names = names." yours-exact yours-schlick yours-schlick-tir"
+  labels = labels." 'yours: exact (exercise 7.3)' 'yours: Schlick' 'yours: Schlick with TIR'"
+  colors = colors." #0b4f3b #6c2f01 #3a3859"
+}
+n = words(names)
 is(m, p) = strcol(1) eq m && strcol(2) eq p && strcol(5) eq kind
 kind = "max_abs"
 
@@ -28,13 +36,13 @@ set xlabel "time per evaluation (ns; bars: interquartile range)"
 set ylabel "largest error over all angles"
 set key at graph 0.02, graph 0.8 left top box opaque font ",10" \
     title "filled: light from outside, open: from inside"
-plot for [m=1:3] csv using (is(word(names,m), word(media,2).":outside") ? $3 : NaN):(positive($4)) \
+plot for [m=1:n] csv using (is(word(names,m), word(media,2).":outside") ? $3 : NaN):(positive($4)) \
        with points pt 7 ps 1.6 lc rgb word(colors,m) title word(labels,m), \
      for [k=1:3] csv using (NaN):(NaN) with points pt (word(points,k)+0) ps 1.4 lc rgb "#555555" \
        title word(mnames,k), \
-     for [m=1:3] for [k=1:3] csv using (is(word(names,m), word(media,k).":outside") ? $3 : NaN):(positive($4)) \
+     for [m=1:n] for [k=1:3] csv using (is(word(names,m), word(media,k).":outside") ? $3 : NaN):(positive($4)) \
        with points pt (word(points,k)+0) ps 1.6 lc rgb word(colors,m) notitle, \
-     for [m=1:3] for [k=1:3] csv using (is(word(names,m), word(media,k).":inside") ? $3 : NaN):(positive($4)) \
+     for [m=1:n] for [k=1:3] csv using (is(word(names,m), word(media,k).":inside") ? $3 : NaN):(positive($4)) \
        with points pt (word(points,k)-1) ps 1.8 lc rgb word(colors,m) notitle, \
      csv using (strcol(5) eq kind ? $6 : NaN):(positive($4)):($7 - $6):(0) @quartile_bars
 
@@ -42,13 +50,13 @@ plot for [m=1:3] csv using (is(word(names,m), word(media,2).":outside") ? $3 : N
 kind = "rms"
 set ylabel "rms error over all angles"
 set key off
-plot for [m=1:3] csv using (is(word(names,m), word(media,2).":outside") ? $3 : NaN):(positive($4)) \
+plot for [m=1:n] csv using (is(word(names,m), word(media,2).":outside") ? $3 : NaN):(positive($4)) \
        with points pt 7 ps 1.6 lc rgb word(colors,m) title word(labels,m), \
      for [k=1:3] csv using (NaN):(NaN) with points pt (word(points,k)+0) ps 1.4 lc rgb "#555555" \
        title word(mnames,k), \
-     for [m=1:3] for [k=1:3] csv using (is(word(names,m), word(media,k).":outside") ? $3 : NaN):(positive($4)) \
+     for [m=1:n] for [k=1:3] csv using (is(word(names,m), word(media,k).":outside") ? $3 : NaN):(positive($4)) \
        with points pt (word(points,k)+0) ps 1.6 lc rgb word(colors,m) notitle, \
-     for [m=1:3] for [k=1:3] csv using (is(word(names,m), word(media,k).":inside") ? $3 : NaN):(positive($4)) \
+     for [m=1:n] for [k=1:3] csv using (is(word(names,m), word(media,k).":inside") ? $3 : NaN):(positive($4)) \
        with points pt (word(points,k)-1) ps 1.8 lc rgb word(colors,m) notitle, \
      csv using (strcol(5) eq kind ? $6 : NaN):(positive($4)):($7 - $6):(0) @quartile_bars
 

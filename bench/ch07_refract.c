@@ -45,11 +45,28 @@
 
 typedef refraction (*refract_fn)(vec3 i, vec3 n, double eta);
 
+/* make chart-ch07 WORKBOOK=1 defines YOURS_STANDARD and YOURS_SHEET for
+ * the forms the reader has started (exercises 7.1, 7.2): renamed yours_...
+ * in a copy of the workbook's optics.o, measured and timed beside the book's
+ * as "yours-standard" and "yours-sheet". */
+#if defined(YOURS_STANDARD) || defined(YOURS_SHEET)
+refraction yours_refract_standard(vec3 i, vec3 n, double eta);
+refraction yours_refract_sheet(vec3 i, vec3 n, double eta);
+#endif
+
 static const struct {
     const char *name;
     refract_fn refract;
-} methods[] = {{"standard", refract_standard}, {"sheet", refract_sheet}};
-#define N_METHODS 2
+} methods[] = {
+    {"standard", refract_standard}, {"sheet", refract_sheet},
+#ifdef YOURS_STANDARD
+    {"yours-standard", yours_refract_standard},
+#endif
+#ifdef YOURS_SHEET
+    {"yours-sheet", yours_refract_sheet},
+#endif
+};
+#define N_METHODS (int)(sizeof methods / sizeof methods[0])
 
 /* ---------------------------------------------------------------- inputs */
 

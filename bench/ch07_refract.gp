@@ -21,13 +21,29 @@ set bmargin 5
 eval machine_label
 set ylabel "largest error over all angles"
 set key top left box opaque font ",10"
+# make chart-ch07 WORKBOOK=1 passes yours (the started exercises, "7.1 7.2"):
+# the reader's forms, in black, with the marks of the book's.
+yours_of(id) = id eq "7.1" ? "standard" : id eq "7.2" ? "sheet" : ""
+yours_points = ""
+if (exists("yours")) {
+  do for [k=1:words(yours)] {
+    f = yours_of(word(yours, k))
+    if (f ne "") {
+      m = "yours-".f
+      p = f eq "standard" ? "7 5 9" : "6 4 8"
+      yours_points = yours_points.sprintf(', csv using (is("%s","all","snell") ? $3 : NaN):(positive($4)) with points pt %s ps 1.8 lc rgb "#000000" title "yours (%s, exercise %s): Snell''s law"', m, word(p,1), f, word(yours, k)) \
+        .sprintf(', csv using (is("%s","all","unit") ? $3 : NaN):(positive($4)) with points pt %s ps 1.6 lc rgb "#000000" title "yours: |t| - 1"', m, word(p,2)) \
+        .sprintf(', csv using (is("%s","all","angle") ? $3 : NaN):(positive($4)) with points pt %s ps 1.8 lc rgb "#000000" title "yours: direction (rad)"', m, word(p,3))
+    }
+  }
+}
 plot csv using (is("standard","all","snell") ? $3 : NaN):(positive($4)) with points pt 7 ps 1.8 lc rgb "#1b9e77" title "standard (used): Snell's law", \
      csv using (is("standard","all","unit") ? $3 : NaN):(positive($4)) with points pt 5 ps 1.6 lc rgb "#1b9e77" title "standard: |t| - 1", \
      csv using (is("standard","all","angle") ? $3 : NaN):(positive($4)) with points pt 9 ps 1.8 lc rgb "#1b9e77" title "standard: direction (rad)", \
      csv using (is("sheet","all","snell") ? $3 : NaN):(positive($4)) with points pt 6 ps 1.8 lc rgb "#d95f02" title "sheet: Snell's law", \
      csv using (is("sheet","all","unit") ? $3 : NaN):(positive($4)) with points pt 4 ps 1.6 lc rgb "#d95f02" title "sheet: |t| - 1", \
      csv using (is("sheet","all","angle") ? $3 : NaN):(positive($4)) with points pt 8 ps 1.8 lc rgb "#d95f02" title "sheet: direction (rad)", \
-     csv using (strcol(2) eq "all" && strcol(5) ne "nan" && strcol(5) ne "wrong" ? $6 : NaN):(positive($4)):($7 - $6):(0) @quartile_bars
+     csv using (strcol(2) eq "all" && strcol(5) ne "nan" && strcol(5) ne "wrong" ? $6 : NaN):(positive($4)):($7 - $6):(0) @quartile_bars @yours_points
 
 set output stem.'-accuracy.svg'
 set terminal svg size 760,1180 font "Helvetica,13" background "white"

@@ -12,7 +12,7 @@
 # LINK_OBJECTs). The benchmark times the reader's functions in the same
 # interleaved rounds as the book's methods; its CSV and charts go to
 # OUTDIR/chNN-x.csv and .svg (gnuplot gets yours="ID ..."), never to
-# figures/.
+# figures/. Exits 3, drawing nothing, when none of the IDs is started.
 set -eu
 bench=$1 state=$2 out=$3 specs=$4 objects=$5 symbols=$6 cc=$7 cflags=$8
 shift 8
@@ -27,10 +27,10 @@ for spec in $specs; do
     defines="$defines -D${spec#*=}"
     ids="$ids $id"
 done
-if [ -z "$ids" ]; then
-    echo "chart: start one of the exercises $(echo "$specs" | sed 's/=[^ ]*//g')" \
-         "in the workbook first" >&2
-    exit 1
+if [ -z "$ids" ]; then # exit 3: this chart left out, the chapter's others drawn
+    echo "chart: $bench left out: none of the exercises" \
+         "$(echo "$specs" | sed 's/=[^ ]*//g') is started" >&2
+    exit 3
 fi
 
 renames=""
