@@ -26,12 +26,7 @@ book=$1
 screenshot=$2
 tools_dir=$(cd "$(dirname "$0")" && pwd)
 
-# The browser's command, or nothing.
-find_chromium() {
-  for name in chromium chromium-browser google-chrome; do
-    if command -v "$name" >/dev/null 2>&1; then echo "$name"; return; fi
-  done
-}
+. "$tools_dir/find_chromium.sh"
 
 browser=$(find_chromium)
 if [ -z "$browser" ] && [ "$install" = yes ]; then

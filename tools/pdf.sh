@@ -15,11 +15,7 @@ fi
 book=$1 out=$2
 tools_dir=$(cd "$(dirname "$0")" && pwd)
 
-find_chromium() {
-    for name in chromium chromium-browser google-chrome; do
-        if command -v "$name" > /dev/null 2>&1; then echo "$name"; return; fi
-    done
-}
+. "$tools_dir/find_chromium.sh"
 browser=$(find_chromium)
 [ -n "$browser" ] || { sh "$tools_dir/deps.sh" chromium fonts-dejavu-extra >&2; browser=$(find_chromium); }
 [ -n "$browser" ] || { echo "pdf: no chromium: run make pdf as root to install it" >&2; exit 1; }
