@@ -17,6 +17,7 @@ else
 fi
 command -v pandoc >/dev/null 2>&1 || need pandoc
 command -v gnuplot >/dev/null 2>&1 || need gnuplot-nox
+command -v unzip >/dev/null 2>&1 || need unzip # make test reads the EPUB
 for extra in "$@"; do
   dpkg -s "$extra" >/dev/null 2>&1 || need "$extra"
 done
