@@ -367,8 +367,9 @@ void mesh_free_tree(mesh *m)
 long long mesh_tree_bytes(const mesh *m)
 {
     long long corners = m->leaf_corners ? m->tree.item_count : 0;
-    return kdtree_bytes(&m->tree) +
-           corners * (long long)sizeof *m->leaf_corners;
+    long long bytes = kdtree_bytes(&m->tree) +
+                      corners * (long long)sizeof *m->leaf_corners;
+    return bytes;
 }
 
 bool mesh_build_tree(mesh *m, const kdtree_params *p)

@@ -84,6 +84,12 @@ static bool build_object_tree(scene *s)
 }
 
 /* <<building the scene's trees>> ch08 */
+/* Builds mesh m's tree as the scene asks; false when out of memory. */
+static bool build_mesh_tree(const scene *s, mesh *m)
+{
+    return mesh_build_tree(m, &s->tree_params);
+}
+
 /* Adds bytes to the scene's geometry; false when that passes the budget. */
 static bool count_tree(scene *s, long long bytes)
 {
@@ -97,7 +103,7 @@ static bool build_all(scene *s, scene_tree_failure *why)
     for (int k = 0; k < s->mesh_count; k++) {
         mesh *m = &s->meshes[k];
         *why = (scene_tree_failure){.mesh = k};
-        if (!mesh_build_tree(m, &s->tree_params))
+        if (!build_mesh_tree(s, m))
             return false;
         if (!count_tree(s, mesh_tree_bytes(m)))
             return why->over_budget = true, false;

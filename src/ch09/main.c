@@ -55,6 +55,8 @@ static bool load_scene(const options *opt, scene *s)
 {
     scene_error err;
     scene_init(s);
+    /* <<what the command line tells the scene>> ch09 */
+    s->accelerator_option = (mesh_accelerator)opt->accelerator;
     bool ok = opt->scene_path != NULL
                   ? scene_load(s, opt->scene_path, &err)
                   : scene_parse(s, DEFAULT_SCENE, sizeof DEFAULT_SCENE - 1,
@@ -133,6 +135,8 @@ int main(int argc, char **argv)
         report_mesh_hints(&s);
     /* <<once the scene is loaded>> += ch09 */
     how.threads = opt.threads;
+    if (opt.stats)
+        report_bvhs(&s);
     const char *input =
         output_is(opt.output, opt.scene_path) ? opt.scene_path : NULL;
     /* <<other files the scene read>> ch04 */
