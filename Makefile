@@ -27,6 +27,8 @@
 #   make pdf, epub    the book's and the handout's editions
 #   make SAN=1 test   the same with AddressSanitizer and UBSan
 #   make WERROR=1     warnings are errors (CI)
+#   make SCALAR=1, NATIVE=1   chapter 9's BVH tests in scalar code, or with
+#                     every instruction of this machine
 
 .DELETE_ON_ERROR:
 .SECONDARY:
@@ -47,7 +49,11 @@ LTO_LINK := $(if $(LTO),-Wno-maybe-uninitialized)
 OPT     := $(if $(SAN),$(SANFLAGS),-O2 -g $(LTO))
 CFLAGS  ?=
 LDFLAGS ?=
-ALL_CFLAGS = $(CSTD) $(WARN) $(OPT) -pthread $(CFLAGS) -MMD -MP
+# make SCALAR=1: chapter 9's BVH node tests without vector instructions;
+# make NATIVE=1: every instruction of the machine that builds (not needed
+# for correctness). Each builds apart, under build/.
+ARCH    := $(if $(SCALAR),-DRT_SCALAR) $(if $(NATIVE),-march=native)
+ALL_CFLAGS = $(CSTD) $(WARN) $(OPT) $(ARCH) -pthread $(CFLAGS) -MMD -MP
 
 # Evaluated when a recipe runs, after `deps` has had its chance to install them.
 PNG_CFLAGS   = $(shell pkg-config --cflags libpng)
@@ -56,7 +62,7 @@ CHECK_CFLAGS = $(shell pkg-config --cflags check)
 CHECK_LIBS   = $(shell pkg-config --libs check)
 
 # Sanitized builds live apart so that they never mix with normal objects.
-B       := build/$(if $(SAN),san,rel)
+B       := build/$(if $(SAN),san,rel)$(if $(SCALAR),-scalar)$(if $(NATIVE),-native)
 BIN     := $(if $(SAN),$(B)/bin,bin)
 TANGLE  := $(B)/tools/tangle
 

@@ -201,6 +201,17 @@ static int adversarial_rays(const mesh *m, ray *rays, int count)
     return n;
 }
 
+/* Not static: chapter 9's suite tests its BVH on the same rays, from the
+ * seed given, and on meshes made the same way. */
+int ch08_adversarial_rays(const mesh *m, ray *rays, int count,
+                          uint64_t seed_value);
+int ch08_adversarial_rays(const mesh *m, ray *rays, int count,
+                          uint64_t seed_value)
+{
+    seed(seed_value);
+    return adversarial_rays(m, rays, count);
+}
+
 /* Builds m by each method and checks both walks against brute force. */
 static void expect_agreement(mesh *m, int count, const char *what)
 {
@@ -255,6 +266,14 @@ static mesh plane_mesh(int n)
     mesh m = make_mesh(p, (n + 1) * (n + 1), (const int(*)[3])t, 2 * n * n);
     free(p), free(t);
     return m;
+}
+
+mesh ch08_make_mesh(const vec3 *points, int n_points, const int (*tris)[3],
+                   int n_tris);
+mesh ch08_make_mesh(const vec3 *points, int n_points, const int (*tris)[3],
+                   int n_tris)
+{
+    return make_mesh(points, n_points, tris, n_tris);
 }
 
 /* ------------------------------------------------------------ agreement */
