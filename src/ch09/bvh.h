@@ -156,12 +156,12 @@ static inline unsigned bvh_lanes_test_scalar(const float *box, int stride,
     for (int c = 0; c < lanes; c++) {
         float t0 = r->t_min, t1 = t_max;
         for (int a = 0; a < 3; a++) {
-            float tn = (box[r->near[a] * stride + c] - r->o_near[a]) *
-                       r->inv[a];
-            float tf = (box[r->far[a] * stride + c] - r->o_far[a]) *
-                       r->inv[a] * BVH_FAR_WIDENING;
-            t0 = tn > t0 ? tn : t0;
-            t1 = tf < t1 ? tf : t1;
+            float enter = box[r->near[a] * stride + c] - r->o_near[a];
+            float leave = box[r->far[a] * stride + c] - r->o_far[a];
+            enter *= r->inv[a];
+            leave = leave * r->inv[a] * BVH_FAR_WIDENING;
+            t0 = enter > t0 ? enter : t0; /* a NaN keeps t0 */
+            t1 = leave < t1 ? leave : t1;
         }
         t_near[c] = t0;
         mask |= (unsigned)(t0 <= t1) << c;
@@ -304,11 +304,12 @@ static inline void bvh_visit2(bvh_walk *w, uint32_t k, float t_max)
     uint32_t id[2] = {k + 1, n[k].index}, child[2], count[2];
     float t_near[2];
     unsigned mask = 0;
-    for (int c = 0; c < 2; c++) {
-        const bvh_node *kid = &n[id[c]];
-        child[c] = kid->count ? kid->index : id[c], count[c] = kid->count;
+    for (int side = 0; side < 2; side++) {
+        const bvh_node *kid = &n[id[side]];
+        child[side] = kid->count ? kid->index : id[side];
+        count[side] = kid->count;
         mask |= bvh_lanes_test_scalar(kid->box, 1, 1, &w->r, t_max,
-                                      &t_near[c]) << c;
+                                      &t_near[side]) << side;
     }
     bvh_push(w, mask, child, count, t_near);
 }
