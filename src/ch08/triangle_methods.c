@@ -232,6 +232,7 @@ int triangle_nearest_corners(const watertight_ray *w,
     return nearest;
 }
 
+/* <<the tests of a leaf's triangles>> ch08 */
 int triangle_nearest_of_leaf(const watertight_ray *w,
                              const triangle_corners *triangles,
                              const int *items, int count, double t_min,
