@@ -391,6 +391,10 @@ START_TEST(test_the_float_filter_keeps_every_triangle_double_hits)
             watertight_ray w = watertight_ray_of(r);
             triangle_hit th;
             check_filter(&tally, &m, r, 0, INFINITY);
+            /* from a point of the triangle, as a shadow ray leaves it */
+            ray leaving = {aim_at(&g, &m.corners[k % m.count], n + k),
+                           rng_unit_vector(&g, 0.1)};
+            check_filter(&tally, &m, leaving, 0, INFINITY);
             int i = k % m.count;
             const vec3 *c = m.corners[i].p;
             if (!triangle_hit_prepared(&w, c[0], c[1], c[2], 0, INFINITY,

@@ -5,7 +5,8 @@
  * their corners rounded to float, lane by lane, and their indices in the
  * mesh (-1: an empty lane, which is never hit). The float test is a filter
  * that keeps every lane chapter 4's double test could hit; the lanes it
- * keeps are decided by that double test on the mesh's own vertices, so
+ * keeps are decided by that double test on the triangles' double corners
+ * (a leaf's, as chapter 8 copies them), so
  * every answer is the double test's to the last bit, ties included.
  *
  *   triangle_packets_fill     packs triangles (indices into a mesh)
