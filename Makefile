@@ -63,7 +63,7 @@ CHECK_LIBS   = $(shell pkg-config --libs check)
 
 # Sanitized builds live apart so that they never mix with normal objects.
 B       := build/$(if $(SAN),san,rel)$(if $(SCALAR),-scalar)$(if $(NATIVE),-native)
-BIN     := $(if $(SAN),$(B)/bin,bin)
+BIN     := $(if $(SAN)$(SCALAR)$(NATIVE),$(B)/bin,bin)
 TANGLE  := $(B)/tools/tangle
 
 CHAPTERS := $(sort $(wildcard chapters/[0-9][0-9]-*.md))
