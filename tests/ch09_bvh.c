@@ -474,6 +474,35 @@ START_TEST(test_the_accelerator_statement_chooses_the_tree)
 }
 END_TEST
 
+/* The teapot's scene with a BVH, within a geometry budget of bytes; the
+ * geometry counted. */
+static bool parse_bvh_within(long long bytes, scene_error *err,
+                             long long *total)
+{
+    scene s;
+    const char *text = "accelerator bvh\nmesh file meshes/teapot-8.obj\n";
+    scene_init(&s);
+    s.geometry_budget = bytes;
+    bool ok = scene_parse(&s, text, strlen(text), "budget.scene", err);
+    *total = s.geometry_total;
+    scene_free(&s);
+    return ok;
+}
+
+START_TEST(test_the_bvh_counts_against_the_geometry_budget)
+{
+    scene_error err; /* meshes/ from the current folder, as chapter 8's */
+    long long with_bvh, total;
+    ck_assert_msg(parse_bvh_within(SCENE_MAX_GEOMETRY_BYTES, &err, &with_bvh),
+                  "%s", err.message);
+    ck_assert(!parse_bvh_within(with_bvh - 1, &err, &total));
+    expect_error_at(&err, "budget.scene", 2, 1,
+                    "the BVH of mesh file 'meshes/teapot-8.obj' would pass "
+                    "the scene's budget of", "a BVH over the budget");
+    ck_assert_int_eq(err.kind, PARSE_OVER_BUDGET);
+}
+END_TEST
+
 START_TEST(test_bad_accelerator_statements_are_located)
 {
     expect_parse_error("accelerator octree\n", 1, 13, "accelerator (kdtree");
@@ -580,6 +609,7 @@ Suite *ch09_bvh_suite(void)
     tcase_set_timeout(choose, 120);
     tcase_add_test(choose, test_the_accelerator_statement_chooses_the_tree);
     tcase_add_test(choose, test_bad_accelerator_statements_are_located);
+    tcase_add_test(choose, test_the_bvh_counts_against_the_geometry_budget);
     tcase_add_test(choose, test_bad_accelerator_options_are_usage_errors);
     tcase_add_test(choose, test_the_bunny_scene_is_the_same_with_either_tree);
     tcase_add_test(choose, test_ties_come_out_the_same_with_either_tree);

@@ -159,7 +159,7 @@ typedef enum {
     MESH_ACCELERATOR_BVH
 } mesh_accelerator;
 
-#define MESH_DEFAULT_ACCELERATOR MESH_ACCELERATOR_KDTREE
+#define MESH_DEFAULT_ACCELERATOR MESH_ACCELERATOR_BVH
 
 /* Builds m's BVH with p, in place of any tree it had (none for fewer
  * than MESH_TREE_MIN_TRIANGLES); false when out of memory, and then m

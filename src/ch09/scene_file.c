@@ -534,9 +534,13 @@ static bool tree_error(const scene *s, const char *name,
                                   "%s %lld bytes of geometry", problem,
                                   s->geometry_budget);
     const mesh_source *m = &s->meshes[why->mesh].source;
+    const char *tree = "kd-tree";
+    /* <<the name of the meshes' tree>> ch09 */
+    if (scene_mesh_accelerator(s) == MESH_ACCELERATOR_BVH)
+        tree = "BVH";
     return parse_fail_on_line(err, name, m->line, kind,
-                              "the kd-tree of mesh file '%s' %s %lld bytes "
-                              "of geometry", m->path, problem,
+                              "the %s of mesh file '%s' %s %lld bytes "
+                              "of geometry", tree, m->path, problem,
                               s->geometry_budget);
 }
 

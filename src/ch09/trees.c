@@ -167,9 +167,12 @@ scene_tree_summary scene_trees(const scene *s)
 
 mesh_accelerator scene_mesh_accelerator(const scene *s)
 {
-    return s->accelerator_option ? s->accelerator_option
-           : s->accelerator      ? s->accelerator
-                                 : MESH_DEFAULT_ACCELERATOR;
+    if (s->accelerator_option || s->accelerator)
+        return s->accelerator_option ? s->accelerator_option
+                                     : s->accelerator;
+    /* the heat map draws kd-tree nodes: it asks for kd-trees */
+    return s->heatmap > 0 ? MESH_ACCELERATOR_KDTREE
+                          : MESH_DEFAULT_ACCELERATOR;
 }
 
 scene_bvh_summary scene_bvhs(const scene *s)
