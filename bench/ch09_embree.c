@@ -1,47 +1,51 @@
-/* ch09_embree.c: chapter 8's kd-tree against Intel Embree 3, on the same
- * rays, one thread each, timed together.
+/* ch09_embree.c: every step of chapter 9 against Intel Embree 3, on the
+ * same rays, one thread each, timed together.
  *
  *   build/rel/bench/ch09_embree [BUNNY.obj TEAPOT.obj] > figures/ch09-embree.csv
  *
  * Built only where Embree 3 is installed (Debian: libembree-dev); without
- * it, `make charts` draws the chart from this program's own rates and
- * says that Embree was absent.
+ * it, `make charts` draws the chart from chapter 8's rates alone and says
+ * that Embree was absent.
  *
- * For the Stanford bunny and the teapot, at K = 1 and K = 2.5, the
- * 1024 x 1024 rays of ch08_rays.h are traced by closest hit, by
- * mesh_nearest (the renderer's kd-tree) and by
- * rtcIntersect1 (Embree's BVH, built with RTC_BUILD_QUALITY_HIGH, a device
- * with threads=1). Times come from the harness (bench/timing.h): one
- * operation is one ray, every batch whole passes over the SIDE x SIDE
- * rays, and all eight cases (two programs, two meshes, two K) are timed
- * together, interleaved, in thread CPU time (rtcIntersect1 runs on the
- * calling thread). The builds, one operation each (ours: mesh_build_tree
- * on a copy of the mesh; Embree's: a new scene, rtcCommitScene, release),
- * are timed the same way, the four together, also in thread CPU time:
- * Embree's build with threads=1 runs on the calling thread (its CPU time
- * and wall time agree; the program warns on stderr if they ever do not).
- * The hits and distances come from one pass of each program, untimed.
+ * The meshes: the Stanford bunny, the teapot, the bunny cut into four
+ * times as many triangles ("scanned", ch09_meshes.h), and two meshes
+ * where a BVH is weak: 4,000 needles across a cube and a cylinder of
+ * 4,000 slivers. For each, at K = 1 and K = 2.5 (the failure meshes at
+ * K = 1 only), the 1024 x 1024 rays of ch08_rays.h are traced by closest
+ * hit by every method of METHODS:
+ *   kdtree-ch08  chapter 8's kd-tree with chapter 8's leaves (chapter 4's
+ *                test called once a triangle, triangle_hit_prepared);
+ *   kdtree       the same tree with chapter 9's tightened leaves;
+ *   bvh2|4|8     the BVH, binary, 4 and 8 wide, triangles in double;
+ *   embree       rtcIntersect1 (Embree's BVH, RTC_BUILD_QUALITY_HIGH, a
+ *                device with threads=1);
+ * and by any hit (shadow rays, to infinity): kdtree-any, bvh-any (the
+ * default width) and embree-any (rtcOccluded1). Times come from the
+ * harness (bench/timing.h): one operation is one ray, every batch whole
+ * passes over the rays, and all the cases of one mesh are timed together,
+ * interleaved, in thread CPU time. The builds (kdtree-build, bvh-build on
+ * one thread, embree-build) are timed the same way, per mesh. The hits
+ * come from one untimed pass of each method.
  *
  * Rows (method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns),
  * after the "# machine:" line:
- *   kdtree-build|embree-build,MESH,ns_per_build,ms,build_ms,q1,q3,wall
- *   build,MESH,0,kdtree / embree,build_kdtree_over_embree  (of the medians)
- *   kdtree|embree,MESH-K,ns_per_ray,Mrays/s,mrays_per_s,q1,q3,wall
- *   ratio,MESH-K,0,kdtree rate / embree rate,kdtree_over_embree (Embree's
- *       median ns per ray over ours)
- *   hits,MESH-K,0,count,kdtree_hits|embree_hits|rays_that_disagree
- *       (a ray disagrees when one program hits and the other does not,
- *       or both hit at distances more than 1e-5 apart, relatively)
- *   distance,MESH-K,0,sum of the hits' t,kdtree_sum_t|embree_sum_t */
+ *   METHOD-build,MESH,ns_per_build,ms,build_ms,q1,q3,wall
+ *   METHOD,MESH-K,ns_per_ray,Mrays/s,mrays_per_s,q1,q3,wall
+ *   ratio,METHOD@MESH-K,0,its rate / Embree's,over_embree  (medians)
+ *   ratio,METHOD-build@MESH,0,its time / Embree's,build_over_embree
+ *   hits,MESH-K,0,count,METHOD_hits
+ *   hits,MESH-K,0,count,METHOD_disagrees_with_kdtree  (a ray one hits and
+ *       the other does not, or a different t, bit for bit)
+ *   hits,MESH-K,0,count,rays_that_disagree  (bvh against embree: one hits
+ *       and the other not, or distances more than 1e-5 apart, relatively)
+ *   vector,WIDTH_NAME,0,0,bvh_vector_width  (the node test's instructions) */
 #include <embree3/rtcore.h>
 #include <string.h>
 
-#include "ch08_rays.h"
+#include "ch09_meshes.h"
 #include "timing.h"
 
-enum { SIDE = 1024, N_RAYS = SIDE * SIDE, N_MESHES = 2, N_K = 2 };
-
-static const double K_VALUES[N_K] = {1.0, 2.5};
+enum { SIDE = 1024, N_RAYS = SIDE * SIDE };
 
 /* ---------------------------------------------------------------- Embree */
 
@@ -69,232 +73,329 @@ static RTCScene embree_scene(RTCDevice device, const mesh *m)
     return scene;
 }
 
-/* ---------------------------------------------------------------- one ray each */
+/* ---------------------------------------------------------------- the methods */
 
-/* What both programs trace: a mesh (with its tree) or Embree's scene of
- * it, and the rays of one K. */
+typedef enum { KDTREE_CH08, KDTREE, BVH, EMBREE } kind;
+
 typedef struct {
-    const mesh *m;
+    const char *name;
+    kind kind;
+    int width; /* of a BVH */
+    bool any;  /* shadow rays: any hit */
+} method;
+
+static const method METHODS[] = {
+    {"kdtree-ch08", KDTREE_CH08, 0, false}, {"kdtree", KDTREE, 0, false},
+    {"bvh2", BVH, 2, false},                {"bvh4", BVH, 4, false},
+    {"bvh8", BVH, 8, false},                {"embree", EMBREE, 0, false},
+    {"kdtree-any", KDTREE, 0, true},        {"bvh-any", BVH, BVH_WIDTH, true},
+    {"embree-any", EMBREE, 0, true},
+};
+enum { N_METHODS = sizeof METHODS / sizeof METHODS[0] };
+
+/* A mesh and everything built over it: its kd-tree (in m), a copy of it
+ * for each BVH width, and Embree's scene. */
+typedef struct {
+    const char *name;
+    mesh m;
+    mesh bvh_of_width[9]; /* [2], [4], [8] */
     RTCScene scene;
+    bool few_methods; /* the failure meshes: kdtree, bvh4, embree */
+} subject;
+
+/* What one case traces: a method over a subject's rays of one K. */
+typedef struct {
+    const method *how;
+    const subject *s;
     const float_ray *rays;
 } trace_ctx;
 
-/* Ray k through our kd-tree: its distance (in double), or infinity. */
-static double kdtree_ray(const trace_ctx *c, long k, render_stats *stats)
+/* Chapter 8's leaves: chapter 4's test for each triangle, keeping the tie
+ * rule across leaves (a hit at t_max itself wins for a lower index). */
+static int chapter8_leaf(const watertight_ray *w, const triangle_corners *c,
+                         const int *items, int count, double t_min, double t_max,
+                         int best, triangle_hit *out)
 {
-    mesh_ray mr = mesh_ray_of(ray_of(&c->rays[k]));
-    triangle_hit th;
-    return mesh_nearest(c->m, &mr, 0, INFINITY, &th, stats) >= 0 ? th.t : INFINITY;
+    int nearest = -1;
+    double reach = nextafter(t_max, INFINITY);
+    for (int k = 0; k < count; k++) {
+        triangle_hit th;
+        if (triangle_hit_prepared(w, c[k].p[0], c[k].p[1], c[k].p[2], t_min, reach, &th) &&
+            (th.t < t_max || items[k] < best)) {
+            *out = th, t_max = th.t, best = items[k], nearest = k;
+            reach = nextafter(t_max, INFINITY);
+        }
+    }
+    return nearest;
 }
 
-/* Ray k through Embree's scene: its distance, or infinity. */
+/* Chapter 8's kd-tree walk with chapter 8's leaves: the nearest t, or
+ * infinity. */
+static double chapter8_ray(const mesh *m, const mesh_ray *mr)
+{
+    double near = 0, far = INFINITY, t_max = INFINITY;
+    if (!box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
+        return INFINITY;
+    kdtree_walk w;
+    kdtree_leaf leaf;
+    int found = -1;
+    triangle_hit th;
+    kdtree_walk_start(&w, &m->tree, mr->r.origin, mr->inv_dir, near, far);
+    while (kdtree_walk_next(&w, t_max, &leaf)) {
+        int k = chapter8_leaf(&mr->shear, m->leaf_corners + leaf.first,
+                              m->tree.items + leaf.first, leaf.count, 0, t_max, found, &th);
+        if (k >= 0)
+            found = m->tree.items[leaf.first + k], t_max = th.t;
+    }
+    return t_max;
+}
+
+/* Ray k by Embree: its distance, or infinity (any: 0 for a hit). */
 static double embree_ray(const trace_ctx *c, long k, struct RTCIntersectContext *context)
 {
+    const float_ray *f = &c->rays[k];
     struct RTCRayHit rh;
-    const float_ray *r = &c->rays[k];
-    rh.ray.org_x = r->o[0], rh.ray.org_y = r->o[1], rh.ray.org_z = r->o[2];
-    rh.ray.dir_x = r->d[0], rh.ray.dir_y = r->d[1], rh.ray.dir_z = r->d[2];
+    rh.ray.org_x = f->o[0], rh.ray.org_y = f->o[1], rh.ray.org_z = f->o[2];
+    rh.ray.dir_x = f->d[0], rh.ray.dir_y = f->d[1], rh.ray.dir_z = f->d[2];
     rh.ray.tnear = 0, rh.ray.tfar = INFINITY;
     rh.ray.mask = 0xffffffffu, rh.ray.flags = 0, rh.ray.time = 0;
+    if (c->how->any) {
+        rtcOccluded1(c->s->scene, context, &rh.ray);
+        return rh.ray.tfar < 0 ? 0 : INFINITY; /* -inf marks a hit */
+    }
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(c->scene, context, &rh);
+    rtcIntersect1(c->s->scene, context, &rh);
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : INFINITY;
 }
 
-/* reps rays, whole passes over the rays (the harness's cycle). */
-static void run_kdtree(void *ctx, long reps)
+/* Ray k by one of ours: its distance, or infinity (any: 0 for a hit). */
+static double our_ray(const trace_ctx *c, long k, render_stats *stats)
 {
-    render_stats stats = {0}; /* once a batch, as the renderer's once a band */
-    double sum = 0;
-    for (long k = 0; k < reps; k++)
-        sum += kdtree_ray(ctx, k % N_RAYS, &stats) < INFINITY;
-    bench_sink += sum;
+    const mesh *m = c->how->kind == BVH ? &c->s->bvh_of_width[c->how->width] : &c->s->m;
+    mesh_ray mr = mesh_ray_of(ray_of(&c->rays[k]));
+    if (c->how->kind == KDTREE_CH08)
+        return chapter8_ray(m, &mr);
+    if (c->how->any)
+        return mesh_occluded(m, &mr, 0, INFINITY, stats) ? 0 : INFINITY;
+    triangle_hit th;
+    return mesh_nearest(m, &mr, 0, INFINITY, &th, stats) >= 0 ? th.t : INFINITY;
 }
 
-static void run_embree(void *ctx, long reps)
+/* reps rays, whole passes over the rays (the harness's cycle). */
+static void run_rays(void *ctx, long reps)
 {
-    struct RTCIntersectContext context; /* once a batch */
+    const trace_ctx *c = ctx;
+    render_stats stats = {0}; /* once a batch, as the renderer's once a band */
+    struct RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     double sum = 0;
     for (long k = 0; k < reps; k++)
-        sum += embree_ray(ctx, k % N_RAYS, &context) < INFINITY;
+        sum += (c->how->kind == EMBREE ? embree_ray(c, k % N_RAYS, &context)
+                                       : our_ray(c, k % N_RAYS, &stats)) < INFINITY;
     bench_sink += sum;
 }
 
-/* ---------------------------------------------------------------- one build each */
+/* ---------------------------------------------------------------- the builds */
 
 typedef struct {
     const mesh *m;
     RTCDevice device;
+    kind kind;
 } build_ctx;
 
-static void run_kdtree_build(void *ctx, long reps)
+static void run_build(void *ctx, long reps)
 {
     const build_ctx *c = ctx;
     for (long r = 0; r < reps; r++) {
+        if (c->kind == EMBREE) {
+            RTCScene scene = embree_scene(c->device, c->m);
+            rtcCommitScene(scene);
+            rtcReleaseScene(scene);
+            continue;
+        }
         mesh copy = *c->m; /* the tree is built into a copy's members */
         copy.tree = (kdtree){0}, copy.leaf_corners = NULL;
-        kdtree_params p = kdtree_default_params();
-        if (!mesh_build_tree(&copy, &p))
+        copy.bvh = (bvh){0}, copy.bvh_corners = NULL;
+        kdtree_params kp = kdtree_default_params();
+        bvh_params bp = bvh_default_params();
+        bp.threads = 1;
+        if (!(c->kind == KDTREE ? mesh_build_tree(&copy, &kp) : mesh_build_bvh(&copy, &bp)))
             exit(1);
-        bench_sink += copy.tree.node_count;
-        kdtree_free(&copy.tree);
-        free(copy.leaf_corners);
+        bench_sink += copy.triangle_count;
+        mesh_free_tree(&copy);
     }
 }
 
-static void run_embree_build(void *ctx, long reps)
+static void time_builds(const subject *s, RTCDevice device)
 {
-    const build_ctx *c = ctx;
-    for (long r = 0; r < reps; r++) {
-        RTCScene scene = embree_scene(c->device, c->m);
-        rtcCommitScene(scene);
-        bench_sink += 1;
-        rtcReleaseScene(scene);
+    const char *names[3] = {"kdtree-build", "bvh-build", "embree-build"};
+    const kind kinds[3] = {KDTREE, BVH, EMBREE};
+    build_ctx ctx[3];
+    bench_case c[3];
+    bench_timing t[3];
+    for (int k = 0; k < 3; k++) {
+        ctx[k] = (build_ctx){&s->m, device, kinds[k]};
+        c[k] = (bench_case){names[k], s->name, run_build, &ctx[k], 1};
     }
+    bench_time_cases(c, 3, t);
+    for (int k = 0; k < 3; k++)
+        bench_row(c[k].method, s->name, &t[k], "%.3f", t[k].median / 1e6, "build_ms");
+    for (int k = 0; k < 2; k++)
+        printf("ratio,%s@%s,0,%.4f,build_over_embree\n", names[k], s->name,
+               t[k].median / t[2].median);
+    fflush(stdout);
 }
 
 /* ---------------------------------------------------------------- the rows */
 
-/* Warns when a case's thread CPU time falls well short of its wall time:
- * then other threads did its work, and the thread CPU time is not its cost. */
-static void check_own_thread(const bench_case *c, const bench_timing *t)
+static bool is_used(const subject *s, const method *how)
 {
-    if (t->median < 0.8 * t->wall_median)
-        fprintf(stderr, "ch09_embree: %s,%s: CPU %.0f ns but wall %.0f ns: other threads?\n",
-                c->method, c->param, t->median, t->wall_median);
+    return !s->few_methods || how->kind == EMBREE ||
+           (how->kind == KDTREE && !how->any) || (how->kind == BVH && how->width == BVH_WIDTH);
 }
 
-static long disagreements(const float *a, const float *b, int n)
+/* One untimed pass of every case over its rays: the hits, and where each
+ * method disagrees with the kd-tree (ours) or with ours (Embree's). */
+static void print_agreement(const trace_ctx *c, int n, const char *param)
 {
-    long count = 0;
-    for (int k = 0; k < n; k++) {
-        bool hit_a = isfinite(a[k]), hit_b = isfinite(b[k]);
-        count += hit_a != hit_b || (hit_a && fabsf(a[k] - b[k]) > 1e-5f * b[k]);
-    }
-    return count;
-}
-
-/* One untimed pass of both programs over c's rays: the hits, distances and
- * disagreements. */
-static void print_agreement(const trace_ctx *c, const char *name)
-{
-    float *a = malloc((size_t)N_RAYS * sizeof *a), *b = malloc((size_t)N_RAYS * sizeof *b);
-    long hits_a = 0, hits_b = 0;
-    double sum_a = 0, sum_b = 0;
-    if (!a || !b)
-        exit(1);
-    render_stats stats = {0};
+    float *t[N_METHODS];
     struct RTCIntersectContext context;
     rtcInitIntersectContext(&context);
-    for (long k = 0; k < N_RAYS; k++) {
-        double ta = kdtree_ray(c, k, &stats), tb = embree_ray(c, k, &context);
-        a[k] = (float)ta, b[k] = (float)tb; /* compared in float, as Embree's */
-        hits_a += ta < INFINITY, hits_b += tb < INFINITY;
-        sum_a += ta < INFINITY ? ta : 0, sum_b += tb < INFINITY ? tb : 0;
+    render_stats stats = {0};
+    int kd = -1, ours = -1;
+    for (int j = 0; j < n; j++) {
+        long hits = 0;
+        if ((t[j] = malloc((size_t)N_RAYS * sizeof *t[j])) == NULL)
+            exit(1);
+        for (long k = 0; k < N_RAYS; k++) {
+            double d = c[j].how->kind == EMBREE ? embree_ray(&c[j], k, &context)
+                                                : our_ray(&c[j], k, &stats);
+            t[j][k] = (float)d, hits += d < INFINITY;
+        }
+        printf("hits,%s,0,%ld,%s_hits\n", param, hits, c[j].how->name);
+        kd = strcmp(c[j].how->name, "kdtree") == 0 ? j : kd;
+        ours = c[j].how->kind == BVH && c[j].how->width == BVH_WIDTH && !c[j].how->any ? j : ours;
     }
-    printf("hits,%s,0,%ld,kdtree_hits\nhits,%s,0,%ld,embree_hits\n", name, hits_a, name, hits_b);
-    printf("hits,%s,0,%ld,rays_that_disagree\n", name, disagreements(a, b, N_RAYS));
-    printf("distance,%s,0,%.6f,kdtree_sum_t\ndistance,%s,0,%.6f,embree_sum_t\n", name, sum_a,
-           name, sum_b);
-    free(a), free(b);
+    for (int j = 0; j < n; j++) {
+        if (c[j].how->any || c[j].how->kind == EMBREE || j == kd)
+            continue;
+        long differ = 0;
+        for (long k = 0; k < N_RAYS; k++)
+            differ += memcmp(&t[j][k], &t[kd][k], sizeof(float)) != 0;
+        printf("hits,%s,0,%ld,%s_disagrees_with_kdtree\n", param, differ, c[j].how->name);
+    }
+    for (int j = 0; j < n; j++)
+        if (c[j].how->kind == EMBREE && !c[j].how->any) {
+            long differ = 0;
+            for (long k = 0; k < N_RAYS; k++) {
+                float a = t[ours][k], b = t[j][k];
+                bool hit_a = isfinite(a), hit_b = isfinite(b);
+                differ += hit_a != hit_b || (hit_a && fabsf(a - b) > 1e-5f * b);
+            }
+            printf("hits,%s,0,%ld,rays_that_disagree\n", param, differ);
+        }
+    for (int j = 0; j < n; j++)
+        free(t[j]);
 }
 
-/* The rays of both programs: rows of the timings t of the cases c. */
-static void print_rays(const bench_case *c, const bench_timing *t)
+static void print_rays(const trace_ctx *c, const bench_case *cases, const bench_timing *t, int n)
 {
-    bench_row(c[0].method, c[0].param, &t[0], "%.4f", 1e3 / t[0].median, "mrays_per_s");
-    bench_row(c[1].method, c[1].param, &t[1], "%.4f", 1e3 / t[1].median, "mrays_per_s");
-    printf("ratio,%s,0,%.4f,kdtree_over_embree\n", c[0].param, t[1].median / t[0].median);
+    for (int j = 0; j < n; j++)
+        bench_row(cases[j].method, cases[j].param, &t[j], "%.4f", 1e3 / t[j].median,
+                  "mrays_per_s");
+    for (int j = 0; j < n; j++) {
+        if (c[j].how->kind == EMBREE)
+            continue;
+        const char *yardstick = c[j].how->any ? "embree-any" : "embree";
+        for (int e = 0; e < n; e++)
+            if (strcmp(c[e].how->name, yardstick) == 0)
+                printf("ratio,%s@%s,0,%.4f,over_embree\n", c[j].how->name, cases[j].param,
+                       t[e].median / t[j].median);
+    }
 }
 
-static void print_builds(const bench_case *c, const bench_timing *t)
+/* Every method's rays of subject s at distance K, timed together. */
+static void time_rays(const subject *s, double K)
 {
-    bench_row(c[0].method, c[0].param, &t[0], "%.3f", t[0].median / 1e6, "build_ms");
-    bench_row(c[1].method, c[1].param, &t[1], "%.3f", t[1].median / 1e6, "build_ms");
-    printf("build,%s,0,%.4f,build_kdtree_over_embree\n", c[0].param, t[0].median / t[1].median);
+    char param[48];
+    snprintf(param, sizeof param, "%s-%.1f", s->name, K);
+    float_ray *rays = make_rays(&s->m, K, SIDE);
+    trace_ctx c[N_METHODS];
+    bench_case cases[N_METHODS];
+    bench_timing t[N_METHODS];
+    int n = 0;
+    for (int j = 0; j < N_METHODS; j++)
+        if (is_used(s, &METHODS[j])) {
+            c[n] = (trace_ctx){&METHODS[j], s, rays};
+            cases[n] = (bench_case){METHODS[j].name, param, run_rays, &c[n], N_RAYS};
+            n++;
+        }
+    bench_time_cases(cases, n, t);
+    print_rays(c, cases, t, n);
+    print_agreement(c, n, param);
+    fflush(stdout);
+    free(rays);
 }
 
 /* ---------------------------------------------------------------- main */
 
-static const char *NAMES[N_MESHES] = {"bunny", "teapot"};
-
-/* The builds of both meshes by both programs, interleaved. */
-static void time_builds(const mesh *meshes, RTCDevice device, bench_timing *t,
-                        bench_case *c)
+static void prepare(subject *s, RTCDevice device)
 {
-    static build_ctx ctx[2 * N_MESHES];
-    for (int k = 0; k < N_MESHES; k++) {
-        ctx[2 * k] = (build_ctx){&meshes[k], NULL};
-        ctx[2 * k + 1] = (build_ctx){&meshes[k], device};
-        c[2 * k] = (bench_case){"kdtree-build", NAMES[k], run_kdtree_build, &ctx[2 * k], 1};
-        c[2 * k + 1] =
-            (bench_case){"embree-build", NAMES[k], run_embree_build, &ctx[2 * k + 1], 1};
+    kdtree_params kp = kdtree_default_params();
+    if (!mesh_build_tree(&s->m, &kp))
+        exit(1);
+    for (int w = 2; w <= 8; w *= 2) {
+        mesh *copy = &s->bvh_of_width[w];
+        *copy = s->m;
+        copy->tree = (kdtree){0}, copy->leaf_corners = NULL;
+        bvh_params bp = bvh_default_params();
+        bp.width = w;
+        if (!mesh_build_bvh(copy, &bp))
+            exit(1);
     }
-    bench_time_cases(c, 2 * N_MESHES, t);
-    for (int k = 0; k < 2 * N_MESHES; k++)
-        check_own_thread(&c[k], &t[k]);
+    s->scene = embree_scene(device, &s->m);
+    rtcCommitScene(s->scene);
 }
 
-enum { N_TRACES = N_MESHES * N_K };
-
-/* The rays of every mesh and K by both programs, interleaved; case 2 j is
- * ours and 2 j + 1 Embree's for trace j = mesh N_K + K's index. */
-static void time_rays(const trace_ctx *ctx, char names[][32], bench_timing *t, bench_case *c)
+static void release(subject *s)
 {
-    for (int j = 0; j < N_TRACES; j++) {
-        void *x = (void *)&ctx[j];
-        c[2 * j] = (bench_case){"kdtree", names[j], run_kdtree, x, N_RAYS};
-        c[2 * j + 1] = (bench_case){"embree", names[j], run_embree, x, N_RAYS};
-    }
-    bench_time_cases(c, 2 * N_TRACES, t);
-    for (int k = 0; k < 2 * N_TRACES; k++)
-        check_own_thread(&c[k], &t[k]);
+    for (int w = 2; w <= 8; w *= 2)
+        mesh_free_tree(&s->bvh_of_width[w]);
+    rtcReleaseScene(s->scene);
+    mesh_free(&s->m);
 }
 
 int main(int argc, char **argv)
 {
-    const char *paths[N_MESHES] = {argc > 1 ? argv[1] : "meshes/bunny.obj",
-                                   argc > 2 ? argv[2] : "meshes/teapot-8.obj"};
     RTCDevice device = rtcNewDevice("threads=1");
     if (device == NULL) {
         fprintf(stderr, "ch09_embree: Embree has no device\n");
         return 1;
     }
-    mesh meshes[N_MESHES];
-    RTCScene scenes[N_MESHES];
-    for (int k = 0; k < N_MESHES; k++)
-        load_float_mesh(paths[k], &meshes[k]);
-    bench_case build_cases[2 * N_MESHES], ray_cases[2 * N_TRACES];
-    bench_timing builds[2 * N_MESHES], rays[2 * N_TRACES];
-    time_builds(meshes, device, builds, build_cases);
-    trace_ctx ctx[N_TRACES];
-    char names[N_TRACES][32];
-    for (int k = 0; k < N_MESHES; k++) {
-        kdtree_params p = kdtree_default_params();
-        if (!mesh_build_tree(&meshes[k], &p))
-            return 1;
-        scenes[k] = embree_scene(device, &meshes[k]);
-        rtcCommitScene(scenes[k]);
-        for (int i = 0; i < N_K; i++) {
-            int j = k * N_K + i;
-            ctx[j] = (trace_ctx){&meshes[k], scenes[k], make_rays(&meshes[k], K_VALUES[i], SIDE)};
-            snprintf(names[j], sizeof names[j], "%s-%.1f", NAMES[k], K_VALUES[i]);
-        }
-    }
-    time_rays(ctx, names, rays, ray_cases);
+    enum { N_SUBJECTS = 5 };
+    static subject subjects[N_SUBJECTS] = {{.name = "bunny"},
+                                           {.name = "teapot"},
+                                           {.name = "scanned"},
+                                           {.name = "needles", .few_methods = true},
+                                           {.name = "slivers", .few_methods = true}};
+    load_float_mesh(argc > 1 ? argv[1] : "meshes/bunny.obj", &subjects[0].m);
+    load_float_mesh(argc > 2 ? argv[2] : "meshes/teapot-8.obj", &subjects[1].m);
+    load_float_mesh(argc > 1 ? argv[1] : "meshes/bunny.obj", &subjects[2].m);
+    subdivided(&subjects[2].m, 1);
+    subjects[3].m = needles_mesh(4000, 1e-3);
+    subjects[4].m = slivers_mesh(4000);
     bench_print_machine();
     bench_csv_header();
-    for (int k = 0; k < N_MESHES; k++) {
-        print_builds(&build_cases[2 * k], &builds[2 * k]);
-        for (int i = 0; i < N_K; i++) {
-            int j = k * N_K + i;
-            print_rays(&ray_cases[2 * j], &rays[2 * j]);
-            print_agreement(&ctx[j], names[j]);
-            free((void *)ctx[j].rays);
-        }
-        rtcReleaseScene(scenes[k]);
-        mesh_free(&meshes[k]);
+    printf("vector,%s,0,0,bvh_vector_width\n", bvh_vector_width_name());
+    for (int k = 0; k < N_SUBJECTS; k++) {
+        subject *s = &subjects[k];
+        if (!s->few_methods)
+            time_builds(s, device);
+        prepare(s, device);
+        time_rays(s, 1.0);
+        if (!s->few_methods)
+            time_rays(s, 2.5);
+        release(s);
     }
     rtcReleaseDevice(device);
     return 0;

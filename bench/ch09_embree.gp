@@ -1,56 +1,71 @@
 # ch09_embree.gp: the chart of bench/ch09_embree.c's CSV.
 #   gnuplot -e "csv='figures/ch09-embree.csv'; stem='figures/ch09-embree'" bench/ch09_embree.gp
-# stem.svg: left, rays per second of this program's kd-tree and of Embree
-#   on the same rays (bars: the median of interleaved rounds; error bars:
-#   the rates of the time's interquartile range, 1e3/q3 to 1e3/q1), with
-#   our rate as a fraction of Embree's above each pair; right, the build
-#   times (median, interquartile range). Where Embree was absent (the CSV
-#   has the row embree,absent: make chart-embree-absent), only this
-#   program's bars are drawn, and the chart says so.
+# stem.svg: left, what each step of chapter 9 is worth on the bunny at
+#   K = 1: the rays per second of every method, in the order the chapter
+#   takes them, Embree's last (bars: the median of interleaved rounds;
+#   error bars: the rates of the time's interquartile range, 1e3/q3 to
+#   1e3/q1; numbers: the rate as a fraction of Embree's); middle, the
+#   program's BVH (of the default width) and kd-tree as fractions of
+#   Embree's rate, closest hit, for every mesh and distance; right, the
+#   same for shadow rays (any hit, against rtcOccluded1). Where Embree was
+#   absent (the CSV has the row embree,absent: make chart-embree-absent),
+#   only chapter 8's rates are drawn, and the chart says so.
 load "bench/chart.gp"
 set grid noxtics ytics
-set terminal svg size 1000,480 font "Helvetica,12" background "white"
-set bmargin 4.5
+set terminal svg size 1200,520 font "Helvetica,12" background "white"
+set bmargin 5.5
 set output stem.'.svg'
 absent = int(system("grep -c '^embree,absent' ".csv))
+default = "bvh4"
+# the bunny's closest-hit methods at K = 1, in the file's order: "name rate"
+steps = system("awk -F, '$2 == \"bunny-1.0\" && $5 == \"mrays_per_s\" && $1 !~ /-any$/ {printf \"%s \", $1}' ".csv)
+step(k) = word(steps, k)
+label(m) = m eq "kdtree-ch08" ? "kd-tree,\nchapter 8" : m eq "kdtree" ? "kd-tree,\ntight leaves" : \
+           m eq "bvh2" ? "BVH,\nbinary" : m eq "bvh4" ? "BVH,\n4 wide" : m eq "bvh8" ? "BVH,\n8 wide" : \
+           m eq "embree" ? "Embree 3" : m
+step_x(m) = sum [k=1:words(steps)] (step(k) eq m ? k - 1 : 0)
 is(m, k) = strcol(1) eq m && strcol(5) eq k
-case(s) = s eq "bunny-1.0" ? 0 : s eq "bunny-2.5" ? 1 : s eq "teapot-1.0" ? 2 : s eq "teapot-2.5" ? 3 : NaN
-mesh(s) = s eq "bunny" ? 0 : s eq "teapot" ? 1 : NaN
-# x of a program's bar: ours left of the pair's middle, Embree's right
-rate_x(m) = is(m, "mrays_per_s") ? case(strcol(2)) + (m eq "kdtree" ? -0.19 : 0.19) : NaN
-build_x(m) = is(m, "build_ms") ? mesh(strcol(2)) + (m eq "kdtree-build" ? -0.19 : 0.19) : NaN
-# Embree's key entries and the subtitles' ratios only where Embree was there
-theirs_title(t) = absent ? "" : t
-ratios(t) = absent ? "" : t
+cases = "bunny-1.0 bunny-2.5 teapot-1.0 teapot-2.5 scanned-1.0 scanned-2.5 needles-1.0 slivers-1.0"
+case_x(s) = sum [k=1:words(cases)] (word(cases, k) eq s ? k - 1 : 0) + (strstrt(cases, s) ? 0 : NaN)
+ratio_of(m, s) = strcol(1) eq "ratio" && strcol(5) eq "over_embree" && strcol(2) eq m."@".s
+# the ratio rows of method m: x of its case, shifted
+ratio_x(m, shift) = strcol(1) eq "ratio" && strcol(5) eq "over_embree" && \
+                    strcol(2)[1:strlen(m) + 1] eq m."@" ? case_x(strcol(2)[strlen(m) + 2:]) + shift : NaN
 ours = "#1b9e77"
+kd = "#d95f02"
 theirs = "#7570b3"
 set style fill solid 0.85 noborder
-set boxwidth 0.36
 
 eval machine_label
-set multiplot layout 1,2 title (absent ? "Chapter 9: chapter 8's kd-tree (Embree was absent when this chart was made)" : "Chapter 9: chapter 8's kd-tree against Embree 3, the same rays, one thread each") font ",14"
-set xrange [-0.6:3.6]
+set multiplot layout 1,3 title (absent ? "Chapter 9: chapter 8's kd-tree (Embree was absent when this chart was made)" : "Chapter 9: each step against Embree 3, the same rays, one thread each") font ",14" margins 0.06,0.99,0.2,0.86 spacing 0.06
+set boxwidth 0.7
+set xrange [-0.6:words(steps) - 0.4]
 set yrange [0:*]
-set offsets 0, 0, graph 0.25, 0
-set xtics ("bunny\nK = 1" 0, "bunny\nK = 2.5" 1, "teapot\nK = 1" 2, "teapot\nK = 2.5" 3)
+set offsets 0, 0, graph 0.15, 0
+set xtics () font ",9"
+do for [k=1:words(steps)] { set xtics add (label(step(k)) k - 1) }
 set ylabel "million closest-hit rays per second (bars: interquartile range)"
-set key top left box opaque font ",10"
-set title "1024 x 1024 rays".ratios("; numbers: our rate / Embree's (medians)") font ",10"
-plot csv using (rate_x("kdtree")):4 with boxes lc rgb ours title "kd-tree, double, watertight (chapter 8)", \
-     csv using (rate_x("embree")):4 with boxes lc rgb theirs title theirs_title("Embree 3, rtcIntersect1, high-quality BVH"), \
-     for [m in "kdtree embree"] csv using (rate_x(m)):(1e3 / $7):(0):(1e3 / $6 - 1e3 / $7) @quartile_bars, \
-     csv using (is("ratio","kdtree_over_embree") ? case(strcol(2)) - 0.19 : NaN):(2):(sprintf("%.2f", $4)) with labels font ",11" tc rgb "white" notitle
+set title "the bunny at K = 1, step by step".(absent ? "" : "; numbers: the rate / Embree's") font ",10"
+plot csv using (is(strcol(1), "mrays_per_s") && strcol(2) eq "bunny-1.0" && strcol(1) ne "embree" ? step_x(strcol(1)) : NaN):4 with boxes lc rgb ours notitle, \
+     csv using (is("embree", "mrays_per_s") && strcol(2) eq "bunny-1.0" ? step_x("embree") : NaN):4 with boxes lc rgb theirs notitle, \
+     csv using (is(strcol(1), "mrays_per_s") && strcol(2) eq "bunny-1.0" && strcol(1) !~ "-any" ? step_x(strcol(1)) : NaN):(1e3 / $7):(0):(1e3 / $6 - 1e3 / $7) @quartile_bars, \
+     csv using (strcol(1) eq "ratio" && strcol(5) eq "over_embree" && strcol(2)[strlen(strcol(2)) - 9:] eq "@bunny-1.0" ? step_x(strcol(2)[1:strlen(strcol(2)) - 10]) : NaN):(0.5):(sprintf("%.2f", $4)) with labels font ",10" tc rgb "white" notitle
 
-set xrange [-0.6:1.6]
-set xtics ("bunny\n69,451 triangles" 0, "teapot\n4,032 triangles" 1)
-set logscale y
-set format y "10^{%L}"
-set yrange [1:*]
-set offsets 0, 0, 0, 0
-set ylabel "build time (ms, log scale; bars: interquartile range)"
-set title (absent ? "build time" : "numbers: our build time / Embree's (medians)") font ",10"
-plot csv using (build_x("kdtree-build")):4 with boxes lc rgb ours title "kd-tree, SAH, events sorted once", \
-     csv using (build_x("embree-build")):4 with boxes lc rgb theirs title theirs_title("Embree 3, RTC\\_BUILD\\_QUALITY\\_HIGH"), \
-     for [m in "kdtree-build embree-build"] csv using (build_x(m)):($6 / 1e6):(0):(($7 - $6) / 1e6) @quartile_bars, \
-     csv using (is("build","build_kdtree_over_embree") ? mesh(strcol(2)) : NaN):(1.5):(sprintf("%.2f", $4)) with labels font ",11" tc rgb "white" notitle
+set boxwidth 0.36
+set xrange [-0.6:words(cases) - 0.4]
+set yrange [0:*]
+set offsets 0, 0, graph 0.1, 0
+set xtics ("bunny\nK = 1" 0, "bunny\nK = 2.5" 1, "teapot\nK = 1" 2, "teapot\nK = 2.5" 3, "scanned\nK = 1" 4, "scanned\nK = 2.5" 5, "needles\nK = 1" 6, "slivers\nK = 1" 7) font ",9"
+set ylabel "rate / Embree's rate (medians)"
+set key top right box opaque font ",9"
+set title "closest hit, every mesh" font ",10"
+plot csv using (ratio_x(default, -0.19)):4 with boxes lc rgb ours title "BVH, ".default[4:]." wide", \
+     csv using (ratio_x("kdtree", 0.19)):4 with boxes lc rgb kd title "kd-tree, tight leaves", \
+     1 with lines dt 2 lc rgb theirs title "Embree"
+
+set title "shadow rays (any hit), against rtcOccluded1" font ",10"
+set xrange [-0.6:5.6]
+plot csv using (ratio_x("bvh-any", -0.19)):4 with boxes lc rgb ours title "BVH, any hit", \
+     csv using (ratio_x("kdtree-any", 0.19)):4 with boxes lc rgb kd title "kd-tree, any hit", \
+     1 with lines dt 2 lc rgb theirs title "Embree"
 unset multiplot

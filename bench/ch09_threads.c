@@ -10,15 +10,23 @@
  * method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns:
  *   threads,1|2,ns_per_render,ms,render_ms   threads,2,0,speedup,speedup
  *   scene,bunny,ns_per_load,ms,load_ms (reading the scene, building its
- *   trees; from both kinds of run) */
+ *   trees; from both kinds of run)
+ * and for a terrain of two million triangles (ch09_meshes.h, written once
+ * to build/ch09-terrain.obj) drawn at 512 x 512, the whole run, from the
+ * start of the process to its end, timed by the wall clock, WHOLE_ROUNDS
+ * times each:
+ *   whole,1|2,ns_per_run,ms,run_ms   whole,2,0,speedup,speedup
+ *   terrain,1|2,ns_per_load,ms,load_ms (its reading and its trees) */
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
+#include "ch09_meshes.h"
 #include "timing.h"
 
-enum { THREAD_ROUNDS = 7 };
+enum { THREAD_ROUNDS = 7, WHOLE_ROUNDS = 5, TERRAIN_SIDE = 1000 };
 
 /* Runs bin SCENE --threads N --stats once: the render phase and the scene
  * phase (reading the files, building the trees) as it reports them, in ms
@@ -69,9 +77,73 @@ static int threads(void)
     return 0;
 }
 
+/* Writes the terrain of 2 TERRAIN_SIDE^2 triangles to obj, and a scene
+ * that draws it to scene; false when a file cannot be written. */
+static bool write_terrain(const char *obj, const char *scene)
+{
+    FILE *f = fopen(obj, "w"), *g = fopen(scene, "w");
+    bool ok = f != NULL && g != NULL;
+    if (ok) {
+        mesh m = terrain_mesh(TERRAIN_SIDE);
+        for (int k = 0; k < m.vertex_count; k++)
+            fprintf(f, "v %.9g %.9g %.9g\n", m.vertices[k].x, m.vertices[k].y,
+                    m.vertices[k].z);
+        for (int k = 0; k < m.triangle_count; k++)
+            fprintf(f, "f %d %d %d\n", m.triangles[k].v[0] + 1, m.triangles[k].v[1] + 1,
+                    m.triangles[k].v[2] + 1);
+        mesh_free(&m);
+        fprintf(g, "camera fov 60\nimage 512 512\nambient 0.2 0.2 0.2\n"
+                   "mesh file %s scale 10 offset -5 -1.5 3 color 0.5 0.6 0.4\n"
+                   "light directional direction 1 -1 1 intensity 0.8 0.8 0.8\n",
+                obj);
+    }
+    ok = (f == NULL || fclose(f) == 0) && (g == NULL || fclose(g) == 0) && ok;
+    return ok;
+}
+
+static double wall_ms(void)
+{
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return 1e3 * (double)t.tv_sec + 1e-6 * (double)t.tv_nsec;
+}
+
+/* The terrain's whole run on one core and on two, in turns. */
+static int whole_runs(void)
+{
+    const char *bin = "bin/ch09", *obj = "build/ch09-terrain.obj";
+    const char *scene = "build/ch09-terrain.scene";
+    if (!write_terrain(obj, scene)) {
+        fprintf(stderr, "ch09_threads: cannot write %s and %s\n", obj, scene);
+        return 1;
+    }
+    double run[2][WHOLE_ROUNDS], load[2][WHOLE_ROUNDS];
+    for (int r = 0; r < WHOLE_ROUNDS; r++)
+        for (int j = 0; j < 2; j++) {
+            int k = (r + j) % 2;
+            double render_ms, load_ms, start = wall_ms();
+            if (!run_renderer(bin, scene, k + 1, &render_ms, &load_ms)) {
+                fprintf(stderr, "ch09_threads: cannot run %s %s\n", bin, scene);
+                return 1;
+            }
+            run[k][r] = 1e6 * (wall_ms() - start), load[k][r] = 1e6 * load_ms;
+        }
+    bench_timing t[2], loading[2];
+    for (int k = 0; k < 2; k++) {
+        bench_timing_of_samples(run[k], WHOLE_ROUNDS, &t[k]);
+        bench_timing_of_samples(load[k], WHOLE_ROUNDS, &loading[k]);
+        bench_row("whole", k ? "2" : "1", &t[k], "%.1f", t[k].median / 1e6, "run_ms");
+        bench_row("terrain", k ? "2" : "1", &loading[k], "%.1f",
+                  loading[k].median / 1e6, "load_ms");
+    }
+    printf("whole,2,0,%.3f,speedup\n", t[0].median / t[1].median);
+    remove(obj), remove(scene);
+    return 0;
+}
+
 int main(void)
 {
     bench_print_machine();
     bench_csv_header();
-    return threads();
+    return threads() || whole_runs();
 }
