@@ -12,7 +12,7 @@
 #   only chapter 8's rates are drawn, and the chart says so.
 load "bench/chart.gp"
 set grid noxtics ytics
-set terminal svg size 1200,520 font "Helvetica,12" background "white"
+set terminal svg size 1250,520 font "Helvetica,12" background "white"
 set bmargin 5.5
 set output stem.'.svg'
 absent = int(system("grep -c '^embree,absent' ".csv))
@@ -23,10 +23,11 @@ step(k) = word(steps, k)
 label(m) = m eq "kdtree-ch08" ? "kd-tree,\nchapter 8" : m eq "kdtree" ? "kd-tree,\ntight leaves" : \
            m eq "bvh2" ? "BVH,\nbinary" : m eq "bvh4" ? "BVH,\n4 wide" : m eq "bvh8" ? "BVH,\n8 wide" : \
            m eq "embree" ? "Embree 3" : m
-step_x(m) = sum [k=1:words(steps)] (step(k) eq m ? k - 1 : 0)
+in_steps(m) = strstrt(" ".steps, " ".m." ") > 0
+step_x(m) = in_steps(m) ? sum [k=1:words(steps)] (step(k) eq m ? k - 1 : 0) : NaN
 is(m, k) = strcol(1) eq m && strcol(5) eq k
 cases = "bunny-1.0 bunny-2.5 teapot-1.0 teapot-2.5 scanned-1.0 scanned-2.5 needles-1.0 slivers-1.0"
-case_x(s) = sum [k=1:words(cases)] (word(cases, k) eq s ? k - 1 : 0) + (strstrt(cases, s) ? 0 : NaN)
+case_x(s) = strstrt(" ".cases." ", " ".s." ") > 0 ? sum [k=1:words(cases)] (word(cases, k) eq s ? k - 1 : 0) : NaN
 ratio_of(m, s) = strcol(1) eq "ratio" && strcol(5) eq "over_embree" && strcol(2) eq m."@".s
 # the ratio rows of method m: x of its case, shifted
 ratio_x(m, shift) = strcol(1) eq "ratio" && strcol(5) eq "over_embree" && \
@@ -37,25 +38,27 @@ theirs = "#7570b3"
 set style fill solid 0.85 noborder
 
 eval machine_label
-set multiplot layout 1,3 title (absent ? "Chapter 9: chapter 8's kd-tree (Embree was absent when this chart was made)" : "Chapter 9: each step against Embree 3, the same rays, one thread each") font ",14" margins 0.06,0.99,0.2,0.86 spacing 0.06
+set multiplot layout 1,3 title (absent ? "Chapter 9: chapter 8's kd-tree (Embree was absent when this chart was made)" : "Chapter 9: each step against Embree 3, the same rays, one thread each") font ",14" margins 0.06,0.99,0.2,0.82 spacing 0.06
 set boxwidth 0.7
 set xrange [-0.6:words(steps) - 0.4]
 set yrange [0:*]
 set offsets 0, 0, graph 0.15, 0
-set xtics () font ",9"
+set xtics () font ",8"
 do for [k=1:words(steps)] { set xtics add (label(step(k)) k - 1) }
 set ylabel "million closest-hit rays per second (bars: interquartile range)"
-set title "the bunny at K = 1, step by step".(absent ? "" : "; numbers: the rate / Embree's") font ",10"
+vector = system("awk -F, '$1 == \"vector\" {print $2}' ".csv)
+set title "the bunny at K = 1, step by step".(absent ? "" : "; numbers: the rate / Embree's")."\nnode tests in ".(vector eq "" ? "double" : vector) font ",10"
 plot csv using (is(strcol(1), "mrays_per_s") && strcol(2) eq "bunny-1.0" && strcol(1) ne "embree" ? step_x(strcol(1)) : NaN):4 with boxes lc rgb ours notitle, \
      csv using (is("embree", "mrays_per_s") && strcol(2) eq "bunny-1.0" ? step_x("embree") : NaN):4 with boxes lc rgb theirs notitle, \
-     csv using (is(strcol(1), "mrays_per_s") && strcol(2) eq "bunny-1.0" && strcol(1) !~ "-any" ? step_x(strcol(1)) : NaN):(1e3 / $7):(0):(1e3 / $6 - 1e3 / $7) @quartile_bars, \
+     csv using (is(strcol(1), "mrays_per_s") && strcol(2) eq "bunny-1.0" ? step_x(strcol(1)) : NaN):(1e3 / $7):(0):(1e3 / $6 - 1e3 / $7) @quartile_bars, \
      csv using (strcol(1) eq "ratio" && strcol(5) eq "over_embree" && strcol(2)[strlen(strcol(2)) - 9:] eq "@bunny-1.0" ? step_x(strcol(2)[1:strlen(strcol(2)) - 10]) : NaN):(0.5):(sprintf("%.2f", $4)) with labels font ",10" tc rgb "white" notitle
 
 set boxwidth 0.36
 set xrange [-0.6:words(cases) - 0.4]
 set yrange [0:*]
 set offsets 0, 0, graph 0.1, 0
-set xtics ("bunny\nK = 1" 0, "bunny\nK = 2.5" 1, "teapot\nK = 1" 2, "teapot\nK = 2.5" 3, "scanned\nK = 1" 4, "scanned\nK = 2.5" 5, "needles\nK = 1" 6, "slivers\nK = 1" 7) font ",9"
+set xtics ("bunny\n1" 0, "bunny\n2.5" 1, "teapot\n1" 2, "teapot\n2.5" 3, "scan\n1" 4, "scan\n2.5" 5, "needle\n1" 6, "sliver\n1" 7) font ",8"
+set xlabel "mesh, and K" font ",9"
 set ylabel "rate / Embree's rate (medians)"
 set key top right box opaque font ",9"
 set title "closest hit, every mesh" font ",10"
