@@ -455,18 +455,26 @@ END_TEST
 START_TEST(test_the_accelerator_statement_chooses_the_tree)
 {
     link_meshes();
-    const char *texts[3] = {
+    /* the default; each statement; a heat map of kd-tree nodes; and
+     * --accelerator (set before the file is read) over the statement */
+    const char *texts[5] = {
         "mesh file meshes/teapot-8.obj\n",
         "accelerator kdtree\nmesh file meshes/teapot-8.obj\n",
-        "accelerator bvh\nmesh file meshes/teapot-8.obj\n"};
-    for (int k = 0; k < 3; k++) {
+        "accelerator bvh\nmesh file meshes/teapot-8.obj\n",
+        "kdtree heatmap 9\nmesh file meshes/teapot-8.obj\n",
+        "accelerator kdtree\nmesh file meshes/teapot-8.obj\n"};
+    const bool wants_bvh[5] = {
+        MESH_DEFAULT_ACCELERATOR == MESH_ACCELERATOR_BVH, false, true, false,
+        true};
+    for (int k = 0; k < 5; k++) {
         scene s;
         scene_error err;
         char *path = (char *)write_file("choose.scene", texts[k]);
         scene_init(&s);
+        if (k == 4)
+            s.accelerator_option = MESH_ACCELERATOR_BVH;
         ck_assert_msg(scene_load(&s, path, &err), "%s", err.message);
-        bool bvh = k == 2 || (k == 0 && MESH_DEFAULT_ACCELERATOR ==
-                                            MESH_ACCELERATOR_BVH);
+        bool bvh = wants_bvh[k];
         ck_assert_int_eq(s.meshes[0].bvh.node_count > 0, bvh);
         ck_assert_int_eq(s.meshes[0].tree.node_count > 0, !bvh);
         scene_free(&s);

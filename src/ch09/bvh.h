@@ -6,8 +6,8 @@
  * float, rounded outward. bvh_build makes one (false only when out of
  * memory); the tree knows nothing else of its items. Zero means default
  * in bvh_params. A tree with no nodes is "no tree". Nodes have 2, 4 or 8
- * children (p->width); the walk is the caller's, with the node tests
- * and the per-ray constants below. */
+ * children (p->width); a bvh_walk hands out the leaves whose boxes a ray
+ * meets, nearest box first, and the caller tests their items. */
 #ifndef BVH_H
 #define BVH_H
 
