@@ -21,9 +21,11 @@ typedef enum { FILTER_BOX, FILTER_TENT } pixel_filter;
 /* The most rays one pixel may cost: the 17 x 17 points of its finest
  * division, or the grid's 256. */
 #define PIXEL_MAX_RAYS ((PIXEL_MAX_SIDE + 1) * (PIXEL_MAX_SIDE + 1))
-/* Primary rays of one image at the worst: about a billion, hours of a
- * render; a setting that asks for more is a mistake, not a wish. */
-#define PIXEL_RAY_BUDGET (1LL << 30)
+/* Primary rays of one image at the worst: two billion, hours of a render,
+ * and room for the default adaptive pattern's 77 rays a pixel on the
+ * largest image (2^24 pixels); a setting that asks for more is a mistake,
+ * not a wish. */
+#define PIXEL_RAY_BUDGET (1LL << 31)
 /* Read off this chapter's chart: see "Speed against accuracy". */
 #define PIXEL_DEFAULT_THRESHOLD 0.05
 
