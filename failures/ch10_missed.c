@@ -4,14 +4,15 @@
  *   build/rel/failures/ch10_missed figures/ch10-failure-missed.png
  *
  * A field of 60 spheres, each 0.75 pixel across, scattered (by the
- * chapter's hash, so always alike) over a dark background. On the left the adaptive pattern
- * at its defaults (min_depth 0): a sphere whose disc covers no corner of
- * any pixel leaves every corner alike, no pixel is divided, and the sphere
- * is not drawn. On the right min_depth 1: every pixel traces its centre
- * and the middles of its sides too, points half a pixel apart, and a disc
- * 0.75 pixel across, wider than the diagonal of half a pixel (0.71), always
- * covers one. Counts the spheres each side draws, and exits 1 unless the
- * left misses some and the right draws them all.
+ * chapter's hash, so always alike) over a dark background. On the left
+ * the adaptive pattern at its defaults (min_depth 0): a sphere whose disc
+ * covers no corner of any pixel leaves every corner alike, no pixel is
+ * divided, and the sphere is not drawn. On the right min_depth 1: every
+ * pixel traces its centre and the middles of its sides too, points half a
+ * pixel apart, and a disc 0.75 pixel across, wider than the diagonal of
+ * half a pixel (0.71), always covers one. Counts the spheres each side
+ * draws, and exits 1 unless the left misses some and the right draws them
+ * all.
  *
  * Built by `make failures` against the objects of chapter 10's program
  * but main.o; `make test` checks the committed PNG. */

@@ -277,6 +277,24 @@ START_TEST(test_thread_counts_give_the_same_image)
 }
 END_TEST
 
+START_TEST(test_stats_report_rays_per_pixel_and_depths)
+{
+    /* the edge scene: (41 x 31 + 30 x 31) / 1200 = 1.834 rays a pixel, the
+     * edge's 31 and a share of the corners the largest; 30 of 1200 pixels
+     * (2.5%) at depth 3, the rest at 0 */
+    char errors[4096], path[192];
+    snprintf(path, sizeof path, "%s", write_file("edge.scene", EDGE_SCENE));
+    const char *args[] = {path, "--stats", "-o", tmp_path("e.png"), NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
+    ck_assert_msg(strstr(errors, "rays per pixel     1.83 mean, 32 largest"),
+                  "%s", errors);
+    ck_assert_msg(strstr(errors, "pixels by depth    0       1170  97.5%"),
+                  "%s", errors);
+    ck_assert_msg(strstr(errors, "                   3         30   2.5%"),
+                  "%s", errors);
+}
+END_TEST
+
 /* A sphere of 0.4 pixel across at the centre of pixel (10, 7) of a 20 x
  * 15 image: between the corners of its pixel. */
 static void small_sphere_scene(scene *s, int min_depth)
@@ -463,6 +481,7 @@ Suite *ch10_antialiasing_suite(void)
     tcase_set_timeout(renders, 120);
     tcase_add_test(renders, test_the_default_is_chapter_9s_picture);
     tcase_add_test(renders, test_thread_counts_give_the_same_image);
+    tcase_add_test(renders, test_stats_report_rays_per_pixel_and_depths);
     suite_add_tcase(s, renders);
     TCase *failures = tcase_create("where it fails");
     tcase_add_test(

@@ -111,9 +111,11 @@ void report_pixels(const render_stats *st)
         return; /* one ray through each centre: nothing to tell */
     fprintf(stderr, "rays per pixel     %.2f mean, %lld largest\n",
             (double)st->primary_rays / (double)pixels, largest);
+    int deepest = 0;
     for (int d = 0; d <= PIXEL_MAX_DEPTH; d++)
-        divided += st->pixel_depths[d];
-    for (int d = 0; divided > 0 && d <= PIXEL_MAX_DEPTH; d++) {
+        if (st->pixel_depths[d] > 0)
+            divided += st->pixel_depths[d], deepest = d;
+    for (int d = 0; divided > 0 && d <= deepest; d++) {
         double share = (double)st->pixel_depths[d] / (double)divided;
         fprintf(stderr, "%s%d %10lld %5.1f%% %.*s\n",
                 d == 0 ? "pixels by depth    " : "                   ", d,
