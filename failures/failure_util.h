@@ -48,6 +48,33 @@ static inline bool write_side_by_side(const image *left, const image *right,
     return ok;
 }
 
+/* Writes the n images, of one size, in a row into the PNG at path, white
+ * gaps between them, each pixel magnified scale times; false, saying why
+ * on stderr, if not. */
+static inline bool write_in_a_row(const image *const *images, int n,
+                                  int scale, const char *path)
+{
+    int w = images[0]->width * scale, h = images[0]->height * scale;
+    image row;
+    if (!image_init(&row, n * w + (n - 1) * FAILURE_GAP, h)) {
+        fprintf(stderr, "%s: error: out of memory\n", path);
+        return false;
+    }
+    for (int k = 1; k < n; k++) /* the gaps: white, as the page */
+        for (int j = 0; j < h; j++)
+            for (int i = 0; i < FAILURE_GAP; i++)
+                image_set(&row, k * (w + FAILURE_GAP) - FAILURE_GAP + i, j,
+                          (vec3){1, 1, 1});
+    for (int k = 0; k < n; k++)
+        paste_magnified(&row, images[k], k * (w + FAILURE_GAP), scale);
+    char why[256];
+    bool ok = image_write_png(&row, path, why, sizeof why);
+    if (!ok)
+        fprintf(stderr, "%s: error: %s\n", path, why);
+    image_free(&row);
+    return ok;
+}
+
 /* The output path from the command line, or NULL after printing usage. */
 static inline const char *output_path(int argc, char **argv)
 {

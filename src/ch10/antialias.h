@@ -1,0 +1,54 @@
+/* antialias.h: where a pixel's rays go, and where Whitted's adaptive
+ * scheme divides (chapter 10).
+ *
+ * Positions are in the image's pixel coordinates: u from 0 at the left
+ * edge to width at the right, v from 0 at the top to height; pixel (i, j)
+ * is [i, i + 1) x [j, j + 1). Everything here is a function of its
+ * arguments alone: the same pixel gets the same rays on any thread. */
+#ifndef ANTIALIAS_H
+#define ANTIALIAS_H
+
+#include <stdatomic.h>
+#include "pixel.h"
+#include "vec.h"
+
+/* A number in [0, 1) that depends only on pixel (i, j), sample k, axis. */
+double pixel_random(int i, int j, int k, int axis);
+
+/* How many rays the grid and jittered patterns (and the centre's one)
+ * give a pixel. */
+int pixel_sample_count(const pixel_sampling *ps);
+
+/* Where sample k of pixel (i, j) goes: inside the pixel for the box
+ * filter, within one pixel of its centre for the tent. */
+void pixel_sample_at(const pixel_sampling *ps, int i, int j, int k,
+                     double *u, double *v);
+
+/* x in [0, 1) to an offset in (-1, 1) distributed as the tent 1 - |t|. */
+double tent_warp(double x);
+
+/* Do the four colours (linear light) differ by more than ps->threshold
+ * in a channel, compared as displayed (sRGB) or, if ps->linear, as they
+ * are? */
+bool pixel_corners_differ(const pixel_sampling *ps, const vec3 c[4]);
+
+/* The most primary rays a width x height image may take with ps. */
+long long pixel_worst_rays(const pixel_sampling *ps, int width,
+                           int height);
+
+/* The adaptive pattern's corners of every pixel: (width + 1) x
+ * (height + 1) colours, and each row's state (see render.c). */
+typedef struct {
+    int width, height; /* of the image */
+    vec3 *colors;
+    atomic_int *rows;
+} pixel_corners;
+
+enum { CORNERS_UNTRACED, CORNERS_TRACING, CORNERS_DONE };
+
+/* Makes c ready for one render of a width x height image: every row
+ * untraced. Call it before each render; false when out of memory. */
+bool pixel_corners_prepare(pixel_corners *c, int width, int height);
+void pixel_corners_free(pixel_corners *c);
+
+#endif

@@ -1,0 +1,37 @@
+/* progress.c: how far a render has come, on standard error (chapter 1). */
+#include "progress.h"
+
+#include <stdbool.h>
+#include <stdio.h>
+#include <unistd.h>
+#include "moment.h"
+
+progress progress_start(int width)
+{
+    return (progress){.start = moment_now().wall, .width = width,
+                      .next_line = 1.0};
+}
+
+/* <<show the progress>> ch09 */
+/* "[#####     ]  50%  2.31 Mrays/s  3 s left" on a terminal, once the
+ * render has taken a second; elsewhere a line every 10 s at most. */
+void progress_show(void *context, int rows_done, int rows)
+{
+    progress *p = context;
+    double elapsed = moment_now().wall - p->start;
+    bool terminal = isatty(STDERR_FILENO);
+    if (elapsed < 1.0 || (!terminal && (elapsed < p->next_line ||
+                                        rows_done == rows)))
+        return;
+    static const char bar[] = "##############################"; /* 30 */
+    int filled = 30 * rows_done / rows;
+    double left = rows_done ? elapsed * (rows - rows_done) / rows_done : 0;
+    fprintf(stderr, "%s[%.*s%*s] %3d%%  %.2f Mrays/s  %.0f s left%s",
+            terminal ? "\r" : "", filled, bar, 30 - filled, "",
+            100 * rows_done / rows,
+            1e-6 * rows_done * (double)p->width / elapsed, left,
+            terminal ? " " : "\n");
+    p->next_line = elapsed + 10;
+    if (terminal && rows_done == rows)
+        fputc('\n', stderr);
+}

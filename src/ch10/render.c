@@ -1,0 +1,309 @@
+/* render.c: rendering a scene into an image, band by band (chapter 1). */
+#include "render.h"
+
+#include <assert.h>
+/* <<render includes>> ch03 */
+#include "shade.h"
+/* <<render includes>> += ch08 */
+#include "search.h"
+/* <<render includes>> += ch09 */
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "memory.h"
+/* <<render includes>> += ch10 */
+#include <sched.h>
+#include "antialias.h"
+
+/* What the pixel whose primary ray is r shows. */
+static vec3 pixel_color(const scene *s, ray r, render_stats *stats)
+{
+    /* <<show something other than light>> ch08 */
+    if (s->heatmap > 0) { /* the kdtree statement's heat map: work, not light */
+        long long before = stats->kd_nodes;
+        hit h;
+        scene_intersect(s, r, 0, INFINITY, &h, stats);
+        double x = fmin((double)(stats->kd_nodes - before) / s->heatmap, 1);
+        return (vec3){fmin(3 * x, 1), fmin(fmax(3 * x - 1, 0), 1),
+                      fmax(3 * x - 2, 0)}; /* black, red, yellow, white */
+    }
+    vec3 c = trace(s, r, 0, stats);
+    /* <<map the pixel's light for display>> ch03 */
+    if (s->tone.alpha != 1 || s->tone.beta != 1) /* the defaults only clip */
+        c = (vec3){tone_map(c.x, s->tone.alpha, s->tone.beta),
+                   tone_map(c.y, s->tone.alpha, s->tone.beta),
+                   tone_map(c.z, s->tone.alpha, s->tone.beta)};
+    return c;
+}
+/* <<ways to draw a pixel>> ch10 */
+_Static_assert(sizeof(((render_stats *)0)->pixel_rays) ==
+                       (PIXEL_MAX_RAYS + 1) * sizeof(long long) &&
+                   sizeof(((render_stats *)0)->pixel_depths) ==
+                       (PIXEL_MAX_DEPTH + 1) * sizeof(long long),
+               "the counters of stats.h have room for every count");
+
+/* What the image shows at the point (u, v), and the ray counted. */
+static vec3 color_at(const scene *s, const camera_view *view, double u,
+                     double v, render_stats *stats)
+{
+    stats->primary_rays++;
+    return pixel_color(s, camera_view_ray_at(view, u, v), stats);
+}
+
+/* The grid or jittered rays of pixel (i, j), averaged: weights 1/N. */
+static vec3 sampled_pixel(const scene *s, const camera_view *view, int i,
+                          int j, render_stats *stats, int *rays)
+{
+    int n = pixel_sample_count(&s->pixels);
+    vec3 sum = {0, 0, 0};
+    for (int k = 0; k < n; k++) {
+        double u, v;
+        pixel_sample_at(&s->pixels, i, j, k, &u, &v);
+        sum = vec3_add(sum, color_at(s, view, u, v, stats));
+    }
+    *rays = n;
+    return vec3_scale(sum, 1.0 / n);
+}
+
+/* rays against the heat map's white: black, red, yellow, white. */
+static vec3 rays_heat(int rays, int white)
+{
+    double x = fmin((double)rays / white, 1);
+    return (vec3){fmin(3 * x, 1), fmin(fmax(3 * x - 1, 0), 1),
+                  fmax(3 * x - 2, 0)};
+}
+/* <<the corners of a band>> ch10 */
+
+/* Corner row j, traced by whichever band asks for it first. */
+static void corner_row(const scene *s, const camera_view *view, int j,
+                       render_stats *stats)
+{
+    const pixel_corners *c = &s->corners;
+    int untraced = CORNERS_UNTRACED;
+    if (atomic_compare_exchange_strong(&c->rows[j], &untraced,
+                                       CORNERS_TRACING)) {
+        vec3 *row = c->colors + (size_t)j * (c->width + 1);
+        for (int i = 0; i <= c->width; i++)
+            row[i] = color_at(s, view, i, j, stats);
+        atomic_store(&c->rows[j], CORNERS_DONE);
+    }
+    while (atomic_load(&c->rows[j]) != CORNERS_DONE)
+        sched_yield(); /* the next band's thread is tracing it */
+}
+/* <<the points of a pixel>> ch10 */
+
+enum { FINEST = 1 << PIXEL_MAX_DEPTH }; /* squares a side, at most */
+
+/* Pixel (i, j)'s points (i + a/cells, j + b/cells), traced when needed. */
+typedef struct {
+    const scene *s;
+    const camera_view *view;
+    render_stats *stats;
+    int i, j, cells;   /* cells = 2^depth squares a side */
+    int rays, deepest; /* traced for this pixel; the depth reached */
+    bool traced[FINEST + 1][FINEST + 1];
+    vec3 color[FINEST + 1][FINEST + 1];
+} pixel_points;
+
+static vec3 point_color(pixel_points *p, int a, int b)
+{
+    if (!p->traced[b][a]) {
+        p->color[b][a] = color_at(p->s, p->view, p->i + (double)a / p->cells,
+                                  p->j + (double)b / p->cells, p->stats);
+        p->traced[b][a] = true;
+        p->rays++;
+    }
+    return p->color[b][a];
+}
+/* <<a square's mean>> ch10 */
+
+/* The mean colour of the square of size x size steps whose top left
+ * point is (a, b), at depth. */
+static vec3 square_mean(pixel_points *p, int a, int b, int size, int depth)
+{
+    const pixel_sampling *ps = &p->s->pixels;
+    vec3 c[4] = {point_color(p, a, b), point_color(p, a + size, b),
+                 point_color(p, a, b + size),
+                 point_color(p, a + size, b + size)};
+    bool divide = depth < ps->depth &&
+                  (depth < ps->min_depth || pixel_corners_differ(ps, c));
+    if (!divide) {
+        p->deepest = depth > p->deepest ? depth : p->deepest;
+        return vec3_scale(vec3_add(vec3_add(c[0], c[1]),
+                                   vec3_add(c[2], c[3])), 0.25);
+    }
+    int h = size / 2;
+    vec3 top = vec3_add(square_mean(p, a, b, h, depth + 1),
+                        square_mean(p, a + h, b, h, depth + 1));
+    vec3 bottom = vec3_add(square_mean(p, a, b + h, h, depth + 1),
+                           square_mean(p, a + h, b + h, h, depth + 1));
+    return vec3_scale(vec3_add(top, bottom), 0.25);
+}
+/* <<an adaptive pixel>> ch10 */
+
+/* Pixel (i, j) by Whitted's scheme, from the grid of corners. */
+static vec3 adaptive_pixel(const scene *s, const camera_view *view, int i,
+                           int j, render_stats *stats, int *rays)
+{
+    pixel_points p = {.s = s, .view = view, .stats = stats, .i = i,
+                      .j = j, .cells = 1 << s->pixels.depth};
+    int n = p.cells, stride = s->corners.width + 1;
+    const vec3 *top = s->corners.colors + (size_t)j * stride;
+    p.color[0][0] = top[i], p.color[0][n] = top[i + 1];
+    p.color[n][0] = top[stride + i], p.color[n][n] = top[stride + i + 1];
+    p.traced[0][0] = p.traced[0][n] = p.traced[n][0] = p.traced[n][n] =
+        true;
+    vec3 c = square_mean(&p, 0, 0, n, 0);
+    stats->pixel_depths[p.deepest]++;
+    *rays = p.rays + 1; /* and its share of the corners: one */
+    return c;
+}
+/* <<rows of sampled pixels>> ch10 */
+
+static void render_rows_sampled(const scene *s, image *img,
+                                const camera_view *view, int first,
+                                int last, render_stats *stats)
+{
+    bool adaptive = s->pixels.pattern == PIXEL_ADAPTIVE;
+    /* the corners, prepared for this image: else a caller's mistake */
+    assert(!adaptive || (s->corners.width == img->width &&
+                         s->corners.height == img->height));
+    for (int j = first; adaptive && first < last && j <= last; j++)
+        corner_row(s, view, j, stats);
+    for (int j = first; j < last; j++)
+        for (int i = 0; i < img->width; i++) {
+            int rays;
+            vec3 c = adaptive ? adaptive_pixel(s, view, i, j, stats, &rays)
+                              : sampled_pixel(s, view, i, j, stats, &rays);
+            stats->pixel_rays[rays]++;
+            if (s->pixels.heatmap > 0)
+                c = rays_heat(rays, s->pixels.heatmap);
+            image_set(img, i, j, c);
+        }
+}
+
+void render_rows(const scene *s, image *img, int first, int last,
+                 render_stats *stats)
+{
+    /* the contract, checked: a caller's mistake, not bad input */
+    assert(img->width == s->cam.width && img->height == s->cam.height);
+    assert(0 <= first && first <= last && last <= img->height);
+    camera_view view = camera_view_of(&s->cam);
+    /* <<draw the rows another way>> ch10 */
+    if (s->pixels.pattern != PIXEL_CENTER || s->pixels.heatmap > 0) {
+        render_rows_sampled(s, img, &view, first, last, stats);
+        return;
+    }
+    for (int j = first; j < last; j++) {
+        for (int i = 0; i < img->width; i++) {
+            ray r = camera_view_ray(&view, i, j);
+            stats->primary_rays++;
+            image_set(img, i, j, pixel_color(s, r, stats));
+        }
+    }
+}
+
+void render(const scene *s, image *img, render_stats *stats)
+{
+    render_rows(s, img, 0, img->height, stats);
+}
+
+/* <<rendering in bands>> ch09 */
+/* <<the threads' shared work>> ch09 */
+/* What every thread shares: the image, handed out band by band. */
+typedef struct {
+    const scene *s;
+    image *img;
+    atomic_int next_band, rows_done;
+} band_queue;
+
+/* A thread's part: its own counts, on a cache line of their own. */
+typedef struct {
+    _Alignas(64) render_stats stats;
+    band_queue *queue;
+    pthread_t thread;
+} band_worker;
+
+static int cores_online(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > 256 ? 256 : (int)n;
+}
+
+/* <<a thread's bands>> ch09 */
+/* The next band of rows [*first, *last); false when none is left. */
+static bool take_band(band_queue *q, int *first, int *last)
+{
+    int band = atomic_fetch_add(&q->next_band, 1);
+    if (band >= (q->img->height + BAND_ROWS - 1) / BAND_ROWS)
+        return false;
+    *first = band * BAND_ROWS;
+    *last = *first + BAND_ROWS < q->img->height ? *first + BAND_ROWS
+                                                : q->img->height;
+    return true;
+}
+
+static void render_band(band_worker *w, int first, int last)
+{
+    render_rows(w->queue->s, w->queue->img, first, last, &w->stats);
+    atomic_fetch_add(&w->queue->rows_done, last - first);
+}
+
+static void *band_thread(void *worker)
+{
+    band_worker *w = worker;
+    int first, last;
+    while (take_band(w->queue, &first, &last))
+        render_band(w, first, last);
+    return NULL;
+}
+
+/* <<adding up the threads' counts>> ch09 */
+_Static_assert(sizeof(render_stats) % sizeof(long long) == 0,
+               "render_stats holds counts (long long) only");
+
+/* Adds the counts of part to sum. */
+static void add_stats(render_stats *sum, const render_stats *part)
+{
+    enum { N = sizeof(render_stats) / sizeof(long long) };
+    long long a[N], b[N];
+    memcpy(a, sum, sizeof a), memcpy(b, part, sizeof b);
+    for (int k = 0; k < N; k++)
+        a[k] += b[k];
+    memcpy(sum, a, sizeof a);
+}
+
+/* <<the threads at work>> ch09 */
+void render_in_bands(const scene *s, image *img, const render_settings *how,
+                     render_stats *stats)
+{
+    band_queue q = {.s = s, .img = img};
+    atomic_init(&q.next_band, 0), atomic_init(&q.rows_done, 0);
+    band_worker one, *w = NULL;
+    int n = how->threads > 0 ? how->threads : cores_online();
+    int started = 1, first, last;
+    if (n > 1)
+        w = memory_alloc_aligned(64, (size_t)n, sizeof *w);
+    if (w == NULL)
+        w = &one, n = 1; /* out of memory: this thread alone */
+    for (int k = 0; k < n; k++)
+        w[k] = (band_worker){.queue = &q};
+    while (started < n &&
+           pthread_create(&w[started].thread, NULL, band_thread,
+                          &w[started]) == 0)
+        started++; /* a thread that cannot start leaves its share to us */
+    while (take_band(&q, &first, &last)) { /* this thread is worker 0 */
+        render_band(&w[0], first, last);
+        if (how->progress != NULL)
+            how->progress(how->progress_context, atomic_load(&q.rows_done),
+                          img->height);
+    }
+    for (int k = 1; k < started; k++)
+        pthread_join(w[k].thread, NULL);
+    for (int k = 0; k < started; k++)
+        add_stats(stats, &w[k].stats);
+    if (w != &one)
+        free(w);
+}
