@@ -59,6 +59,9 @@ static bool load_scene(const options *opt, scene *s)
 {
     scene_error err;
     scene_init(s);
+    /* <<what the command line tells the scene>> ch09 */
+    s->accelerator_option = (mesh_accelerator)opt->accelerator;
+    s->bvh_settings.threads = opt->threads; /* the build's too */
     bool ok = opt->scene_path != NULL
                   ? scene_load(s, opt->scene_path, &err)
                   : scene_parse(s, DEFAULT_SCENE, sizeof DEFAULT_SCENE - 1,
@@ -159,6 +162,8 @@ int main(int argc, char **argv)
         report_mesh_hints(&s);
     /* <<once the scene is loaded>> += ch09 */
     how.threads = opt.threads;
+    if (opt.stats)
+        report_bvhs(&s);
     /* <<once the scene is loaded>> += ch10 */
     if (!prepare_pixels(&opt, &s, argv[0]))
         goto done;

@@ -226,6 +226,9 @@ int mesh_nearest(const mesh *m, const mesh_ray *mr, double t_min,
     /* <<search the mesh's tree>> ch08 */
     if (m->tree.node_count > 0)
         return mesh_search_tree(m, mr, near, far, t_min, t_max, out, stats);
+    /* <<search the mesh's tree>> += ch09 */
+    if (m->bvh.node_count > 0)
+        return mesh_search_bvh(m, mr, t_min, t_max, out, stats);
     stats->triangle_tests += m->triangle_count;
     return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
                                        m->triangle_count, t_min, t_max, out);
@@ -362,13 +365,22 @@ void mesh_free_tree(mesh *m)
     kdtree_free(&m->tree);
     free(m->leaf_corners);
     m->leaf_corners = NULL;
+    /* <<free the mesh's other trees>> ch09 */
+    bvh_free(&m->bvh);
+    free(m->bvh_corners);
+    m->bvh_corners = NULL;
 }
 
 long long mesh_tree_bytes(const mesh *m)
 {
     long long corners = m->leaf_corners ? m->tree.item_count : 0;
-    return kdtree_bytes(&m->tree) +
-           corners * (long long)sizeof *m->leaf_corners;
+    long long bytes = kdtree_bytes(&m->tree) +
+                      corners * (long long)sizeof *m->leaf_corners;
+    /* <<the bytes of the mesh's other trees>> ch09 */
+    if (m->bvh_corners != NULL)
+        bytes += bvh_bytes(&m->bvh) +
+                 m->bvh.item_count * (long long)sizeof *m->bvh_corners;
+    return bytes;
 }
 
 bool mesh_build_tree(mesh *m, const kdtree_params *p)
@@ -430,11 +442,109 @@ bool mesh_occluded(const mesh *m, const mesh_ray *mr, double t_min,
     if (m->tree.node_count > 0)
         return mesh_search_tree(m, mr, near, far, t_min, t_max, NULL,
                                 stats) >= 0;
+    /* <<a shadow ray through the mesh's other trees>> ch09 */
+    if (m->bvh.node_count > 0)
+        return mesh_search_bvh(m, mr, t_min, t_max, NULL, stats) >= 0;
     triangle_hit unused;
     stats->triangle_tests += m->triangle_count;
     return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
                                        m->triangle_count, t_min, t_max,
                                        &unused) >= 0;
+}
+/* <<intersecting a mesh>> += ch09 */
+
+/* The bounding boxes of m's triangles, into bounds. */
+static void triangle_boxes(const mesh *m, box *bounds)
+{
+    for (int k = 0; k < m->triangle_count; k++) {
+        const int *v = m->triangles[k].v;
+        vec3 a = m->vertices[v[0]], b = m->vertices[v[1]];
+        vec3 c = m->vertices[v[2]];
+        bounds[k] = (box){vec3_min(a, vec3_min(b, c)),
+                          vec3_max(a, vec3_max(b, c))};
+    }
+}
+
+/* The corners of the triangles items[0..n), in that order; NULL when
+ * out of memory. */
+static triangle_corners *corners_in_order(const mesh *m, const int *items,
+                                          int n)
+{
+    triangle_corners *out = memory_alloc((size_t)n, sizeof *out);
+    for (int i = 0; out != NULL && i < n; i++)
+        for (int c = 0; c < 3; c++)
+            out[i].p[c] = m->vertices[m->triangles[items[i]].v[c]];
+    return out;
+}
+
+bool mesh_build_bvh(mesh *m, const bvh_params *p)
+{
+    mesh_free_tree(m);
+    bvh_params q = *p;
+    q.min_items = q.min_items > 0 ? q.min_items : MESH_TREE_MIN_TRIANGLES;
+    box *bounds = memory_alloc((size_t)m->triangle_count, sizeof *bounds);
+    if (bounds != NULL)
+        triangle_boxes(m, bounds);
+    bool ok = bounds != NULL &&
+              bvh_build(&m->bvh, m->triangle_count, bounds, &q);
+    free(bounds);
+    if (ok && m->bvh.node_count > 0 &&
+        (m->bvh_corners = corners_in_order(m, m->bvh.items,
+                                           m->bvh.item_count)) == NULL)
+        ok = false, bvh_free(&m->bvh);
+    return ok;
+}
+
+/* The triangles of a leaf: the nearest hit by the tie rule (best: the
+ * nearest triangle so far, -1: none) into *out, or with out NULL any
+ * hit; its place in the leaf, or -1. */
+static int bvh_leaf_test(const mesh *m, const mesh_ray *mr, bvh_leaf leaf,
+                         double t_min, double t_max, int best,
+                         triangle_hit *out)
+{
+    const triangle_corners *corners = m->bvh_corners + leaf.first;
+    if (out == NULL)
+        return triangle_any_corners(&mr->shear, corners, leaf.count, t_min,
+                                    t_max) ? 0 : -1;
+    return triangle_nearest_of_leaf(&mr->shear, corners,
+                                    m->bvh.items + leaf.first, leaf.count,
+                                    t_min, t_max, best, out);
+}
+
+/* Every triangle of m, for a ray the float tests cannot take. */
+static int mesh_search_all(const mesh *m, const mesh_ray *mr, double t_min,
+                           double t_max, triangle_hit *out,
+                           render_stats *stats)
+{
+    triangle_hit unused;
+    stats->triangle_tests += m->triangle_count;
+    return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
+                                       m->triangle_count, t_min, t_max,
+                                       out != NULL ? out : &unused);
+}
+
+int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
+                    double t_max, triangle_hit *out, render_stats *stats)
+{
+    bvh_ray r;
+    if (!bvh_ray_of(mr->r.origin, mr->inv_dir, t_min, t_max, &r))
+        return mesh_search_all(m, mr, t_min, t_max, out, stats);
+    bvh_walk w;
+    bvh_leaf leaf;
+    int found = -1;
+    bvh_walk_start(&w, &m->bvh, &r);
+    while (bvh_walk_next(&w, t_max, &leaf)) {
+        stats->triangle_tests += leaf.count;
+        int k = bvh_leaf_test(m, mr, leaf, t_min, t_max, found, out);
+        if (k < 0)
+            continue;
+        found = m->bvh.items[leaf.first + k];
+        if (out == NULL)
+            break; /* any hit blocks a shadow ray */
+        t_max = out->t;
+    }
+    stats->bvh_nodes += w.visited;
+    return found;
 }
 
 /* <<the triangle's hit-point bound>> ch06 */

@@ -12,6 +12,8 @@
 #include "triangle.h"
 /* <<mesh includes>> ch08 */
 #include "kdtree.h"
+/* <<mesh includes>> += ch09 */
+#include "bvh.h"
 
 #define MESH_MAX_VERTICES (1 << 22)  /* 4.2 million: 100 MB of vertices */
 #define MESH_MAX_TRIANGLES (1 << 23) /* 8.4 million */
@@ -42,6 +44,9 @@ typedef struct {
     /* <<mesh members>> ch08 */
     kdtree tree;                    /* no nodes: no tree, brute force */
     triangle_corners *leaf_corners; /* tree.items' triangles, leaf by leaf */
+    /* <<mesh members>> += ch09 */
+    bvh bvh;                       /* no nodes: no BVH */
+    triangle_corners *bvh_corners; /* bvh.items' triangles, leaf by leaf */
 } mesh;
 
 void mesh_free(mesh *m);
@@ -145,5 +150,26 @@ int mesh_search_tree(const mesh *m, const mesh_ray *mr, double near,
 int mesh_nearest_recursive(const mesh *m, const mesh_ray *mr, double t_min,
                            double t_max, triangle_hit *out,
                            render_stats *stats);
+/* <<mesh intersection declarations>> += ch09 */
+
+/* The tree a scene gives its meshes; 0: the default. */
+typedef enum {
+    MESH_ACCELERATOR_DEFAULT,
+    MESH_ACCELERATOR_KDTREE,
+    MESH_ACCELERATOR_BVH
+} mesh_accelerator;
+
+#define MESH_DEFAULT_ACCELERATOR MESH_ACCELERATOR_BVH
+
+/* Builds m's BVH with p, in place of any tree it had (none for fewer
+ * than MESH_TREE_MIN_TRIANGLES); false when out of memory, and then m
+ * has no tree. */
+bool mesh_build_bvh(mesh *m, const bvh_params *p);
+
+/* The walk of m's BVH by mr: the nearest triangle hit in (t_min, t_max)
+ * by the kd-tree's tie rule and its hit in *out, or -1; with out NULL,
+ * any triangle hit will do. */
+int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
+                    double t_max, triangle_hit *out, render_stats *stats);
 
 #endif

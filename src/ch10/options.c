@@ -19,6 +19,7 @@ void options_usage(FILE *out, const char *program)
         "  --stats      print rays traced and time per phase on stderr\n"
         /* <<usage of more options>> ch09 */
         "  --threads N  render on N threads, 1 to 256 (default: one per core)\n"
+        "  --accelerator kdtree|bvh  the meshes' trees, overriding the scene's\n"
         /* <<usage of more options>> += ch10 */
         "  --pixel S    pixel settings S in place of the scene's: 'samples 16\n"
         "               pattern jittered', 'pattern adaptive threshold 0.05'\n"
@@ -99,6 +100,17 @@ bool options_parse(int argc, char **argv, options *opt)
                 return option_error(argv[0], "--threads expects a whole number "
                                              "from 1 to 256", value);
             opt->threads = (int)n;
+        }
+        else if (strcmp(arg, "--accelerator") == 0) {
+            if (k + 1 == argc)
+                return option_error(argv[0], "this option needs a value", arg);
+            const char *value = argv[++k];
+            opt->accelerator = strcmp(value, "kdtree") == 0 ? 1
+                               : strcmp(value, "bvh") == 0  ? 2
+                                                            : 0;
+            if (opt->accelerator == 0)
+                return option_error(argv[0], "--accelerator expects kdtree or bvh",
+                                    value);
         }
         /* <<more options>> += ch10 */
         else if (strcmp(arg, "--pixel") == 0) {

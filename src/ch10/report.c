@@ -51,6 +51,10 @@ void report_stats(const render_stats *st, const moment at[4])
     fprintf(stderr, "kd-tree nodes      %lld (%.1f a primary ray)\n", st->kd_nodes,
             (double)st->kd_nodes / (st->primary_rays ? st->primary_rays : 1));
     fprintf(stderr, "any-hit mesh tests %lld\n", st->mesh_occlusion_tests);
+    /* <<print statistics>> += ch09 */
+    fprintf(stderr, "bvh nodes          %lld (%.1f a primary ray)\n",
+            st->bvh_nodes,
+            (double)st->bvh_nodes / (st->primary_rays ? st->primary_rays : 1));
     /* <<print statistics>> += ch10 */
     report_pixels(st);
     double render_s = at[2].wall - at[1].wall;
@@ -98,6 +102,18 @@ void report_mesh_hints(const scene *s)
                     k + 1, triangles, pixels, pixels == 1 ? "" : "s",
                     triangles / pixels);
     }
+}
+/* <<other reports>> += ch09 */
+
+void report_bvhs(const scene *s)
+{
+    scene_bvh_summary b = scene_bvhs(s);
+    if (b.trees == 0)
+        return;
+    fprintf(stderr, "bvhs               %d, %d wide (%s): %lld nodes, %lld "
+                    "leaves, %.1f bytes a triangle\n",
+            b.trees, b.width, bvh_vector_width_name(), b.nodes, b.leaves,
+            (double)b.bytes / (double)b.triangles);
 }
 /* <<other reports>> += ch10 */
 

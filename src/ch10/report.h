@@ -16,6 +16,10 @@ void report_trees(const scene *s);
 /* A hint for each mesh of s with more triangles than the pixels it covers
  * can show. */
 void report_mesh_hints(const scene *s);
+/* <<report declarations>> += ch09 */
+
+/* The BVHs of s's meshes: their nodes, leaves and bytes a triangle. */
+void report_bvhs(const scene *s);
 /* <<report declarations>> += ch10 */
 
 /* Rays per pixel (mean, largest) and, for the adaptive pattern, the

@@ -94,6 +94,11 @@ typedef struct {
     int heatmap;               /* > 0: draw kd-tree nodes visited, white at
                                   this many, instead of light */
     double tree_seconds;       /* spent building the trees */
+    /* <<scene members>> += ch09 */
+    mesh_accelerator accelerator;        /* the accelerator statement's */
+    mesh_accelerator accelerator_option; /* --accelerator's, which wins */
+    int accelerator_line;                /* of the accelerator statement */
+    bvh_params bvh_settings;             /* zero: the defaults */
     /* <<scene members>> += ch10 */
     pixel_sampling pixels; /* the pixel statement's */
     int pixel_line;        /* its line; 0: the file has none */

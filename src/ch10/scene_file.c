@@ -430,6 +430,25 @@ static bool parse_kdtree(parser *p, scene *s)
                              "traversal_cost, intersection_cost, "
                              "empty_bonus, max_depth, heatmap)");
 }
+/* <<statements>> += ch09 */
+
+static bool parse_accelerator(parser *p, scene *s)
+{
+    /* in the order of mesh_accelerator, from 1 */
+    static const char *names[] = {"kdtree", "bvh"};
+    if (s->accelerator_line > 0)
+        return parse_fail_at(p, p->token, "expected one accelerator "
+                             "statement, found a second (the first is on "
+                             "line %d)", s->accelerator_line);
+    if (parse_next_token(p))
+        for (int k = 0; k < 2; k++)
+            if (parse_token_is(p, names[k])) {
+                s->accelerator = (mesh_accelerator)(k + 1);
+                s->accelerator_line = p->line_number;
+                return true;
+            }
+    return parse_expected(p, "expected an accelerator (kdtree, bvh)");
+}
 
 /* <<the statement loop>> ch01 */
 typedef bool (*statement_parser)(parser *p, scene *s);
@@ -455,6 +474,8 @@ static const struct {
     {"recursion", parse_recursion},
     /* <<scene keywords>> += ch08 */
     {"kdtree", parse_kdtree},
+    /* <<scene keywords>> += ch09 */
+    {"accelerator", parse_accelerator},
     /* <<scene keywords>> += ch10 */
     {"pixel", pixel_statement_parse},
 };
@@ -517,9 +538,13 @@ static bool tree_error(const scene *s, const char *name,
                                   "%s %lld bytes of geometry", problem,
                                   s->geometry_budget);
     const mesh_source *m = &s->meshes[why->mesh].source;
+    const char *tree = "kd-tree";
+    /* <<the name of the meshes' tree>> ch09 */
+    if (scene_mesh_accelerator(s) == MESH_ACCELERATOR_BVH)
+        tree = "BVH";
     return parse_fail_on_line(err, name, m->line, kind,
-                              "the kd-tree of mesh file '%s' %s %lld bytes "
-                              "of geometry", m->path, problem,
+                              "the %s of mesh file '%s' %s %lld bytes "
+                              "of geometry", tree, m->path, problem,
                               s->geometry_budget);
 }
 

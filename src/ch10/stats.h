@@ -36,6 +36,8 @@ typedef struct {
     /* <<statistics counters>> += ch08 */
     long long kd_nodes; /* kd-tree nodes visited */
     long long mesh_occlusion_tests; /* meshes asked for any hit, not nearest */
+    /* <<statistics counters>> += ch09 */
+    long long bvh_nodes; /* BVH nodes whose children a ray tested */
     /* <<statistics counters>> += ch10 */
     long long pixel_rays[290];  /* pixels that cost n rays, n <= 289 */
     long long pixel_depths[5];  /* adaptive pixels by the depth reached */

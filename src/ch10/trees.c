@@ -84,6 +84,15 @@ static bool build_object_tree(scene *s)
 }
 
 /* <<building the scene's trees>> ch08 */
+/* Builds mesh m's tree as the scene asks; false when out of memory. */
+static bool build_mesh_tree(const scene *s, mesh *m)
+{
+    /* <<the scene's other trees of a mesh>> ch09 */
+    if (scene_mesh_accelerator(s) == MESH_ACCELERATOR_BVH)
+        return mesh_build_bvh(m, &s->bvh_settings);
+    return mesh_build_tree(m, &s->tree_params);
+}
+
 /* Adds bytes to the scene's geometry; false when that passes the budget. */
 static bool count_tree(scene *s, long long bytes)
 {
@@ -97,7 +106,7 @@ static bool build_all(scene *s, scene_tree_failure *why)
     for (int k = 0; k < s->mesh_count; k++) {
         mesh *m = &s->meshes[k];
         *why = (scene_tree_failure){.mesh = k};
-        if (!mesh_build_tree(m, &s->tree_params))
+        if (!build_mesh_tree(s, m))
             return false;
         if (!count_tree(s, mesh_tree_bytes(m)))
             return why->over_budget = true, false;
@@ -152,6 +161,31 @@ scene_tree_summary scene_trees(const scene *s)
     }
     add_tree(&sum, &s->object_tree);
     sum.items += s->object_tree.node_count ? s->object_count : 0;
+    return sum;
+}
+/* <<what the trees hold>> += ch09 */
+
+mesh_accelerator scene_mesh_accelerator(const scene *s)
+{
+    if (s->accelerator_option || s->accelerator)
+        return s->accelerator_option ? s->accelerator_option
+                                     : s->accelerator;
+    /* the heat map draws kd-tree nodes: it asks for kd-trees */
+    return s->heatmap > 0 ? MESH_ACCELERATOR_KDTREE
+                          : MESH_DEFAULT_ACCELERATOR;
+}
+
+scene_bvh_summary scene_bvhs(const scene *s)
+{
+    scene_bvh_summary sum = {0};
+    for (int k = 0; k < s->mesh_count; k++) {
+        const mesh *m = &s->meshes[k];
+        if (m->bvh.node_count == 0)
+            continue;
+        sum.trees++, sum.width = m->bvh.width;
+        sum.nodes += m->bvh.node_count, sum.leaves += m->bvh.leaf_count;
+        sum.bytes += mesh_tree_bytes(m), sum.triangles += m->triangle_count;
+    }
     return sum;
 }
 

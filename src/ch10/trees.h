@@ -34,5 +34,18 @@ scene_tree_summary scene_trees(const scene *s);
 /* How many pixels of the image the box around object o covers at most:
  * camera_box_pixels of its box in the world. */
 double scene_object_pixels(const scene *s, const object *o);
+/* <<scene tree declarations>> += ch09 */
+
+/* The tree the scene's meshes get: --accelerator's, else the accelerator
+ * statement's, else MESH_DEFAULT_ACCELERATOR. */
+mesh_accelerator scene_mesh_accelerator(const scene *s);
+
+/* What the meshes' BVHs hold, for --stats. */
+typedef struct {
+    int trees, width;
+    long long nodes, leaves, bytes, triangles;
+} scene_bvh_summary;
+
+scene_bvh_summary scene_bvhs(const scene *s);
 
 #endif

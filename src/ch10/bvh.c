@@ -1,0 +1,485 @@
+/* bvh.c: building bounding volume hierarchies (chapter 9). See bvh.h. */
+#include "bvh.h"
+
+#include <assert.h>
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <unistd.h>
+#include "memory.h"
+
+/* <<bvh storage>> ch09 */
+bvh_params bvh_default_params(void)
+{
+    return (bvh_params){.width = BVH_WIDTH, .bins = 32, .max_leaf_items = 8,
+                        .traversal_cost = 1, .intersection_cost = 1,
+                        .min_items = 1};
+}
+
+/* p, its zeros replaced by the defaults. */
+static bvh_params bvh_filled(const bvh_params *p)
+{
+    bvh_params d = bvh_default_params(), q = *p;
+    q.width = q.width ? q.width : d.width;
+    q.bins = q.bins ? q.bins : d.bins;
+    q.max_leaf_items = q.max_leaf_items ? q.max_leaf_items : d.max_leaf_items;
+    q.traversal_cost = q.traversal_cost ? q.traversal_cost
+                                        : d.traversal_cost;
+    q.intersection_cost = q.intersection_cost ? q.intersection_cost
+                                              : d.intersection_cost;
+    q.min_items = q.min_items ? q.min_items : d.min_items;
+    return q;
+}
+
+void bvh_free(bvh *t)
+{
+    free(t->nodes), free(t->nodes4), free(t->nodes8), free(t->items);
+    *t = (bvh){0};
+}
+
+long long bvh_bytes(const bvh *t)
+{
+    long long node = t->width == 2   ? (long long)sizeof(bvh_node)
+                     : t->width == 4 ? (long long)sizeof(bvh_node4)
+                                     : (long long)sizeof(bvh_node8);
+    return t->node_capacity * node + (long long)t->item_count * sizeof(int);
+}
+
+/* <<a node's box in float>> ch09 */
+/* The box b, widened by pad, in float and rounded outward: every point
+ * of b lies inside it. */
+static void bvh_set_box(float out[6], const box *b, double pad)
+{
+    for (int a = 0; a < 3; a++) {
+        out[a] = bvh_float_down(vec3_axis(b->lo, a) - pad);
+        out[a + 3] = bvh_float_up(vec3_axis(b->hi, a) + pad);
+    }
+}
+
+static box box_empty(void)
+{
+    return (box){{INFINITY, INFINITY, INFINITY},
+                 {-INFINITY, -INFINITY, -INFINITY}};
+}
+
+static box box_union(box a, box b)
+{
+    return (box){vec3_min(a.lo, b.lo), vec3_max(a.hi, b.hi)};
+}
+
+/* BVH_THICKNESS times the largest coordinate of the boxes. */
+static double bvh_pad(const box *bounds, int count)
+{
+    double most = 0;
+    for (int k = 0; k < count; k++) {
+        for (int a = 0; a < 3; a++)
+            most = fmax(most, fmax(fabs(vec3_axis(bounds[k].lo, a)),
+                                   fabs(vec3_axis(bounds[k].hi, a))));
+    }
+    return BVH_THICKNESS * most;
+}
+
+bool bvh_ray_of(vec3 origin, vec3 inv, double t_min, double t_max,
+                bvh_ray *out)
+{
+    for (int a = 0; a < 3; a++) {
+        double o = vec3_axis(origin, a), i = vec3_axis(inv, a);
+        if (!(fabs(o) <= 0x1p100) || !(fabs(i) >= 0x1p-100))
+            return false;
+        bool ahead = !signbit(i); /* d = +0 too: 1 / d = +inf */
+        out->near[a] = ahead ? a : a + 3, out->far[a] = ahead ? a + 3 : a;
+        /* rounded so that each t can only err outward */
+        out->o_near[a] = ahead ? bvh_float_up(o) : bvh_float_down(o);
+        out->o_far[a] = ahead ? bvh_float_down(o) : bvh_float_up(o);
+        out->inv[a] = (float)i;
+    }
+    out->t_min = bvh_float_down(t_min);
+    out->t_max = bvh_float_up(t_max * (1 + BVH_SLACK));
+    return true;
+}
+
+/* <<the bins of a split>> ch09 */
+/* What a build shares between its nodes and its threads; only items and
+ * slots are written, each range of them by one thread. */
+typedef struct {
+    const box *bounds;  /* of each item */
+    const vec3 *centers; /* of each item's box */
+    int *items;          /* reordered range by range */
+    bvh_node *slots;     /* 2 count - 1 of them: see build_range */
+    bvh_params p;
+    double pad;
+} bvh_builder;
+
+typedef struct {
+    box b;
+    int count;
+} bvh_bin;
+
+/* The bin of the center c on axis, for bins from lo, scale bins a unit. */
+static int bin_of(vec3 c, int axis, double lo, double scale, int bins)
+{
+    int k = (int)((vec3_axis(c, axis) - lo) * scale);
+    return k < 0 ? 0 : k >= bins ? bins - 1 : k;
+}
+
+/* The items of items[b..e) in their bins: their count, and their box. */
+static void fill_bins(const bvh_builder *bd, int b, int e, int axis,
+                      double lo, double scale, bvh_bin *bins)
+{
+    for (int k = 0; k < bd->p.bins; k++)
+        bins[k] = (bvh_bin){box_empty(), 0};
+    for (int i = b; i < e; i++) {
+        int item = bd->items[i];
+        bvh_bin *in = &bins[bin_of(bd->centers[item], axis, lo, scale,
+                                   bd->p.bins)];
+        in->count++, in->b = box_union(in->b, bd->bounds[item]);
+    }
+}
+
+/* <<the binned split>> ch09 */
+/* The cheapest plane between the bins: the first bin above it, its cost
+ * in *cost; area is the node's (not 0). */
+static int best_bin(const bvh_builder *bd, const bvh_bin *bins, double area,
+                    double *cost)
+{
+    int n = bd->p.bins, right_count[BVH_MAX_BINS], left = 0, best = -1;
+    double right_area[BVH_MAX_BINS];
+    box sweep = box_empty();
+    for (int k = n - 1, count = 0; k >= 1; k--) { /* from the right */
+        sweep = box_union(sweep, bins[k].b), count += bins[k].count;
+        right_area[k] = box_area(&sweep), right_count[k] = count;
+    }
+    sweep = box_empty(), *cost = INFINITY;
+    for (int k = 1; k < n; k++) { /* from the left */
+        sweep = box_union(sweep, bins[k - 1].b), left += bins[k - 1].count;
+        if (left == 0 || right_count[k] == 0)
+            continue;
+        double c = bd->p.traversal_cost +
+                   bd->p.intersection_cost *
+                       (box_area(&sweep) * left +
+                        right_area[k] * right_count[k]) / area;
+        if (c < *cost)
+            *cost = c, best = k;
+    }
+    return best;
+}
+
+/* Puts the items of items[b..e) in bins below k first; the first of the
+ * others. */
+static int partition(const bvh_builder *bd, int b, int e, int axis,
+                     double lo, double scale, int k)
+{
+    int *it = bd->items, i = b, j = e - 1;
+    while (i <= j) {
+        if (bin_of(bd->centers[it[i]], axis, lo, scale, bd->p.bins) < k) {
+            i++;
+        } else {
+            int swap = it[i];
+            it[i] = it[j], it[j--] = swap;
+        }
+    }
+    return i;
+}
+
+/* The box around the centers of items[b..e). */
+static box center_box(const bvh_builder *bd, int b, int e)
+{
+    box c = box_empty();
+    for (int i = b; i < e; i++)
+        c = box_union(c, (box){bd->centers[bd->items[i]],
+                               bd->centers[bd->items[i]]});
+    return c;
+}
+
+/* Where items[b..e), in the box bb, split: the first item of the upper
+ * side, the items reordered and the axis in *axis; -1: a leaf. */
+static int split_range(const bvh_builder *bd, int b, int e, int depth,
+                       const box *bb, int *axis)
+{
+    int n = e - b;
+    box cb = center_box(bd, b, e);
+    vec3 size = vec3_sub(cb.hi, cb.lo);
+    *axis = size.y > size.x ? 1 : 0; /* the longest side of the centers */
+    *axis = size.z > vec3_axis(size, *axis) ? 2 : *axis;
+    double lo = vec3_axis(cb.lo, *axis), extent = vec3_axis(size, *axis);
+    if (n == 1)
+        return -1;
+    if (!(extent > 0) || depth >= BVH_MEDIAN_DEPTH) /* the middle */
+        return n <= bd->p.max_leaf_items ? -1 : b + n / 2;
+    bvh_bin bins[BVH_MAX_BINS];
+    double scale = bd->p.bins / extent, area = box_area(bb), cost;
+    fill_bins(bd, b, e, *axis, lo, scale, bins);
+    int k = best_bin(bd, bins, area > 0 ? area : 1, &cost);
+    if (k < 0 || (n <= bd->p.max_leaf_items &&
+                  bd->p.intersection_cost * n <= cost))
+        return k < 0 && n > bd->p.max_leaf_items ? b + n / 2 : -1;
+    return partition(bd, b, e, *axis, lo, scale, k);
+}
+
+/* <<building a range>> ch09 */
+/* Fills slot s with the node of items[b..e); the first item of its
+ * upper child, or -1 for a leaf. */
+static int build_node(const bvh_builder *bd, int b, int e, int s, int depth)
+{
+    box bb = box_empty();
+    for (int i = b; i < e; i++)
+        bb = box_union(bb, bd->bounds[bd->items[i]]);
+    bvh_node *n = &bd->slots[s];
+    bvh_set_box(n->box, &bb, bd->pad);
+    int axis = 0, m = split_range(bd, b, e, depth, &bb, &axis);
+    n->index = (uint32_t)(m < 0 ? b : s + 2 * (m - b));
+    n->count = (uint16_t)(m < 0 ? e - b : 0), n->axis = (uint16_t)axis;
+    return m;
+}
+
+/* Builds the subtree of items[b..e) into slots[s .. s + 2 (e - b) - 1):
+ * its root at s, its first child's subtree from s + 1, its second's
+ * after that. A pure function of the range, whichever thread runs it. */
+static void build_range(const bvh_builder *bd, int b, int e, int s,
+                        int depth)
+{
+    int m = build_node(bd, b, e, s, depth);
+    if (m < 0)
+        return;
+    build_range(bd, b, m, s + 1, depth + 1);
+    build_range(bd, m, e, s + 2 * (m - b), depth + 1);
+}
+
+/* <<the build's threads>> ch09 */
+/* A subtree left for the threads: items[b..e) from slot s. */
+typedef struct {
+    int b, e, s, depth;
+} bvh_task;
+
+typedef struct {
+    const bvh_builder *bd;
+    const bvh_task *tasks;
+    int task_count;
+    atomic_int next;
+} bvh_queue;
+
+/* Builds the top of the subtree of items[b..e) at slot s, and leaves its
+ * subtrees of at most small items to tasks. */
+static void build_top(const bvh_builder *bd, int b, int e, int s, int depth,
+                      int small, bvh_task *tasks, int *count)
+{
+    if (e - b <= small) {
+        tasks[(*count)++] = (bvh_task){b, e, s, depth};
+        return;
+    }
+    int m = build_node(bd, b, e, s, depth);
+    if (m < 0)
+        return;
+    build_top(bd, b, m, s + 1, depth + 1, small, tasks, count);
+    build_top(bd, m, e, s + 2 * (m - b), depth + 1, small, tasks, count);
+}
+
+static void *build_tasks(void *queue)
+{
+    bvh_queue *q = queue;
+    for (int k; (k = atomic_fetch_add(&q->next, 1)) < q->task_count;)
+        build_range(q->bd, q->tasks[k].b, q->tasks[k].e, q->tasks[k].s,
+                    q->tasks[k].depth);
+    return NULL;
+}
+
+#define BVH_MAX_THREADS 256
+
+/* The tasks, on threads threads (0: one per core); this one is one. */
+static void run_tasks(bvh_queue *q, int threads)
+{
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    int n = threads > 0 ? threads : cores > 0 ? (int)cores : 1;
+    pthread_t id[BVH_MAX_THREADS];
+    int started = 0;
+    n = n < BVH_MAX_THREADS ? n : BVH_MAX_THREADS;
+    while (started < n - 1 &&
+           pthread_create(&id[started], NULL, build_tasks, q) == 0)
+        started++; /* a thread that cannot start leaves its share to us */
+    build_tasks(q);
+    for (int k = 0; k < started; k++)
+        pthread_join(id[k], NULL);
+}
+
+/* <<closing the gaps>> ch09 */
+/* Copies the subtree at slots[s] into t->nodes from t->node_count on, in
+ * the order of a walk, each node's first child right after it; where
+ * its root went. */
+static int close_gaps(const bvh_node *slots, int s, bvh *t, int depth)
+{
+    int k = t->node_count++;
+    t->nodes[k] = slots[s];
+    t->depth = depth > t->depth ? depth : t->depth;
+    if (slots[s].count > 0)
+        return t->leaf_count++, k;
+    close_gaps(slots, s + 1, t, depth + 1);
+    t->nodes[k].index =
+        (uint32_t)close_gaps(slots, (int)slots[s].index, t, depth + 1);
+    return k;
+}
+
+/* <<collapsing to wide nodes>> ch09 */
+/* A wide node's lanes: box[face * width + child], child, count. */
+typedef struct {
+    float *box;
+    uint32_t *child, *count;
+    int width;
+} bvh_lanes;
+
+static bvh_lanes lanes_of(bvh *t, int k)
+{
+    if (t->width == 4)
+        return (bvh_lanes){&t->nodes4[k].box[0][0], t->nodes4[k].child,
+                           t->nodes4[k].count, 4};
+    return (bvh_lanes){&t->nodes8[k].box[0][0], t->nodes8[k].child,
+                       t->nodes8[k].count, 8};
+}
+
+static double float_box_area(const float b[6])
+{
+    double x = b[3] - b[0], y = b[4] - b[1], z = b[5] - b[2];
+    return x * y + y * z + z * x;
+}
+
+/* The children of binary node k, opened until there are width of them or
+ * leaves only: the interior child with the largest box first. */
+static int open_children(const bvh_node *nodes, int k, int width,
+                         int kids[8])
+{
+    int n = 2;
+    kids[0] = k + 1, kids[1] = (int)nodes[k].index;
+    while (n < width) {
+        int widest = -1;
+        double most = -1;
+        for (int c = 0; c < n; c++)
+            if (nodes[kids[c]].count == 0 &&
+                float_box_area(nodes[kids[c]].box) > most)
+                most = float_box_area(nodes[kids[c]].box), widest = c;
+        if (widest < 0)
+            break;
+        int open = kids[widest];
+        kids[widest] = open + 1, kids[n++] = (int)nodes[open].index;
+    }
+    return n;
+}
+
+/* Fills wide node w with the children of binary node k, and the wide
+ * nodes below it from t->node_count on. */
+static void collapse(bvh *t, const bvh_node *nodes, int k, int w)
+{
+    int kids[8], n = 1;
+    kids[0] = k; /* a root that is a leaf: one child */
+    if (nodes[k].count == 0)
+        n = open_children(nodes, k, t->width, kids);
+    bvh_lanes lane = lanes_of(t, w);
+    for (int c = 0; c < lane.width; c++) {
+        for (int f = 0; f < 6; f++) /* no box yet: lo +inf, hi -inf */
+            lane.box[f * lane.width + c] = f < 3 ? INFINITY : -INFINITY;
+        lane.child[c] = BVH_NO_CHILD, lane.count[c] = 0;
+    }
+    for (int c = 0; c < n; c++) {
+        const bvh_node *kid = &nodes[kids[c]];
+        for (int f = 0; f < 6; f++)
+            lane.box[f * lane.width + c] = kid->box[f];
+        lane.count[c] = kid->count, lane.child[c] = kid->index;
+        if (kid->count == 0) {
+            lane.child[c] = (uint32_t)t->node_count++;
+            collapse(t, nodes, kids[c], (int)lane.child[c]);
+        }
+    }
+}
+
+/* t's binary nodes in an array of their number (kept larger when even a
+ * smaller one cannot be had). */
+static bool shrink_binary(bvh *t)
+{
+    bvh_node *fit = memory_resize(t->nodes, (size_t)t->node_count,
+                                  sizeof *fit);
+    t->nodes = fit != NULL ? fit : t->nodes;
+    t->node_capacity = fit != NULL ? t->node_count : t->node_capacity;
+    return true;
+}
+
+/* t's binary nodes collapsed into nodes of t->width; false: no memory. */
+static bool make_wide(bvh *t)
+{
+    int most = t->node_count - t->leaf_count + 1; /* wide nodes at most */
+    size_t size = t->width == 4 ? sizeof(bvh_node4) : sizeof(bvh_node8);
+    void *wide = memory_alloc_aligned(64, (size_t)most, size);
+    if (wide == NULL)
+        return false;
+    if (t->width == 4)
+        t->nodes4 = wide;
+    else
+        t->nodes8 = wide;
+    bvh_node *binary = t->nodes;
+    t->nodes = NULL, t->node_count = 1, t->node_capacity = most;
+    collapse(t, binary, 0, 0);
+    free(binary);
+    return true;
+}
+
+/* <<starting a bvh build>> ch09 */
+/* The binary tree of bd's items in t, on p->threads threads. */
+static void build_binary(bvh_builder *bd, vec3 *centers, int count,
+                         bvh_task *tasks, bvh *t)
+{
+    for (int k = 0; k < count; k++) {
+        const box *b = &bd->bounds[k];
+        centers[k] = vec3_scale(vec3_add(b->lo, b->hi), 0.5);
+        bd->items[k] = k;
+    }
+    bd->centers = centers;
+    int small = count / 64 > 1024 ? count / 64 : 1024; /* a task's size */
+    bvh_queue q = {.bd = bd, .tasks = tasks};
+    build_top(bd, 0, count, 0, 0, small, tasks, &q.task_count);
+    atomic_init(&q.next, 0);
+    run_tasks(&q, bd->p.threads);
+    close_gaps(bd->slots, 0, t, 0);
+}
+
+bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
+{
+    bvh_params q = bvh_filled(p);
+    assert(q.width == 2 || q.width == 4 || q.width == 8);
+    assert(q.bins >= 2 && q.bins <= BVH_MAX_BINS);
+    assert(q.max_leaf_items >= 1 && q.max_leaf_items <= 15);
+    *t = (bvh){.width = q.width};
+    if (count < q.min_items || count < 1)
+        return true;
+    size_t n = (size_t)count, slots = 2 * n - 1;
+    bvh_builder bd = {.bounds = bounds, .p = q, .pad = bvh_pad(bounds, count)};
+    vec3 *centers = memory_alloc(n, sizeof *centers);
+    bvh_task *tasks = memory_alloc(n, sizeof *tasks);
+    bd.slots = memory_alloc(slots, sizeof *bd.slots);
+    t->items = bd.items = memory_alloc(n, sizeof *t->items);
+    t->nodes = memory_alloc(slots, sizeof *t->nodes);
+    bool ok = centers && tasks && bd.slots && t->items && t->nodes;
+    t->node_capacity = (int)slots, t->item_count = ok ? count : 0;
+    if (ok)
+        build_binary(&bd, centers, count, tasks, t);
+    free(centers), free(tasks), free(bd.slots);
+    ok = ok && (q.width == 2 ? shrink_binary(t) : make_wide(t));
+    if (!ok)
+        bvh_free(t);
+    return ok;
+}
+
+const char *bvh_vector_width_name(void)
+{
+#if defined(RT_SCALAR)
+    return "scalar";
+#elif defined(__AVX512F__)
+    return "AVX-512";
+#elif defined(__AVX2__)
+    return "AVX2";
+#elif defined(__AVX__)
+    return "AVX";
+#elif defined(__SSE2__)
+    return "SSE2";
+#elif defined(__ARM_NEON)
+    return "NEON";
+#else
+    return "vector extensions";
+#endif
+}

@@ -1,0 +1,363 @@
+/* bvh.h: bounding volume hierarchies over items with boxes, built by the
+ * binned surface area heuristic, and their nodes' ray tests (chapter 9).
+ *
+ * A bvh sorts count items (triangles of a mesh), each with a bounding
+ * box, into a tree of boxes: every node's box holds its items' boxes, in
+ * float, rounded outward. bvh_build makes one (false only when out of
+ * memory); the tree knows nothing else of its items. Zero means default
+ * in bvh_params. A tree with no nodes is "no tree". Nodes have 2, 4 or 8
+ * children (p->width); a bvh_walk hands out the leaves whose boxes a ray
+ * meets, nearest box first, and the caller tests their items. */
+#ifndef BVH_H
+#define BVH_H
+
+#include <math.h>
+#include <stdbool.h>
+#include <stdint.h>
+#include <string.h>
+#include "box.h"
+
+/* <<bvh parameters>> ch09 */
+/* How to build a bvh; zero means default, in every member. */
+typedef struct {
+    int width;                /* children a node: 2, 4 or 8; 0: BVH_WIDTH */
+    int bins;                 /* candidate planes + 1, 2 to BVH_MAX_BINS;
+                                 0: 32 */
+    int max_leaf_items;       /* 1 to 15; 0: 8 */
+    double traversal_cost;    /* K_T: one node's box test; 0: 1 */
+    double intersection_cost; /* K_I: one item's test; 0: 1 */
+    int threads;              /* of the build; 0: one per core */
+    int min_items;            /* fewer items get no tree; 0: 1 */
+} bvh_params;
+
+/* Four: no slower than eight on the bunny, even with AVX (measured
+ * below), and half the node. */
+#define BVH_WIDTH 4
+#define BVH_MAX_BINS 64
+/* The build cuts in the middle below this depth: the walk's stack has
+ * room for BVH_MAX_DEPTH levels. */
+#define BVH_MEDIAN_DEPTH 32
+#define BVH_MAX_DEPTH 64
+/* Every box is this much larger, relative to the largest coordinate of
+ * all items: as chapter 8's planes are thick (KDTREE_THICKNESS), for the
+ * rounding of the triangle tests. */
+#define BVH_THICKNESS 0x1p-32
+
+/* The defaults, every member filled. */
+bvh_params bvh_default_params(void);
+
+/* <<bvh nodes>> ch09 */
+/* A node of the binary tree, and its box: lo x, y, z, then hi x, y, z,
+ * in float, rounded outward. Interior node k (count 0) was split on
+ * axis; its children are nodes k + 1 and index. A leaf lists count items
+ * from items[index]. 32 bytes, two to a cache line. */
+typedef struct {
+    float box[6];
+    uint32_t index;
+    uint16_t count, axis;
+} bvh_node;
+
+_Static_assert(sizeof(bvh_node) == 32, "a node is 32 bytes");
+
+/* <<bvh wide nodes>> ch09 */
+/* A node of four or eight children: their boxes as a structure of
+ * arrays, box[face][child], faces as in bvh_node, so that one vector
+ * reads one face of every child. Child c is node child[c] (count[c] 0),
+ * or a leaf of count[c] items from items[child[c]]; an unused child has
+ * count 0, child BVH_NO_CHILD and an empty box (lo +inf, hi -inf). */
+#define BVH_NO_CHILD UINT32_MAX
+
+typedef struct {
+    float box[6][4];
+    uint32_t child[4], count[4];
+} bvh_node4;
+
+typedef struct {
+    float box[6][8];
+    uint32_t child[8], count[8];
+} bvh_node8;
+
+_Static_assert(sizeof(bvh_node4) == 128, "two cache lines");
+_Static_assert(sizeof(bvh_node8) == 256, "four cache lines");
+
+typedef struct bvh {
+    int width;             /* 2, 4 or 8 */
+    bvh_node *nodes;       /* width 2; node 0 is the root */
+    bvh_node4 *nodes4;     /* width 4 */
+    bvh_node8 *nodes8;     /* width 8 */
+    int node_count;        /* of the width's kind; 0: no tree */
+    int node_capacity;     /* allocated */
+    int *items;            /* leaf after leaf */
+    int item_count, leaf_count, depth;
+} bvh;
+
+/* <<bvh building>> ch09 */
+/* Builds t over count items whose bounding boxes are bounds[0..count)
+ * by p: no tree when count < p->min_items. The same tree whatever
+ * p->threads. False only when out of memory (and then no tree). */
+bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p);
+
+void bvh_free(bvh *t);
+
+/* The bytes t holds: its nodes and its items. */
+long long bvh_bytes(const bvh *t);
+
+/* Which node test this build uses: "scalar", or the vector instructions
+ * the compiler was allowed ("SSE2", "AVX2", ...). */
+const char *bvh_vector_width_name(void);
+
+/* <<bvh ray tests>> ch09 */
+/* <<the ray's float constants>> ch09 */
+/* What a ray's box tests need, in float: for each axis the face it meets
+ * first (near, 0..5 into a box) and last (far), the origin rounded
+ * towards the side that makes each face's t smaller (o_near) and larger
+ * (o_far), and 1 / d; and its interval. */
+typedef struct {
+    float o_near[3], o_far[3], inv[3];
+    int near[3], far[3];
+    float t_min, t_max;
+} bvh_ray;
+
+/* Where a far face's t may lie above the float t computed (the rounding
+ * of o_far - face, of the product and of 1 / d: 2 gamma_3, and more). */
+#define BVH_FAR_WIDENING (1 + 0x1p-21f)
+/* How far beyond the nearest hit a box may start and still be opened:
+ * relative, far above the rounding of its float t_near. */
+#define BVH_SLACK 0x1p-20
+
+/* The constants of the ray origin + t d over [t_min, t_max], with
+ * inv = 1 / d; false for a ray beyond float's reach (a coordinate of
+ * the origin past 2^100, or of 1 / d below 2^-100 but not 0), which is
+ * then searched without the tree. t_min >= 0. */
+bool bvh_ray_of(vec3 origin, vec3 inv, double t_min, double t_max,
+                bvh_ray *out);
+
+/* <<the scalar node test>> ch09 */
+/* x rounded to the float just below it (or equal), and just above. */
+static inline float bvh_float_down(double x)
+{
+    float f = (float)x;
+    return (double)f > x ? nextafterf(f, -INFINITY) : f;
+}
+
+static inline float bvh_float_up(double x)
+{
+    float f = (float)x;
+    return (double)f < x ? nextafterf(f, INFINITY) : f;
+}
+
+/* Which of lanes boxes, their faces stride apart (box[face * stride +
+ * lane]), the ray meets in [r->t_min, t_max]: a bit each in the mask,
+ * and in t_near[lane] where it enters. A NaN (0 * inf: the ray in a
+ * face's plane) never narrows the interval. */
+static inline unsigned bvh_lanes_test_scalar(const float *box, int stride,
+                                             int lanes, const bvh_ray *r,
+                                             float t_max, float *t_near)
+{
+    unsigned mask = 0;
+    for (int c = 0; c < lanes; c++) {
+        float t0 = r->t_min, t1 = t_max;
+        for (int a = 0; a < 3; a++) {
+            float enter = box[r->near[a] * stride + c] - r->o_near[a];
+            float leave = box[r->far[a] * stride + c] - r->o_far[a];
+            enter *= r->inv[a];
+            leave = leave * r->inv[a] * BVH_FAR_WIDENING;
+            t0 = enter > t0 ? enter : t0; /* a NaN keeps t0 */
+            t1 = leave < t1 ? leave : t1;
+        }
+        t_near[c] = t0;
+        mask |= (unsigned)(t0 <= t1) << c;
+    }
+    return mask;
+}
+
+/* <<the vector node tests>> ch09 */
+typedef float bvh_f4 __attribute__((vector_size(16)));
+typedef int32_t bvh_i4 __attribute__((vector_size(16)));
+
+/* bvh_lanes_test_scalar of four lanes at once. */
+static inline unsigned bvh_lanes4_test_vector(const float *box, int stride,
+                                              const bvh_ray *r, float t_max,
+                                              float t_near[4])
+{
+    bvh_f4 t0 = {r->t_min, r->t_min, r->t_min, r->t_min};
+    bvh_f4 t1 = {t_max, t_max, t_max, t_max}, face;
+    for (int a = 0; a < 3; a++) {
+        memcpy(&face, box + r->near[a] * stride, sizeof face);
+        bvh_f4 tn = (face - r->o_near[a]) * r->inv[a];
+        memcpy(&face, box + r->far[a] * stride, sizeof face);
+        bvh_f4 tf = (face - r->o_far[a]) * r->inv[a] * BVH_FAR_WIDENING;
+        bvh_i4 take0 = tn > t0, take1 = tf < t1; /* false for a NaN */
+        t0 = (bvh_f4)(((bvh_i4)tn & take0) | ((bvh_i4)t0 & ~take0));
+        t1 = (bvh_f4)(((bvh_i4)tf & take1) | ((bvh_i4)t1 & ~take1));
+    }
+    memcpy(t_near, &t0, sizeof t0);
+    bvh_i4 hit = t0 <= t1;
+    unsigned mask = 0;
+    for (int c = 0; c < 4; c++)
+        mask |= (unsigned)(hit[c] & 1) << c;
+    return mask;
+}
+
+static inline unsigned bvh_node4_test_vector(const bvh_node4 *n,
+                                             const bvh_ray *r, float t_max,
+                                             float t_near[4])
+{
+    return bvh_lanes4_test_vector(&n->box[0][0], 4, r, t_max, t_near);
+}
+
+typedef float bvh_f8 __attribute__((vector_size(32)));
+typedef int32_t bvh_i8 __attribute__((vector_size(32)));
+
+static inline unsigned bvh_node8_test_vector(const bvh_node8 *n,
+                                             const bvh_ray *r, float t_max,
+                                             float t_near[8])
+{
+#ifndef __AVX__ /* no vectors of eight floats: two of four */
+    const float *box = &n->box[0][0];
+    return bvh_lanes4_test_vector(box, 8, r, t_max, t_near) |
+           bvh_lanes4_test_vector(box + 4, 8, r, t_max, t_near + 4) << 4;
+#else
+    float lo = r->t_min, hi = t_max;
+    bvh_f8 t0 = {lo, lo, lo, lo, lo, lo, lo, lo};
+    bvh_f8 t1 = {hi, hi, hi, hi, hi, hi, hi, hi}, face;
+    for (int a = 0; a < 3; a++) {
+        memcpy(&face, n->box[r->near[a]], sizeof face);
+        bvh_f8 tn = (face - r->o_near[a]) * r->inv[a];
+        memcpy(&face, n->box[r->far[a]], sizeof face);
+        bvh_f8 tf = (face - r->o_far[a]) * r->inv[a] * BVH_FAR_WIDENING;
+        bvh_i8 take0 = tn > t0, take1 = tf < t1;
+        t0 = (bvh_f8)(((bvh_i8)tn & take0) | ((bvh_i8)t0 & ~take0));
+        t1 = (bvh_f8)(((bvh_i8)tf & take1) | ((bvh_i8)t1 & ~take1));
+    }
+    memcpy(t_near, &t0, sizeof t0);
+    bvh_i8 hit = t0 <= t1;
+    unsigned mask = 0;
+    for (int c = 0; c < 8; c++)
+        mask |= (unsigned)(hit[c] & 1) << c;
+    return mask;
+#endif
+}
+
+/* <<the node tests this build uses>> ch09 */
+/* The vector tests, unless the program is built with -DRT_SCALAR. */
+static inline unsigned bvh_node4_test(const bvh_node4 *n, const bvh_ray *r,
+                                      float t_max, float t_near[4])
+{
+#ifdef RT_SCALAR
+    return bvh_lanes_test_scalar(&n->box[0][0], 4, 4, r, t_max, t_near);
+#else
+    return bvh_node4_test_vector(n, r, t_max, t_near);
+#endif
+}
+
+static inline unsigned bvh_node8_test(const bvh_node8 *n, const bvh_ray *r,
+                                      float t_max, float t_near[8])
+{
+#ifdef RT_SCALAR
+    return bvh_lanes_test_scalar(&n->box[0][0], 8, 8, r, t_max, t_near);
+#else
+    return bvh_node8_test_vector(n, r, t_max, t_near);
+#endif
+}
+
+/* <<the bvh walk>> ch09 */
+/* A child still to visit: a node (count 0) or a leaf of count items from
+ * child, and where the ray enters its box. */
+typedef struct {
+    uint32_t child, count;
+    float t_near;
+} bvh_todo;
+
+/* Each level pushes at most seven children more than it takes. */
+#define BVH_STACK (7 * BVH_MAX_DEPTH + 1)
+
+typedef struct {
+    const bvh *t;
+    bvh_ray r;
+    bvh_todo stack[BVH_STACK];
+    int pending;
+    long long visited; /* nodes whose children were tested, for --stats */
+} bvh_walk;
+
+/* A leaf: its items are items[first .. first + count). */
+typedef struct {
+    int first, count;
+} bvh_leaf;
+
+/* Starts a walk of the ray r through the non-empty tree t. */
+static inline void bvh_walk_start(bvh_walk *w, const bvh *t,
+                                  const bvh_ray *r)
+{
+    const bvh_node *root = t->width == 2 ? &t->nodes[0] : NULL;
+    bool leaf = root != NULL && root->count > 0; /* a tree of one leaf */
+    w->t = t, w->r = *r, w->pending = 1, w->visited = 0;
+    w->stack[0] = (bvh_todo){leaf ? root->index : 0, leaf ? root->count : 0,
+                             r->t_min};
+}
+
+/* Pushes the children in mask onto w's stack, farthest on the bottom. */
+static inline void bvh_push(bvh_walk *w, unsigned mask, const uint32_t *child,
+                            const uint32_t *count, const float *t_near)
+{
+    int first = w->pending;
+    for (int c = 0; mask != 0; c++, mask >>= 1) {
+        if (!(mask & 1) || (count[c] == 0 && child[c] == BVH_NO_CHILD))
+            continue;
+        bvh_todo todo = {child[c], count[c], t_near[c]};
+        int k = w->pending++;
+        for (; k > first && w->stack[k - 1].t_near < todo.t_near; k--)
+            w->stack[k] = w->stack[k - 1];
+        w->stack[k] = todo;
+    }
+}
+
+/* The two children of binary node k, tested; pushed. */
+static inline void bvh_visit2(bvh_walk *w, uint32_t k, float t_max)
+{
+    const bvh_node *n = w->t->nodes;
+    uint32_t id[2] = {k + 1, n[k].index}, child[2], count[2];
+    float t_near[2];
+    unsigned mask = 0;
+    for (int side = 0; side < 2; side++) {
+        const bvh_node *kid = &n[id[side]];
+        child[side] = kid->count ? kid->index : id[side];
+        count[side] = kid->count;
+        mask |= bvh_lanes_test_scalar(kid->box, 1, 1, &w->r, t_max,
+                                      &t_near[side]) << side;
+    }
+    bvh_push(w, mask, child, count, t_near);
+}
+
+/* The next leaf whose box the ray meets before best (the nearest hit so
+ * far, widened by BVH_SLACK: a hit at best itself may still win a tie);
+ * false when none is left. */
+static inline bool bvh_walk_next(bvh_walk *w, double best, bvh_leaf *leaf)
+{
+    float t_max = bvh_float_up(best * (1 + BVH_SLACK)), t_near[8];
+    t_max = t_max < w->r.t_max ? t_max : w->r.t_max;
+    while (w->pending > 0) {
+        bvh_todo now = w->stack[--w->pending];
+        if (now.t_near > t_max)
+            continue; /* the box starts beyond the nearest hit */
+        if (now.count > 0) {
+            *leaf = (bvh_leaf){(int)now.child, (int)now.count};
+            return true;
+        }
+        w->visited++;
+        if (w->t->width == 2) {
+            bvh_visit2(w, now.child, t_max);
+        } else if (w->t->width == 4) {
+            const bvh_node4 *n = &w->t->nodes4[now.child];
+            unsigned mask = bvh_node4_test(n, &w->r, t_max, t_near);
+            bvh_push(w, mask, n->child, n->count, t_near);
+        } else {
+            const bvh_node8 *n = &w->t->nodes8[now.child];
+            unsigned mask = bvh_node8_test(n, &w->r, t_max, t_near);
+            bvh_push(w, mask, n->child, n->count, t_near);
+        }
+    }
+    return false;
+}
+
+#endif

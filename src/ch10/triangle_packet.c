@@ -1,0 +1,279 @@
+/* triangle_packet.c: triangles W at a time, in float (chapter 9). */
+#include <float.h>
+#include <math.h>
+#include <string.h>
+#include "triangle_packet.h"
+
+/* <<filling packets>> ch09 */
+int triangle_packets_needed(int count)
+{
+    return (count + PACKET_W - 1) / PACKET_W;
+}
+
+/* Lane k of q: triangle item's corners in float, and their reach. */
+static void fill_lane(triangle_packet *q, int k, const vec3 *vertices,
+                      const mesh_triangle *t, int item)
+{
+    float reach = 0;
+    for (int i = 0; i < 3; i++)
+        for (int axis = 0; axis < 3; axis++) {
+            float f = (float)vec3_axis(vertices[t->v[i]], axis);
+            q->corner[i][axis][k] = f;
+            reach = fabsf(f) > reach ? fabsf(f) : reach;
+        }
+    q->reach[k] = reach;
+    q->triangle[k] = item;
+}
+
+int triangle_packets_fill(triangle_packet *packets, const vec3 *vertices,
+                          const mesh_triangle *triangles, const int *items,
+                          int count)
+{
+    int n = triangle_packets_needed(count);
+    for (int p = 0; p < n; p++) {
+        memset(&packets[p], 0, sizeof packets[p]);
+        for (int k = 0; k < PACKET_W; k++) {
+            int j = p * PACKET_W + k, item = items ? items[j] : j;
+            packets[p].triangle[k] = -1; /* empty, unless filled */
+            if (j < count)
+                fill_lane(&packets[p], k, vertices, &triangles[item], item);
+        }
+    }
+    return n;
+}
+
+/* <<a ray for packets, made>> ch09 */
+packet_ray packet_ray_of(const watertight_ray *w)
+{
+    packet_ray r = {w->kx, w->ky, w->kz, (float)w->sx, (float)w->sy,
+                    (float)w->sz, {0}, 0, *w};
+    const int axes[3] = {w->kx, w->ky, w->kz};
+    for (int i = 0; i < 3; i++) {
+        r.origin[i] = (float)vec3_axis(w->origin, axes[i]);
+        float m = fabsf(r.origin[i]);
+        r.origin_reach = m > r.origin_reach ? m : r.origin_reach;
+    }
+    return r;
+}
+
+/* <<the float test's helpers>> ch09 */
+/* pbrt's gamma(n): n float roundings stay within a factor 1 +- gamma(n). */
+static inline float gamma_of(int n)
+{
+    const float u = FLT_EPSILON / 2;
+    return n * u / (1 - n * u);
+}
+
+/* Covers the rounding of the bounds and double's own error. */
+#define BOUND_MARGIN (1 + 0x1p-10f)
+/* Covers the rounding of the comparison of t, and double's division. */
+#define T_MARGIN (1 + 0x1p-20f)
+
+/* |x| alike for a float and for a vector's lanes, so that the filter's
+ * one text serves both: the sign bit cleared, NaN's included. */
+static inline packet_float packet_abs(packet_float x)
+{
+    return (packet_float)((packet_int)x & 0x7fffffff);
+}
+#define lanes_abs(x) _Generic((x), float: fabsf, default: packet_abs)(x)
+
+/* <<the float filter, lane by lane and in vectors>> ch09 */
+/* The lanes of p that chapter 4's test could hit: -1 in each. */
+static inline packet_int kept_in_vectors(const triangle_packet *p,
+                                         const packet_ray *r, float t_max,
+                                         int t_filter)
+{
+    typedef packet_float lanes;
+    typedef packet_int lane_mask;
+    const lanes *a = p->corner[0], *b = p->corner[1], *c = p->corner[2];
+    lanes p_reach = p->reach;
+    /* <<the float filter>> ch09 */
+    int kx = r->kx, ky = r->ky, kz = r->kz;
+    float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
+    lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;
+    lanes ax = (a[kx] - ox) - r->sx * az, ay = (a[ky] - oy) - r->sy * az;
+    lanes bx = (b[kx] - ox) - r->sx * bz, by = (b[ky] - oy) - r->sy * bz;
+    lanes cx = (c[kx] - ox) - r->sx * cz, cy = (c[ky] - oy) - r->sy * cz;
+    lanes u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
+    lanes det = u + v + w;
+    lanes za = r->sz * az, zb = r->sz * bz, zc = r->sz * cz;
+    lanes n = u * za + v * zb + w * zc; /* t times det */
+    /* <<the float test's error bounds>> ch09 */
+    lanes reach = p_reach + r->origin_reach; /* >= |corner| + |origin| */
+    lanes e_s = gamma_of(11) * reach;        /* a sheared x or y */
+    lanes xm = lanes_abs(ax) + lanes_abs(bx) + lanes_abs(cx); /* >= max |x| */
+    lanes ym = lanes_abs(ay) + lanes_abs(by) + lanes_abs(cy);
+    lanes zm = lanes_abs(za) + lanes_abs(zb) + lanes_abs(zc);
+    lanes e_e = (2 * e_s * (xm + ym) + 2 * e_s * e_s + 2 * gamma_of(2) * xm * ym) *
+                    BOUND_MARGIN + FLT_MIN; /* U, V or W */
+    lanes sum = lanes_abs(u) + lanes_abs(v) + lanes_abs(w);
+    lanes e_d = (3 * e_e + gamma_of(2) * sum) * BOUND_MARGIN + FLT_MIN;
+    lanes e_z = gamma_of(6) * fabsf(r->sz) * reach; /* a scaled z */
+    lanes e_n = (e_z * sum + 3 * e_e * (zm + e_z) + gamma_of(3) * sum * zm) *
+                    BOUND_MARGIN + FLT_MIN; /* t times det */
+    lane_mask outside = ((u < -e_e) | (v < -e_e) | (w < -e_e)) &
+                        ((u > e_e) | (v > e_e) | (w > e_e));
+    lane_mask sure = (lanes_abs(det) > e_d) & t_filter; /* det's sign */
+    lane_mask far = ((det > 0) & (n - e_n >= t_max * (det + e_d) * T_MARGIN)) |
+                    ((det < 0) & (-n - e_n >= t_max * (e_d - det) * T_MARGIN));
+    lane_mask behind = ((det > 0) & (n + e_n < 0)) | ((det < 0) & (n - e_n > 0));
+    lane_mask kept = (outside | (sure & (far | behind))) == 0;
+    return kept & (p->triangle >= 0);
+}
+
+/* Lane k of kept_in_vectors, computed alone: 1 or 0. */
+static inline int kept_alone(const triangle_packet *p, int k,
+                             const packet_ray *r, float t_max, int t_filter)
+{
+    typedef float lanes;
+    typedef int lane_mask;
+    float a[3], b[3], c[3], p_reach = p->reach[k];
+    for (int axis = 0; axis < 3; axis++)
+        a[axis] = p->corner[0][axis][k], b[axis] = p->corner[1][axis][k],
+        c[axis] = p->corner[2][axis][k];
+    /* <<the float filter>> ch09 */
+    int kx = r->kx, ky = r->ky, kz = r->kz;
+    float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
+    lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;
+    lanes ax = (a[kx] - ox) - r->sx * az, ay = (a[ky] - oy) - r->sy * az;
+    lanes bx = (b[kx] - ox) - r->sx * bz, by = (b[ky] - oy) - r->sy * bz;
+    lanes cx = (c[kx] - ox) - r->sx * cz, cy = (c[ky] - oy) - r->sy * cz;
+    lanes u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
+    lanes det = u + v + w;
+    lanes za = r->sz * az, zb = r->sz * bz, zc = r->sz * cz;
+    lanes n = u * za + v * zb + w * zc; /* t times det */
+    /* <<the float test's error bounds>> ch09 */
+    lanes reach = p_reach + r->origin_reach; /* >= |corner| + |origin| */
+    lanes e_s = gamma_of(11) * reach;        /* a sheared x or y */
+    lanes xm = lanes_abs(ax) + lanes_abs(bx) + lanes_abs(cx); /* >= max |x| */
+    lanes ym = lanes_abs(ay) + lanes_abs(by) + lanes_abs(cy);
+    lanes zm = lanes_abs(za) + lanes_abs(zb) + lanes_abs(zc);
+    lanes e_e = (2 * e_s * (xm + ym) + 2 * e_s * e_s + 2 * gamma_of(2) * xm * ym) *
+                    BOUND_MARGIN + FLT_MIN; /* U, V or W */
+    lanes sum = lanes_abs(u) + lanes_abs(v) + lanes_abs(w);
+    lanes e_d = (3 * e_e + gamma_of(2) * sum) * BOUND_MARGIN + FLT_MIN;
+    lanes e_z = gamma_of(6) * fabsf(r->sz) * reach; /* a scaled z */
+    lanes e_n = (e_z * sum + 3 * e_e * (zm + e_z) + gamma_of(3) * sum * zm) *
+                    BOUND_MARGIN + FLT_MIN; /* t times det */
+    lane_mask outside = ((u < -e_e) | (v < -e_e) | (w < -e_e)) &
+                        ((u > e_e) | (v > e_e) | (w > e_e));
+    lane_mask sure = (lanes_abs(det) > e_d) & t_filter; /* det's sign */
+    lane_mask far = ((det > 0) & (n - e_n >= t_max * (det + e_d) * T_MARGIN)) |
+                    ((det < 0) & (-n - e_n >= t_max * (e_d - det) * T_MARGIN));
+    lane_mask behind = ((det > 0) & (n + e_n < 0)) | ((det < 0) & (n - e_n > 0));
+    lane_mask kept = (outside | (sure & (far | behind))) == 0;
+    return kept & (p->triangle[k] >= 0);
+}
+
+/* <<the tests of packets, made>> ch09 */
+/* What the filter reads of (t_min, t_max): t_max rounded up to float, and
+ * whether t may be tested (t_min >= 0). */
+typedef struct {
+    float t_max;
+    int t_filter;
+} float_interval;
+
+static float_interval float_interval_of(double t_min, double t_max)
+{
+    float up = (float)t_max;
+    if (up < t_max)
+        up = nextafterf(up, INFINITY);
+    return (float_interval){up, t_min >= 0 ? -1 : 0};
+}
+
+static unsigned candidates_simd(const triangle_packet *p,
+                                const packet_ray *r, float_interval in)
+{
+    packet_int kept = kept_in_vectors(p, r, in.t_max, in.t_filter);
+    unsigned bits = 0;
+    for (int k = 0; k < PACKET_W; k++)
+        bits |= (unsigned)(kept[k] & 1) << k;
+    return bits;
+}
+
+static unsigned candidates_scalar(const triangle_packet *p,
+                                  const packet_ray *r, float_interval in)
+{
+    unsigned bits = 0;
+    for (int k = 0; k < PACKET_W; k++)
+        bits |= (unsigned)kept_alone(p, k, r, in.t_max, in.t_filter) << k;
+    return bits;
+}
+
+/* The program's filter: in vectors, unless built with -DRT_SCALAR. */
+static inline unsigned candidates(const triangle_packet *p,
+                                  const packet_ray *r, float_interval in)
+{
+#ifdef RT_SCALAR
+    return candidates_scalar(p, r, in);
+#else
+    return candidates_simd(p, r, in);
+#endif
+}
+
+unsigned triangle_packet_candidates_simd(const triangle_packet *p,
+                                         const packet_ray *r, double t_min,
+                                         double t_max)
+{
+    return candidates_simd(p, r, float_interval_of(t_min, t_max));
+}
+
+unsigned triangle_packet_candidates_scalar(const triangle_packet *p,
+                                           const packet_ray *r, double t_min,
+                                           double t_max)
+{
+    return candidates_scalar(p, r, float_interval_of(t_min, t_max));
+}
+
+/* <<deciding the kept lanes>> ch09 */
+/* Chapter 4's test of the triangle c. */
+static bool hit_in_double(const packet_ray *r, const triangle_corners *c,
+                          double t_min, double t_max, triangle_hit *out)
+{
+    return triangle_hit_prepared(&r->exact, c->p[0], c->p[1], c->p[2], t_min,
+                                 t_max, out);
+}
+
+int triangle_packets_nearest(const packet_ray *r,
+                             const triangle_packet *packets, int count,
+                             const triangle_corners *corners, double t_min,
+                             double t_max, int best, triangle_hit *out,
+                             long long *decided)
+{
+    int nearest = -1;
+    double reach = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
+    float_interval in = float_interval_of(t_min, reach);
+    for (int p = 0; p < count; p++)
+        for (unsigned bits = candidates(&packets[p], r, in); bits != 0;
+             bits &= bits - 1) {
+            int k = __builtin_ctz(bits), i = packets[p].triangle[k];
+            const triangle_corners *c = &corners[p * PACKET_W + k];
+            triangle_hit th;
+            ++*decided;
+            if (hit_in_double(r, c, t_min, reach, &th) &&
+                (th.t < t_max || i < best)) { /* a tie: the lower index */
+                *out = th, t_max = th.t, best = i, nearest = i;
+                reach = nextafter(t_max, INFINITY);
+                in = float_interval_of(t_min, reach);
+            }
+        }
+    return nearest;
+}
+
+bool triangle_packets_any(const packet_ray *r, const triangle_packet *packets,
+                          int count, const triangle_corners *corners,
+                          double t_min, double t_max, long long *decided)
+{
+    float_interval in = float_interval_of(t_min, t_max);
+    triangle_hit unused;
+    for (int p = 0; p < count; p++)
+        for (unsigned bits = candidates(&packets[p], r, in); bits != 0;
+             bits &= bits - 1) {
+            const triangle_corners *c = &corners[p * PACKET_W +
+                                                 __builtin_ctz(bits)];
+            ++*decided;
+            if (hit_in_double(r, c, t_min, t_max, &unused))
+                return true;
+        }
+    return false;
+}
