@@ -73,9 +73,11 @@ static double bvh_pad(const box *bounds, int count)
 {
     double most = 0;
     for (int k = 0; k < count; k++) {
-        for (int a = 0; a < 3; a++)
-            most = fmax(most, fmax(fabs(vec3_axis(bounds[k].lo, a)),
-                                   fabs(vec3_axis(bounds[k].hi, a))));
+        for (int a = 0; a < 3; a++) { /* not fmax: a call, on most machines */
+            double lo = fabs(vec3_axis(bounds[k].lo, a));
+            double hi = fabs(vec3_axis(bounds[k].hi, a));
+            most = lo > most ? lo : most, most = hi > most ? hi : most;
+        }
     }
     return BVH_THICKNESS * most;
 }
