@@ -19,6 +19,8 @@
  *   kdtree       the same tree with chapter 9's tightened leaves;
  *   bvh4-double  the BVH 4 wide as first built: leaves of triangles in
  *                double, every one tested (chapter 9's tightened leaves);
+ *   bvh4-double-mesh  the same, the corners read from the mesh through
+ *                the triangles' indices instead of a copy;
  *   bvh2|4|8     the BVH, binary, 4 and 8 wide, with leaves of packets;
  *   embree       rtcIntersect1 (Embree's BVH, RTC_BUILD_QUALITY_HIGH, a
  *                device with threads=1);
@@ -80,7 +82,7 @@ static RTCScene embree_scene(RTCDevice device, const mesh *m)
 
 /* ---------------------------------------------------------------- the methods */
 
-typedef enum { KDTREE_CH08, KDTREE, BVH, BVH_DOUBLE, EMBREE } kind;
+typedef enum { KDTREE_CH08, KDTREE, BVH, BVH_DOUBLE, BVH_DOUBLE_MESH, EMBREE } kind;
 
 typedef struct {
     const char *name;
@@ -91,7 +93,8 @@ typedef struct {
 
 static const method METHODS[] = {
     {"kdtree-ch08", KDTREE_CH08, 0, false}, {"kdtree", KDTREE, 0, false},
-    {"bvh4-double", BVH_DOUBLE, 4, false},  {"bvh2", BVH, 2, false},
+    {"bvh4-double", BVH_DOUBLE, 4, false},  {"bvh4-double-mesh", BVH_DOUBLE_MESH, 4, false},
+    {"bvh2", BVH, 2, false},
     {"bvh4", BVH, 4, false},
     {"bvh8", BVH, 8, false},                {"embree", EMBREE, 0, false},
     {"kdtree-any", KDTREE, 0, true},        {"bvh-any", BVH, BVH_WIDTH, true},
@@ -164,7 +167,27 @@ static double chapter8_ray(const mesh *m, const mesh_ray *mr)
  * of a leaf tested by chapter 4's test in double, on corners copied leaf
  * by leaf (chapter 8's leaves, tightened), in a tree built for them
  * (items counted one by one). The nearest t, or infinity. */
-static double double_leaves_ray(const subject *s, const mesh_ray *mr)
+/* A leaf of double_leaves_ray with the corners read from the mesh through
+ * the lanes' triangles (no copy): chapter 8's tie rule. */
+static int mesh_corners_leaf(const mesh *m, const watertight_ray *w, const int *items,
+                             int count, double t_max, int best, triangle_hit *out)
+{
+    int nearest = -1;
+    double reach = nextafter(t_max, INFINITY);
+    for (int k = 0; k < count; k++) {
+        triangle_hit th;
+        const int *v = m->triangles[items[k]].v;
+        if (triangle_hit_prepared(w, m->vertices[v[0]], m->vertices[v[1]], m->vertices[v[2]],
+                                  0, reach, &th) &&
+            (th.t < t_max || items[k] < best)) {
+            *out = th, t_max = th.t, best = items[k], nearest = k;
+            reach = nextafter(t_max, INFINITY);
+        }
+    }
+    return nearest;
+}
+
+static double double_leaves_ray(const subject *s, const mesh_ray *mr, bool from_mesh)
 {
     const mesh *m = &s->bvh_double;
     double t_max = INFINITY, near = 0, far = INFINITY;
@@ -179,9 +202,11 @@ static double double_leaves_ray(const subject *s, const mesh_ray *mr)
     bvh_walk_start(&w, &m->bvh, &r);
     while (bvh_walk_next(&w, t_max, &leaf)) {
         int first = leaf.first * PACKET_W; /* the lane of its first packet */
-        int k = triangle_nearest_of_leaf(&mr->shear, s->corners + first,
-                                         s->lane_items + first, leaf.count, 0,
-                                         t_max, found, &th);
+        int k = from_mesh ? mesh_corners_leaf(m, &mr->shear, s->lane_items + first,
+                                              leaf.count, t_max, found, &th)
+                          : triangle_nearest_of_leaf(&mr->shear, s->corners + first,
+                                                     s->lane_items + first, leaf.count, 0,
+                                                     t_max, found, &th);
         if (k >= 0)
             found = s->lane_items[first + k], t_max = th.t;
     }
@@ -213,8 +238,8 @@ static double our_ray(const trace_ctx *c, long k, render_stats *stats)
     mesh_ray mr = mesh_ray_of(ray_of(&c->rays[k]));
     if (c->how->kind == KDTREE_CH08)
         return chapter8_ray(m, &mr);
-    if (c->how->kind == BVH_DOUBLE)
-        return double_leaves_ray(c->s, &mr);
+    if (c->how->kind == BVH_DOUBLE || c->how->kind == BVH_DOUBLE_MESH)
+        return double_leaves_ray(c->s, &mr, c->how->kind == BVH_DOUBLE_MESH);
     if (c->how->any)
         return mesh_occluded(m, &mr, 0, INFINITY, stats) ? 0 : INFINITY;
     triangle_hit th;
