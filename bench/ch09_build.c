@@ -42,7 +42,7 @@ static long long build_kdtree(const mesh *m)
 {
     mesh copy = *m; /* the tree is built into a copy's members */
     copy.tree = (kdtree){0}, copy.leaf_corners = NULL;
-    copy.bvh = (bvh){0}, copy.bvh_corners = NULL;
+    copy.bvh = (bvh){0}, copy.bvh_packets = NULL;
     kdtree_params p = kdtree_default_params();
     if (!mesh_build_tree(&copy, &p))
         exit(1);
@@ -57,9 +57,8 @@ static long long build_bvh_on(const mesh *m, int threads)
 {
     mesh copy = *m;
     copy.tree = (kdtree){0}, copy.leaf_corners = NULL;
-    copy.bvh = (bvh){0}, copy.bvh_corners = NULL;
-    bvh_params p = bvh_default_params();
-    p.threads = threads;
+    copy.bvh = (bvh){0}, copy.bvh_packets = NULL;
+    bvh_params p = {.threads = threads}; /* zeros: the mesh's defaults */
     if (!mesh_build_bvh(&copy, &p))
         exit(1);
     long long bytes = mesh_tree_bytes(&copy);

@@ -17,7 +17,11 @@
  *   kdtree-ch08  chapter 8's kd-tree with chapter 8's leaves (chapter 4's
  *                test called once a triangle, triangle_hit_prepared);
  *   kdtree       the same tree with chapter 9's tightened leaves;
- *   bvh2|4|8     the BVH, binary, 4 and 8 wide, triangles in double;
+ *   bvh4-double  the BVH 4 wide as first built: leaves of triangles in
+ *                double, every one tested (chapter 9's tightened leaves);
+ *   bvh4-double-mesh  the same, the corners read from the mesh through
+ *                the triangles' indices instead of a copy;
+ *   bvh2|4|8     the BVH, binary, 4 and 8 wide, with leaves of packets;
  *   embree       rtcIntersect1 (Embree's BVH, RTC_BUILD_QUALITY_HIGH, a
  *                device with threads=1);
  * and by any hit (shadow rays, to infinity): kdtree-any, bvh-any (the
@@ -78,7 +82,7 @@ static RTCScene embree_scene(RTCDevice device, const mesh *m)
 
 /* ---------------------------------------------------------------- the methods */
 
-typedef enum { KDTREE_CH08, KDTREE, BVH, EMBREE } kind;
+typedef enum { KDTREE_CH08, KDTREE, BVH, BVH_DOUBLE, BVH_DOUBLE_MESH, EMBREE } kind;
 
 typedef struct {
     const char *name;
@@ -89,7 +93,9 @@ typedef struct {
 
 static const method METHODS[] = {
     {"kdtree-ch08", KDTREE_CH08, 0, false}, {"kdtree", KDTREE, 0, false},
-    {"bvh2", BVH, 2, false},                {"bvh4", BVH, 4, false},
+    {"bvh4-double", BVH_DOUBLE, 4, false},  {"bvh4-double-mesh", BVH_DOUBLE_MESH, 4, false},
+    {"bvh2", BVH, 2, false},
+    {"bvh4", BVH, 4, false},
     {"bvh8", BVH, 8, false},                {"embree", EMBREE, 0, false},
     {"kdtree-any", KDTREE, 0, true},        {"bvh-any", BVH, BVH_WIDTH, true},
     {"embree-any", EMBREE, 0, true},
@@ -102,6 +108,9 @@ typedef struct {
     const char *name;
     mesh m;
     mesh bvh_of_width[9]; /* [2], [4], [8] */
+    mesh bvh_double;      /* 4 wide, leaves of doubles: see double_leaves */
+    triangle_corners *corners; /* bvh_double's, lane by lane */
+    int *lane_items;           /* the triangle of each lane */
     RTCScene scene;
     bool few_methods; /* the failure meshes: kdtree, bvh4, embree */
 } subject;
@@ -154,6 +163,56 @@ static double chapter8_ray(const mesh *m, const mesh_ray *mr)
     return t_max;
 }
 
+/* The BVH's walk with the leaves of the BVH's first form: every triangle
+ * of a leaf tested by chapter 4's test in double, on corners copied leaf
+ * by leaf (chapter 8's leaves, tightened), in a tree built for them
+ * (items counted one by one). The nearest t, or infinity. */
+/* A leaf of double_leaves_ray with the corners read from the mesh through
+ * the lanes' triangles (no copy): chapter 8's tie rule. */
+static int mesh_corners_leaf(const mesh *m, const watertight_ray *w, const int *items,
+                             int count, double t_max, int best, triangle_hit *out)
+{
+    int nearest = -1;
+    double reach = nextafter(t_max, INFINITY);
+    for (int k = 0; k < count; k++) {
+        triangle_hit th;
+        const int *v = m->triangles[items[k]].v;
+        if (triangle_hit_prepared(w, m->vertices[v[0]], m->vertices[v[1]], m->vertices[v[2]],
+                                  0, reach, &th) &&
+            (th.t < t_max || items[k] < best)) {
+            *out = th, t_max = th.t, best = items[k], nearest = k;
+            reach = nextafter(t_max, INFINITY);
+        }
+    }
+    return nearest;
+}
+
+static double double_leaves_ray(const subject *s, const mesh_ray *mr, bool from_mesh)
+{
+    const mesh *m = &s->bvh_double;
+    double t_max = INFINITY, near = 0, far = INFINITY;
+    bvh_ray r;
+    if (!box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far) ||
+        !bvh_ray_of(mr->r.origin, mr->inv_dir, 0, INFINITY, &r))
+        return INFINITY;
+    bvh_walk w;
+    bvh_leaf leaf;
+    int found = -1;
+    triangle_hit th;
+    bvh_walk_start(&w, &m->bvh, &r);
+    while (bvh_walk_next(&w, t_max, &leaf)) {
+        int first = leaf.first * PACKET_W; /* the lane of its first packet */
+        int k = from_mesh ? mesh_corners_leaf(m, &mr->shear, s->lane_items + first,
+                                              leaf.count, t_max, found, &th)
+                          : triangle_nearest_of_leaf(&mr->shear, s->corners + first,
+                                                     s->lane_items + first, leaf.count, 0,
+                                                     t_max, found, &th);
+        if (k >= 0)
+            found = s->lane_items[first + k], t_max = th.t;
+    }
+    return t_max;
+}
+
 /* Ray k by Embree: its distance, or infinity (any: 0 for a hit). */
 static double embree_ray(const trace_ctx *c, long k, struct RTCIntersectContext *context)
 {
@@ -179,6 +238,8 @@ static double our_ray(const trace_ctx *c, long k, render_stats *stats)
     mesh_ray mr = mesh_ray_of(ray_of(&c->rays[k]));
     if (c->how->kind == KDTREE_CH08)
         return chapter8_ray(m, &mr);
+    if (c->how->kind == BVH_DOUBLE || c->how->kind == BVH_DOUBLE_MESH)
+        return double_leaves_ray(c->s, &mr, c->how->kind == BVH_DOUBLE_MESH);
     if (c->how->any)
         return mesh_occluded(m, &mr, 0, INFINITY, stats) ? 0 : INFINITY;
     triangle_hit th;
@@ -219,10 +280,9 @@ static void run_build(void *ctx, long reps)
         }
         mesh copy = *c->m; /* the tree is built into a copy's members */
         copy.tree = (kdtree){0}, copy.leaf_corners = NULL;
-        copy.bvh = (bvh){0}, copy.bvh_corners = NULL;
+        copy.bvh = (bvh){0}, copy.bvh_packets = NULL;
         kdtree_params kp = kdtree_default_params();
-        bvh_params bp = bvh_default_params();
-        bp.threads = 1;
+        bvh_params bp = {.threads = 1}; /* zeros: the mesh's defaults */
         if (!(c->kind == KDTREE ? mesh_build_tree(&copy, &kp) : mesh_build_bvh(&copy, &bp)))
             exit(1);
         bench_sink += copy.triangle_count;
@@ -346,6 +406,30 @@ static void time_rays(const subject *s, double K)
 
 /* ---------------------------------------------------------------- main */
 
+/* s's BVH of the first form: items counted one by one, its leaves' corners
+ * copied lane by lane of its packets (an empty lane's are never read). */
+static void double_leaves(subject *s)
+{
+    mesh *copy = &s->bvh_double;
+    *copy = s->m;
+    copy->tree = (kdtree){0}, copy->leaf_corners = NULL;
+    bvh_params bp = bvh_default_params();
+    bp.width = 4, bp.item_group = 1;
+    if (!mesh_build_bvh(copy, &bp))
+        exit(1);
+    size_t lanes = (size_t)copy->bvh_packet_count * PACKET_W;
+    s->corners = calloc(lanes, sizeof *s->corners);
+    s->lane_items = calloc(lanes, sizeof *s->lane_items);
+    if (s->corners == NULL || s->lane_items == NULL)
+        exit(1);
+    for (size_t j = 0; j < lanes; j++) {
+        int i = copy->bvh_packets[j / PACKET_W].triangle[j % PACKET_W];
+        s->lane_items[j] = i;
+        for (int c = 0; c < 3 && i >= 0; c++)
+            s->corners[j].p[c] = copy->vertices[copy->triangles[i].v[c]];
+    }
+}
+
 static void prepare(subject *s, RTCDevice device)
 {
     kdtree_params kp = kdtree_default_params();
@@ -355,11 +439,11 @@ static void prepare(subject *s, RTCDevice device)
         mesh *copy = &s->bvh_of_width[w];
         *copy = s->m;
         copy->tree = (kdtree){0}, copy->leaf_corners = NULL;
-        bvh_params bp = bvh_default_params();
-        bp.width = w;
+        bvh_params bp = {.width = w}; /* zeros: the mesh's defaults */
         if (!mesh_build_bvh(copy, &bp))
             exit(1);
     }
+    double_leaves(s);
     s->scene = embree_scene(device, &s->m);
     rtcCommitScene(s->scene);
 }
@@ -368,6 +452,8 @@ static void release(subject *s)
 {
     for (int w = 2; w <= 8; w *= 2)
         mesh_free_tree(&s->bvh_of_width[w]);
+    mesh_free_tree(&s->bvh_double);
+    free(s->corners), free(s->lane_items);
     rtcReleaseScene(s->scene);
     mesh_free(&s->m);
 }
@@ -394,13 +480,15 @@ int main(int argc, char **argv)
     bench_print_machine();
     bench_csv_header();
     printf("vector,%s,0,0,bvh_vector_width\n", bvh_vector_width_name());
-    for (int k = 0; k < N_SUBJECTS; k++) {
+    /* CH09_QUICK=1: the bunny at K = 1 alone, no builds (a quick look) */
+    bool quick = getenv("CH09_QUICK") != NULL;
+    for (int k = 0; k < (quick ? 1 : N_SUBJECTS); k++) {
         subject *s = &subjects[k];
-        if (!s->few_methods)
+        if (!s->few_methods && !quick)
             time_builds(s, device);
         prepare(s, device);
         time_rays(s, 1.0);
-        if (!s->few_methods)
+        if (!s->few_methods && !quick)
             time_rays(s, 2.5);
         release(s);
     }

@@ -47,7 +47,7 @@ static mesh bare(const mesh *m)
 {
     mesh b = *m;
     b.tree = (kdtree){0}, b.leaf_corners = NULL;
-    b.bvh = (bvh){0}, b.bvh_corners = NULL;
+    b.bvh = (bvh){0}, b.bvh_packets = NULL;
     return b;
 }
 
@@ -432,6 +432,69 @@ START_TEST(test_thread_counts_build_the_same_tree)
 }
 END_TEST
 
+/* The leaf of reference c of node k of t (count 0: none): its first
+ * packet and its triangles. */
+static uint32_t leaf_of(const bvh *t, int k, int c, uint32_t *count)
+{
+    if (t->width == 2)
+        return *count = t->nodes[k].count, t->nodes[k].index;
+    if (t->width == 4)
+        return *count = t->nodes4[k].count[c], t->nodes4[k].child[c];
+    return *count = t->nodes8[k].count[c], t->nodes8[k].child[c];
+}
+
+START_TEST(test_every_leaf_s_packets_hold_its_triangles)
+{
+    mesh m = load("meshes/teapot-8.obj");
+    for (int width = 2; width <= 8; width *= 2) {
+        mesh b = with_bvh(&m, width, 1);
+        int *seen = memory_alloc((size_t)m.triangle_count, sizeof *seen);
+        ck_assert_ptr_nonnull(seen);
+        memset(seen, 0, (size_t)m.triangle_count * sizeof *seen);
+        int packets = 0, refs = width == 2 ? 1 : width;
+        for (int k = 0; k < b.bvh.node_count; k++)
+            for (int c = 0; c < refs; c++) {
+                uint32_t count, first = leaf_of(&b.bvh, k, c, &count);
+                int n = (int)(count + PACKET_W - 1) / PACKET_W;
+                for (int lane = 0; lane < n * PACKET_W; lane++) {
+                    const triangle_packet *q = &b.bvh_packets[first +
+                                                lane / PACKET_W];
+                    int i = q->triangle[lane % PACKET_W];
+                    ck_assert_int_eq(i >= 0, lane < (int)count);
+                    if (i < 0)
+                        continue;
+                    seen[i]++;
+                    vec3 v = m.vertices[m.triangles[i].v[2]];
+                    ck_assert(q->corner[2][1][lane % PACKET_W] == (float)v.y);
+                }
+                packets += n;
+            }
+        for (int i = 0; i < m.triangle_count; i++)
+            ck_assert_int_eq(seen[i], 1); /* each in exactly one lane */
+        ck_assert_int_eq(packets, b.bvh_packet_count);
+        free(seen);
+        mesh_free_tree(&b);
+    }
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_the_bvh_of_a_mesh_stays_within_its_bytes)
+{
+    const char *paths[] = {"meshes/bunny.obj", "meshes/teapot-8.obj"};
+    for (int k = 0; k < 2; k++) {
+        mesh m = load(paths[k]);
+        mesh b = bare(&m);
+        ck_assert(mesh_build_bvh(&b, &(bvh_params){0}));
+        double bytes = (double)mesh_tree_bytes(&b) / m.triangle_count;
+        ck_assert_msg(bytes <= MESH_BVH_MAX_BYTES_PER_TRIANGLE,
+                      "%s: %.1f bytes a triangle", paths[k], bytes);
+        mesh_free_tree(&b);
+        mesh_free(&m);
+    }
+}
+END_TEST
+
 START_TEST(test_running_out_of_memory_in_a_build_leaves_no_tree)
 {
     mesh m = load("meshes/teapot-8.obj");
@@ -442,7 +505,7 @@ START_TEST(test_running_out_of_memory_in_a_build_leaves_no_tree)
         bool ok = mesh_build_bvh(&b, &(bvh_params){.width = 4 << (n % 2)});
         memory_fail_after(-1);
         failed += !ok;
-        ck_assert(ok || (b.bvh.node_count == 0 && b.bvh_corners == NULL));
+        ck_assert(ok || (b.bvh.node_count == 0 && b.bvh_packets == NULL));
         mesh_free_tree(&b);
     }
     ck_assert_int_gt(failed, 3);
@@ -611,6 +674,8 @@ Suite *ch09_bvh_suite(void)
     tcase_add_test(nodes, test_wide_nodes_hold_their_leaves_items);
     tcase_add_test(nodes, test_thread_counts_build_the_same_tree);
     tcase_add_test(nodes, test_running_out_of_memory_in_a_build_leaves_no_tree);
+    tcase_add_test(nodes, test_every_leaf_s_packets_hold_its_triangles);
+    tcase_add_test(nodes, test_the_bvh_of_a_mesh_stays_within_its_bytes);
     suite_add_tcase(s, nodes);
     TCase *choose = tcase_create("choosing it");
     tcase_add_checked_fixture(choose, make_tmpdir, remove_tmpdir);
