@@ -13,7 +13,7 @@ bvh_params bvh_default_params(void)
 {
     return (bvh_params){.width = BVH_WIDTH, .bins = 32, .max_leaf_items = 8,
                         .traversal_cost = 1, .intersection_cost = 1,
-                        .min_items = 1};
+                        .min_items = 1, .item_group = 1};
 }
 
 /* p, its zeros replaced by the defaults. */
@@ -28,6 +28,7 @@ static bvh_params bvh_filled(const bvh_params *p)
     q.intersection_cost = q.intersection_cost ? q.intersection_cost
                                               : d.intersection_cost;
     q.min_items = q.min_items ? q.min_items : d.min_items;
+    q.item_group = q.item_group ? q.item_group : d.item_group;
     return q;
 }
 
@@ -72,9 +73,11 @@ static double bvh_pad(const box *bounds, int count)
 {
     double most = 0;
     for (int k = 0; k < count; k++) {
-        for (int a = 0; a < 3; a++)
-            most = fmax(most, fmax(fabs(vec3_axis(bounds[k].lo, a)),
-                                   fabs(vec3_axis(bounds[k].hi, a))));
+        for (int a = 0; a < 3; a++) { /* not fmax: a call, on most machines */
+            double lo = fabs(vec3_axis(bounds[k].lo, a));
+            double hi = fabs(vec3_axis(bounds[k].hi, a));
+            most = lo > most ? lo : most, most = hi > most ? hi : most;
+        }
     }
     return BVH_THICKNESS * most;
 }
@@ -137,6 +140,12 @@ static void fill_bins(const bvh_builder *bd, int b, int e, int axis,
 }
 
 /* <<the binned split>> ch09 */
+/* The tests of n items, item_group at a time. */
+static double groups(const bvh_builder *bd, int n)
+{
+    return (n + bd->p.item_group - 1) / bd->p.item_group;
+}
+
 /* The cheapest plane between the bins: the first bin above it, its cost
  * in *cost; area is the node's (not 0). */
 static int best_bin(const bvh_builder *bd, const bvh_bin *bins, double area,
@@ -156,8 +165,8 @@ static int best_bin(const bvh_builder *bd, const bvh_bin *bins, double area,
             continue;
         double c = bd->p.traversal_cost +
                    bd->p.intersection_cost *
-                       (box_area(&sweep) * left +
-                        right_area[k] * right_count[k]) / area;
+                       (box_area(&sweep) * groups(bd, left) +
+                        right_area[k] * groups(bd, right_count[k])) / area;
         if (c < *cost)
             *cost = c, best = k;
     }
@@ -211,7 +220,7 @@ static int split_range(const bvh_builder *bd, int b, int e, int depth,
     fill_bins(bd, b, e, *axis, lo, scale, bins);
     int k = best_bin(bd, bins, area > 0 ? area : 1, &cost);
     if (k < 0 || (n <= bd->p.max_leaf_items &&
-                  bd->p.intersection_cost * n <= cost))
+                  bd->p.intersection_cost * groups(bd, n) <= cost))
         return k < 0 && n > bd->p.max_leaf_items ? b + n / 2 : -1;
     return partition(bd, b, e, *axis, lo, scale, k);
 }
@@ -400,6 +409,23 @@ static bool shrink_binary(bvh *t)
     return true;
 }
 
+/* t's wide nodes in an array of their number, which the collapse knows
+ * only at its end (kept larger when a smaller one cannot be had). */
+static void shrink_wide(bvh *t, size_t size)
+{
+    void *old = t->width == 4 ? (void *)t->nodes4 : (void *)t->nodes8;
+    void *fit = memory_alloc_aligned(64, (size_t)t->node_count, size);
+    if (fit == NULL)
+        return;
+    memcpy(fit, old, (size_t)t->node_count * size);
+    free(old);
+    if (t->width == 4)
+        t->nodes4 = fit;
+    else
+        t->nodes8 = fit;
+    t->node_capacity = t->node_count;
+}
+
 /* t's binary nodes collapsed into nodes of t->width; false: no memory. */
 static bool make_wide(bvh *t)
 {
@@ -416,6 +442,7 @@ static bool make_wide(bvh *t)
     t->nodes = NULL, t->node_count = 1, t->node_capacity = most;
     collapse(t, binary, 0, 0);
     free(binary);
+    shrink_wide(t, size);
     return true;
 }
 

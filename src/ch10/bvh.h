@@ -28,6 +28,8 @@ typedef struct {
     double intersection_cost; /* K_I: one item's test; 0: 1 */
     int threads;              /* of the build; 0: one per core */
     int min_items;            /* fewer items get no tree; 0: 1 */
+    int item_group;           /* items a leaf tests at once (a packet's
+                                 lanes): the costs count groups; 0: 1 */
 } bvh_params;
 
 /* Four: no slower than eight on the bunny, even with AVX (measured
@@ -175,6 +177,44 @@ static inline unsigned bvh_lanes_test_scalar(const float *box, int stride,
 typedef float bvh_f4 __attribute__((vector_size(16)));
 typedef int32_t bvh_i4 __attribute__((vector_size(16)));
 
+/* a > b ? a : b and a < b ? a : b, lane by lane, b where either is a NaN:
+ * SSE's maxps and minps do exactly that, and the compiler does not find
+ * them in the comparison and the masks it replaces. */
+static inline bvh_f4 bvh_max4(bvh_f4 a, bvh_f4 b)
+{
+#ifdef __SSE__
+    return __builtin_ia32_maxps(a, b);
+#else
+    bvh_i4 take = a > b; /* false for a NaN */
+    return (bvh_f4)(((bvh_i4)a & take) | ((bvh_i4)b & ~take));
+#endif
+}
+
+static inline bvh_f4 bvh_min4(bvh_f4 a, bvh_f4 b)
+{
+#ifdef __SSE__
+    return __builtin_ia32_minps(a, b);
+#else
+    bvh_i4 take = a < b;
+    return (bvh_f4)(((bvh_i4)a & take) | ((bvh_i4)b & ~take));
+#endif
+}
+
+/* Lane c's comparison (-1 or 0) in bit c. SSE has one instruction for it,
+ * which the vector extensions cannot name and the compiler does not find
+ * in the loop. */
+static inline unsigned bvh_mask4(bvh_i4 hit)
+{
+#ifdef __SSE__
+    return (unsigned)__builtin_ia32_movmskps((bvh_f4)hit);
+#else
+    unsigned mask = 0;
+    for (int c = 0; c < 4; c++)
+        mask |= (unsigned)(hit[c] & 1) << c;
+    return mask;
+#endif
+}
+
 /* bvh_lanes_test_scalar of four lanes at once. */
 static inline unsigned bvh_lanes4_test_vector(const float *box, int stride,
                                               const bvh_ray *r, float t_max,
@@ -187,16 +227,10 @@ static inline unsigned bvh_lanes4_test_vector(const float *box, int stride,
         bvh_f4 tn = (face - r->o_near[a]) * r->inv[a];
         memcpy(&face, box + r->far[a] * stride, sizeof face);
         bvh_f4 tf = (face - r->o_far[a]) * r->inv[a] * BVH_FAR_WIDENING;
-        bvh_i4 take0 = tn > t0, take1 = tf < t1; /* false for a NaN */
-        t0 = (bvh_f4)(((bvh_i4)tn & take0) | ((bvh_i4)t0 & ~take0));
-        t1 = (bvh_f4)(((bvh_i4)tf & take1) | ((bvh_i4)t1 & ~take1));
+        t0 = bvh_max4(tn, t0), t1 = bvh_min4(tf, t1);
     }
     memcpy(t_near, &t0, sizeof t0);
-    bvh_i4 hit = t0 <= t1;
-    unsigned mask = 0;
-    for (int c = 0; c < 4; c++)
-        mask |= (unsigned)(hit[c] & 1) << c;
-    return mask;
+    return bvh_mask4(t0 <= t1);
 }
 
 static inline unsigned bvh_node4_test_vector(const bvh_node4 *n,
@@ -226,16 +260,11 @@ static inline unsigned bvh_node8_test_vector(const bvh_node8 *n,
         bvh_f8 tn = (face - r->o_near[a]) * r->inv[a];
         memcpy(&face, n->box[r->far[a]], sizeof face);
         bvh_f8 tf = (face - r->o_far[a]) * r->inv[a] * BVH_FAR_WIDENING;
-        bvh_i8 take0 = tn > t0, take1 = tf < t1;
-        t0 = (bvh_f8)(((bvh_i8)tn & take0) | ((bvh_i8)t0 & ~take0));
-        t1 = (bvh_f8)(((bvh_i8)tf & take1) | ((bvh_i8)t1 & ~take1));
+        t0 = __builtin_ia32_maxps256(tn, t0); /* as bvh_max4 */
+        t1 = __builtin_ia32_minps256(tf, t1);
     }
     memcpy(t_near, &t0, sizeof t0);
-    bvh_i8 hit = t0 <= t1;
-    unsigned mask = 0;
-    for (int c = 0; c < 8; c++)
-        mask |= (unsigned)(hit[c] & 1) << c;
-    return mask;
+    return (unsigned)__builtin_ia32_movmskps256((bvh_f8)(t0 <= t1));
 #endif
 }
 
@@ -278,6 +307,8 @@ typedef struct {
     bvh_todo stack[BVH_STACK];
     int pending;
     long long visited; /* nodes whose children were tested, for --stats */
+    double best;       /* the last nearest hit given to bvh_walk_next */
+    float t_max;       /* and its bound in float */
 } bvh_walk;
 
 /* A leaf: its items are items[first .. first + count). */
@@ -292,6 +323,7 @@ static inline void bvh_walk_start(bvh_walk *w, const bvh *t,
     const bvh_node *root = t->width == 2 ? &t->nodes[0] : NULL;
     bool leaf = root != NULL && root->count > 0; /* a tree of one leaf */
     w->t = t, w->r = *r, w->pending = 1, w->visited = 0;
+    w->best = NAN; /* no bound yet */
     w->stack[0] = (bvh_todo){leaf ? root->index : 0, leaf ? root->count : 0,
                              r->t_min};
 }
@@ -301,8 +333,9 @@ static inline void bvh_push(bvh_walk *w, unsigned mask, const uint32_t *child,
                             const uint32_t *count, const float *t_near)
 {
     int first = w->pending;
-    for (int c = 0; mask != 0; c++, mask >>= 1) {
-        if (!(mask & 1) || (count[c] == 0 && child[c] == BVH_NO_CHILD))
+    for (; mask != 0; mask &= mask - 1) { /* the lowest bit left, each */
+        int c = __builtin_ctz(mask);
+        if (count[c] == 0 && child[c] == BVH_NO_CHILD)
             continue;
         bvh_todo todo = {child[c], count[c], t_near[c]};
         int k = w->pending++;
@@ -329,32 +362,55 @@ static inline void bvh_visit2(bvh_walk *w, uint32_t k, float t_max)
     bvh_push(w, mask, child, count, t_near);
 }
 
+/* The children of node now that the ray meets before t_max: pushed,
+ * farthest on the bottom; the number found. */
+static inline int bvh_visit(bvh_walk *w, bvh_todo now, float t_max)
+{
+    float t_near[8];
+    int before = w->pending;
+    w->visited++;
+    if (w->t->width == 2) {
+        bvh_visit2(w, now.child, t_max);
+    } else if (w->t->width == 4) {
+        const bvh_node4 *n = &w->t->nodes4[now.child];
+        unsigned mask = bvh_node4_test(n, &w->r, t_max, t_near);
+        bvh_push(w, mask, n->child, n->count, t_near);
+    } else {
+        const bvh_node8 *n = &w->t->nodes8[now.child];
+        unsigned mask = bvh_node8_test(n, &w->r, t_max, t_near);
+        bvh_push(w, mask, n->child, n->count, t_near);
+    }
+    return w->pending - before;
+}
+
+/* best widened by BVH_SLACK, in float, within the ray's own bound; made
+ * again only when best changes (rounding up may call the library). */
+static inline float bvh_walk_bound(bvh_walk *w, double best)
+{
+    if (!(best == w->best)) {
+        float t_max = bvh_float_up(best * (1 + BVH_SLACK));
+        w->t_max = t_max < w->r.t_max ? t_max : w->r.t_max;
+        w->best = best;
+    }
+    return w->t_max;
+}
+
 /* The next leaf whose box the ray meets before best (the nearest hit so
  * far, widened by BVH_SLACK: a hit at best itself may still win a tie);
- * false when none is left. */
+ * false when none is left. Children just pushed are in range: the
+ * nearest is taken at once. */
 static inline bool bvh_walk_next(bvh_walk *w, double best, bvh_leaf *leaf)
 {
-    float t_max = bvh_float_up(best * (1 + BVH_SLACK)), t_near[8];
-    t_max = t_max < w->r.t_max ? t_max : w->r.t_max;
+    float t_max = bvh_walk_bound(w, best);
     while (w->pending > 0) {
         bvh_todo now = w->stack[--w->pending];
         if (now.t_near > t_max)
             continue; /* the box starts beyond the nearest hit */
+        while (now.count == 0 && bvh_visit(w, now, t_max) > 0)
+            now = w->stack[--w->pending]; /* the nearest child */
         if (now.count > 0) {
             *leaf = (bvh_leaf){(int)now.child, (int)now.count};
             return true;
-        }
-        w->visited++;
-        if (w->t->width == 2) {
-            bvh_visit2(w, now.child, t_max);
-        } else if (w->t->width == 4) {
-            const bvh_node4 *n = &w->t->nodes4[now.child];
-            unsigned mask = bvh_node4_test(n, &w->r, t_max, t_near);
-            bvh_push(w, mask, n->child, n->count, t_near);
-        } else {
-            const bvh_node8 *n = &w->t->nodes8[now.child];
-            unsigned mask = bvh_node8_test(n, &w->r, t_max, t_near);
-            bvh_push(w, mask, n->child, n->count, t_near);
         }
     }
     return false;

@@ -367,8 +367,8 @@ void mesh_free_tree(mesh *m)
     m->leaf_corners = NULL;
     /* <<free the mesh's other trees>> ch09 */
     bvh_free(&m->bvh);
-    free(m->bvh_corners);
-    m->bvh_corners = NULL;
+    free(m->bvh_packets);
+    m->bvh_packets = NULL, m->bvh_packet_count = 0;
 }
 
 long long mesh_tree_bytes(const mesh *m)
@@ -377,9 +377,9 @@ long long mesh_tree_bytes(const mesh *m)
     long long bytes = kdtree_bytes(&m->tree) +
                       corners * (long long)sizeof *m->leaf_corners;
     /* <<the bytes of the mesh's other trees>> ch09 */
-    if (m->bvh_corners != NULL)
+    if (m->bvh_packets != NULL)
         bytes += bvh_bytes(&m->bvh) +
-                 m->bvh.item_count * (long long)sizeof *m->bvh_corners;
+                 m->bvh_packet_count * (long long)sizeof *m->bvh_packets;
     return bytes;
 }
 
@@ -465,16 +465,37 @@ static void triangle_boxes(const mesh *m, box *bounds)
     }
 }
 
-/* The corners of the triangles items[0..n), in that order; NULL when
- * out of memory. */
-static triangle_corners *corners_in_order(const mesh *m, const int *items,
-                                          int n)
+/* Where reference c of node k of t to a leaf keeps the leaf's first item
+ * (or packet), and its count (0: no leaf). */
+static uint32_t *leaf_start(bvh *t, int k, int c, uint32_t *count)
 {
-    triangle_corners *out = memory_alloc((size_t)n, sizeof *out);
-    for (int i = 0; out != NULL && i < n; i++)
-        for (int c = 0; c < 3; c++)
-            out[i].p[c] = m->vertices[m->triangles[items[i]].v[c]];
-    return out;
+    if (t->width == 2)
+        return *count = t->nodes[k].count, &t->nodes[k].index;
+    if (t->width == 4)
+        return *count = t->nodes4[k].count[c], &t->nodes4[k].child[c];
+    return *count = t->nodes8[k].count[c], &t->nodes8[k].child[c];
+}
+
+/* Packs each leaf of m's BVH into packets of its own, leaf after leaf,
+ * and points the leaf at its first packet (packets NULL: only counts);
+ * the number of packets. */
+static int pack_leaves(mesh *m, triangle_packet *packets)
+{
+    bvh *t = &m->bvh;
+    int next = 0, refs = t->width == 2 ? 1 : t->width;
+    for (int k = 0; k < t->node_count; k++)
+        for (int c = 0; c < refs; c++) {
+            uint32_t count, *first = leaf_start(t, k, c, &count);
+            if (count == 0)
+                continue;
+            if (packets != NULL)
+                triangle_packets_fill(packets + next, m->vertices,
+                                      m->triangles, t->items + *first,
+                                      (int)count),
+                    *first = (uint32_t)next;
+            next += triangle_packets_needed((int)count);
+        }
+    return next;
 }
 
 bool mesh_build_bvh(mesh *m, const bvh_params *p)
@@ -482,33 +503,40 @@ bool mesh_build_bvh(mesh *m, const bvh_params *p)
     mesh_free_tree(m);
     bvh_params q = *p;
     q.min_items = q.min_items > 0 ? q.min_items : MESH_TREE_MIN_TRIANGLES;
+    q.item_group = q.item_group > 0 ? q.item_group : PACKET_W;
     box *bounds = memory_alloc((size_t)m->triangle_count, sizeof *bounds);
     if (bounds != NULL)
         triangle_boxes(m, bounds);
     bool ok = bounds != NULL &&
               bvh_build(&m->bvh, m->triangle_count, bounds, &q);
     free(bounds);
-    if (ok && m->bvh.node_count > 0 &&
-        (m->bvh_corners = corners_in_order(m, m->bvh.items,
-                                           m->bvh.item_count)) == NULL)
-        ok = false, bvh_free(&m->bvh);
-    return ok;
+    if (!ok || m->bvh.node_count == 0)
+        return ok;
+    int n = pack_leaves(m, NULL);
+    m->bvh_packets = memory_alloc_aligned(_Alignof(triangle_packet),
+                                          (size_t)n, sizeof(triangle_packet));
+    if (m->bvh_packets == NULL)
+        return bvh_free(&m->bvh), false;
+    m->bvh_packet_count = pack_leaves(m, m->bvh_packets);
+    return true;
 }
 
-/* The triangles of a leaf: the nearest hit by the tie rule (best: the
- * nearest triangle so far, -1: none) into *out, or with out NULL any
- * hit; its place in the leaf, or -1. */
-static int bvh_leaf_test(const mesh *m, const mesh_ray *mr, bvh_leaf leaf,
+/* The triangles of a leaf, its packets: the nearest hit by the tie rule
+ * (best: the nearest triangle so far, -1: none) into *out, or with out
+ * NULL any hit; its index in m, or -1. */
+static int bvh_leaf_test(const mesh *m, const packet_ray *r, bvh_leaf leaf,
                          double t_min, double t_max, int best,
-                         triangle_hit *out)
+                         triangle_hit *out, long long *decided)
 {
-    const triangle_corners *corners = m->bvh_corners + leaf.first;
+    const triangle_packet *p = m->bvh_packets + leaf.first;
+    int n = triangle_packets_needed(leaf.count);
     if (out == NULL)
-        return triangle_any_corners(&mr->shear, corners, leaf.count, t_min,
-                                    t_max) ? 0 : -1;
-    return triangle_nearest_of_leaf(&mr->shear, corners,
-                                    m->bvh.items + leaf.first, leaf.count,
-                                    t_min, t_max, best, out);
+        return triangle_packets_any_in_mesh(r, p, n, m->vertices,
+                                            m->triangles, t_min, t_max,
+                                            decided) ? 0 : -1;
+    return triangle_packets_nearest_in_mesh(r, p, n, m->vertices,
+                                            m->triangles, t_min, t_max,
+                                            best, out, decided);
 }
 
 /* Every triangle of m, for a ray the float tests cannot take. */
@@ -532,13 +560,16 @@ int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
     bvh_walk w;
     bvh_leaf leaf;
     int found = -1;
+    long long decided = 0;
+    packet_ray pr = packet_ray_of(&mr->shear);
     bvh_walk_start(&w, &m->bvh, &r);
     while (bvh_walk_next(&w, t_max, &leaf)) {
         stats->triangle_tests += leaf.count;
-        int k = bvh_leaf_test(m, mr, leaf, t_min, t_max, found, out);
+        int k = bvh_leaf_test(m, &pr, leaf, t_min, t_max, found, out,
+                              &decided);
         if (k < 0)
             continue;
-        found = m->bvh.items[leaf.first + k];
+        found = k;
         if (out == NULL)
             break; /* any hit blocks a shadow ray */
         t_max = out->t;

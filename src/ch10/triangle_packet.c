@@ -46,7 +46,7 @@ int triangle_packets_fill(triangle_packet *packets, const vec3 *vertices,
 packet_ray packet_ray_of(const watertight_ray *w)
 {
     packet_ray r = {w->kx, w->ky, w->kz, (float)w->sx, (float)w->sy,
-                    (float)w->sz, {0}, 0, *w};
+                    (float)w->sz, {0}, 0, w};
     const int axes[3] = {w->kx, w->ky, w->kz};
     for (int i = 0; i < 3; i++) {
         r.origin[i] = (float)vec3_axis(w->origin, axes[i]);
@@ -77,6 +77,22 @@ static inline packet_float packet_abs(packet_float x)
 }
 #define lanes_abs(x) _Generic((x), float: fabsf, default: packet_abs)(x)
 
+/* Is every lane of the mask m set? Alike for one lane and for vectors. */
+static inline int lane_set(int m)
+{
+    return m != 0;
+}
+
+static inline int packet_all_set(packet_int m)
+{
+    packet_int none = m == 0; /* -1 where a lane is clear */
+    int clear = 0;
+    for (int k = 0; k < PACKET_W; k++)
+        clear |= none[k];
+    return clear == 0;
+}
+#define lanes_all(m) _Generic((m), int: lane_set, default: packet_all_set)(m)
+
 /* <<the float filter, lane by lane and in vectors>> ch09 */
 /* The lanes of p that chapter 4's test could hit: -1 in each. */
 static inline packet_int kept_in_vectors(const triangle_packet *p,
@@ -95,24 +111,27 @@ static inline packet_int kept_in_vectors(const triangle_packet *p,
     lanes bx = (b[kx] - ox) - r->sx * bz, by = (b[ky] - oy) - r->sy * bz;
     lanes cx = (c[kx] - ox) - r->sx * cz, cy = (c[ky] - oy) - r->sy * cz;
     lanes u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
-    lanes det = u + v + w;
-    lanes za = r->sz * az, zb = r->sz * bz, zc = r->sz * cz;
-    lanes n = u * za + v * zb + w * zc; /* t times det */
-    /* <<the float test's error bounds>> ch09 */
+    /* <<the edge functions' error bound>> ch09 */
     lanes reach = p_reach + r->origin_reach; /* >= |corner| + |origin| */
     lanes e_s = gamma_of(11) * reach;        /* a sheared x or y */
     lanes xm = lanes_abs(ax) + lanes_abs(bx) + lanes_abs(cx); /* >= max |x| */
     lanes ym = lanes_abs(ay) + lanes_abs(by) + lanes_abs(cy);
-    lanes zm = lanes_abs(za) + lanes_abs(zb) + lanes_abs(zc);
     lanes e_e = (2 * e_s * (xm + ym) + 2 * e_s * e_s + 2 * gamma_of(2) * xm * ym) *
                     BOUND_MARGIN + FLT_MIN; /* U, V or W */
+    lane_mask outside = ((u < -e_e) | (v < -e_e) | (w < -e_e)) &
+                        ((u > e_e) | (v > e_e) | (w > e_e));
+    if (lanes_all(outside)) /* an edge between, in every lane */
+        return (lane_mask){0};
+    lanes det = u + v + w;
+    lanes za = r->sz * az, zb = r->sz * bz, zc = r->sz * cz;
+    lanes n = u * za + v * zb + w * zc; /* t times det */
+    /* <<the float test's error bounds>> ch09 */
+    lanes zm = lanes_abs(za) + lanes_abs(zb) + lanes_abs(zc);
     lanes sum = lanes_abs(u) + lanes_abs(v) + lanes_abs(w);
     lanes e_d = (3 * e_e + gamma_of(2) * sum) * BOUND_MARGIN + FLT_MIN;
     lanes e_z = gamma_of(6) * fabsf(r->sz) * reach; /* a scaled z */
     lanes e_n = (e_z * sum + 3 * e_e * (zm + e_z) + gamma_of(3) * sum * zm) *
                     BOUND_MARGIN + FLT_MIN; /* t times det */
-    lane_mask outside = ((u < -e_e) | (v < -e_e) | (w < -e_e)) &
-                        ((u > e_e) | (v > e_e) | (w > e_e));
     lane_mask sure = (lanes_abs(det) > e_d) & t_filter; /* det's sign */
     lane_mask far = ((det > 0) & (n - e_n >= t_max * (det + e_d) * T_MARGIN)) |
                     ((det < 0) & (-n - e_n >= t_max * (e_d - det) * T_MARGIN));
@@ -139,24 +158,27 @@ static inline int kept_alone(const triangle_packet *p, int k,
     lanes bx = (b[kx] - ox) - r->sx * bz, by = (b[ky] - oy) - r->sy * bz;
     lanes cx = (c[kx] - ox) - r->sx * cz, cy = (c[ky] - oy) - r->sy * cz;
     lanes u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
-    lanes det = u + v + w;
-    lanes za = r->sz * az, zb = r->sz * bz, zc = r->sz * cz;
-    lanes n = u * za + v * zb + w * zc; /* t times det */
-    /* <<the float test's error bounds>> ch09 */
+    /* <<the edge functions' error bound>> ch09 */
     lanes reach = p_reach + r->origin_reach; /* >= |corner| + |origin| */
     lanes e_s = gamma_of(11) * reach;        /* a sheared x or y */
     lanes xm = lanes_abs(ax) + lanes_abs(bx) + lanes_abs(cx); /* >= max |x| */
     lanes ym = lanes_abs(ay) + lanes_abs(by) + lanes_abs(cy);
-    lanes zm = lanes_abs(za) + lanes_abs(zb) + lanes_abs(zc);
     lanes e_e = (2 * e_s * (xm + ym) + 2 * e_s * e_s + 2 * gamma_of(2) * xm * ym) *
                     BOUND_MARGIN + FLT_MIN; /* U, V or W */
+    lane_mask outside = ((u < -e_e) | (v < -e_e) | (w < -e_e)) &
+                        ((u > e_e) | (v > e_e) | (w > e_e));
+    if (lanes_all(outside)) /* an edge between, in every lane */
+        return (lane_mask){0};
+    lanes det = u + v + w;
+    lanes za = r->sz * az, zb = r->sz * bz, zc = r->sz * cz;
+    lanes n = u * za + v * zb + w * zc; /* t times det */
+    /* <<the float test's error bounds>> ch09 */
+    lanes zm = lanes_abs(za) + lanes_abs(zb) + lanes_abs(zc);
     lanes sum = lanes_abs(u) + lanes_abs(v) + lanes_abs(w);
     lanes e_d = (3 * e_e + gamma_of(2) * sum) * BOUND_MARGIN + FLT_MIN;
     lanes e_z = gamma_of(6) * fabsf(r->sz) * reach; /* a scaled z */
     lanes e_n = (e_z * sum + 3 * e_e * (zm + e_z) + gamma_of(3) * sum * zm) *
                     BOUND_MARGIN + FLT_MIN; /* t times det */
-    lane_mask outside = ((u < -e_e) | (v < -e_e) | (w < -e_e)) &
-                        ((u > e_e) | (v > e_e) | (w > e_e));
     lane_mask sure = (lanes_abs(det) > e_d) & t_filter; /* det's sign */
     lane_mask far = ((det > 0) & (n - e_n >= t_max * (det + e_d) * T_MARGIN)) |
                     ((det < 0) & (-n - e_n >= t_max * (e_d - det) * T_MARGIN));
@@ -230,7 +252,7 @@ unsigned triangle_packet_candidates_scalar(const triangle_packet *p,
 static bool hit_in_double(const packet_ray *r, const triangle_corners *c,
                           double t_min, double t_max, triangle_hit *out)
 {
-    return triangle_hit_prepared(&r->exact, c->p[0], c->p[1], c->p[2], t_min,
+    return triangle_hit_prepared(r->exact, c->p[0], c->p[1], c->p[2], t_min,
                                  t_max, out);
 }
 
@@ -273,6 +295,64 @@ bool triangle_packets_any(const packet_ray *r, const triangle_packet *packets,
                                                  __builtin_ctz(bits)];
             ++*decided;
             if (hit_in_double(r, c, t_min, t_max, &unused))
+                return true;
+        }
+    return false;
+}
+
+/* <<deciding the kept lanes on the mesh's corners>> ch09 */
+/* Chapter 4's test of the mesh's triangle i. */
+static bool hit_in_mesh(const packet_ray *r, const vec3 *vertices,
+                        const mesh_triangle *triangles, int i, double t_min,
+                        double t_max, triangle_hit *out)
+{
+    const int *v = triangles[i].v;
+    return triangle_hit_prepared(r->exact, vertices[v[0]], vertices[v[1]],
+                                 vertices[v[2]], t_min, t_max, out);
+}
+
+int triangle_packets_nearest_in_mesh(const packet_ray *r,
+                                     const triangle_packet *packets,
+                                     int count, const vec3 *vertices,
+                                     const mesh_triangle *triangles,
+                                     double t_min, double t_max, int best,
+                                     triangle_hit *out, long long *decided)
+{
+    int nearest = -1;
+    double reach = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
+    float_interval in = float_interval_of(t_min, reach);
+    for (int p = 0; p < count; p++)
+        for (unsigned bits = candidates(&packets[p], r, in); bits != 0;
+             bits &= bits - 1) {
+            int lane = __builtin_ctz(bits), i = packets[p].triangle[lane];
+            triangle_hit th;
+            ++*decided;
+            if (hit_in_mesh(r, vertices, triangles, i, t_min, reach, &th) &&
+                (th.t < t_max || i < best)) { /* a tie: the lower index */
+                *out = th, t_max = th.t, best = i, nearest = i;
+                reach = nextafter(t_max, INFINITY);
+                in = float_interval_of(t_min, reach);
+            }
+        }
+    return nearest;
+}
+
+bool triangle_packets_any_in_mesh(const packet_ray *r,
+                                  const triangle_packet *packets, int count,
+                                  const vec3 *vertices,
+                                  const mesh_triangle *triangles,
+                                  double t_min, double t_max,
+                                  long long *decided)
+{
+    float_interval in = float_interval_of(t_min, t_max);
+    triangle_hit unused;
+    for (int p = 0; p < count; p++)
+        for (unsigned bits = candidates(&packets[p], r, in); bits != 0;
+             bits &= bits - 1) {
+            ++*decided;
+            int lane = __builtin_ctz(bits);
+            if (hit_in_mesh(r, vertices, triangles, packets[p].triangle[lane],
+                            t_min, t_max, &unused))
                 return true;
         }
     return false;

@@ -67,10 +67,11 @@ typedef struct {
     float sx, sy, sz;     /* chapter 4's shear, rounded to float */
     float origin[3];      /* along kx, ky, kz, rounded to float */
     float origin_reach;   /* the origin's largest |coordinate| */
-    watertight_ray exact; /* for the double test */
+    const watertight_ray *exact; /* for the double test */
 } packet_ray;
 
-/* w's constants for the float test, and w itself. */
+/* w's constants for the float test, and w itself (which must outlive
+ * them). */
 packet_ray packet_ray_of(const watertight_ray *w);
 
 /* <<the tests of packets>> ch09 */
@@ -102,5 +103,20 @@ int triangle_packets_nearest(const packet_ray *r,
 bool triangle_packets_any(const packet_ray *r, const triangle_packet *packets,
                           int count, const triangle_corners *corners,
                           double t_min, double t_max, long long *decided);
+
+/* The same two, deciding on the mesh's own corners, read through each
+ * kept lane's index: no copy of the corners beside the packets. */
+int triangle_packets_nearest_in_mesh(const packet_ray *r,
+                                     const triangle_packet *packets,
+                                     int count, const vec3 *vertices,
+                                     const mesh_triangle *triangles,
+                                     double t_min, double t_max, int best,
+                                     triangle_hit *out, long long *decided);
+bool triangle_packets_any_in_mesh(const packet_ray *r,
+                                  const triangle_packet *packets, int count,
+                                  const vec3 *vertices,
+                                  const mesh_triangle *triangles,
+                                  double t_min, double t_max,
+                                  long long *decided);
 
 #endif
