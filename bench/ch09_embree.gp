@@ -13,16 +13,17 @@
 load "bench/chart.gp"
 set grid noxtics ytics
 set terminal svg size 1250,520 font "Helvetica,12" background "white"
-set bmargin 5.5
+set bmargin 6.5
 set output stem.'.svg'
 absent = int(system("grep -c '^embree,absent' ".csv))
 default = "bvh4"
 # the bunny's closest-hit methods at K = 1, in the file's order: "name rate"
 steps = system("awk -F, '$2 == \"bunny-1.0\" && $5 == \"mrays_per_s\" && $1 !~ /-any$/ {printf \"%s \", $1}' ".csv)
 step(k) = word(steps, k)
-label(m) = m eq "kdtree-ch08" ? "kd-tree,\nchapter 8" : m eq "kdtree" ? "kd-tree,\ntight leaves" : \
-           m eq "bvh2" ? "BVH,\nbinary" : m eq "bvh4" ? "BVH,\n4 wide" : m eq "bvh8" ? "BVH,\n8 wide" : \
-           m eq "embree" ? "Embree 3" : m
+label(m) = m eq "kdtree-ch08" ? "kd-tree,\nchapter 8" : m eq "kdtree" ? "kd-tree,\ntight\nleaves" : \
+           m eq "bvh4-double" ? "BVH 4,\ndouble\ncopies" : m eq "bvh4-double-mesh" ? "BVH 4,\ndouble\nof mesh" : \
+           m eq "bvh2" ? "BVH 2,\npackets" : m eq "bvh4" ? "BVH 4,\npackets" : m eq "bvh8" ? "BVH 8,\npackets" : \
+           m eq "embree" ? "Embree" : m
 in_steps(m) = strstrt(" ".steps, " ".m." ") > 0
 step_x(m) = in_steps(m) ? sum [k=1:words(steps)] (step(k) eq m ? k - 1 : 0) : NaN
 is(m, k) = strcol(1) eq m && strcol(5) eq k
@@ -38,7 +39,7 @@ theirs = "#7570b3"
 set style fill solid 0.85 noborder
 
 eval machine_label
-set multiplot layout 1,3 title (absent ? "Chapter 9: chapter 8's kd-tree (Embree was absent when this chart was made)" : "Chapter 9: each step against Embree 3, the same rays, one thread each") font ",14" margins 0.06,0.99,0.2,0.82 spacing 0.06
+set multiplot layout 1,3 title (absent ? "Chapter 9: chapter 8's kd-tree (Embree was absent when this chart was made)" : "Chapter 9: each step against Embree 3, the same rays, one thread each") font ",14" margins 0.06,0.99,0.22,0.82 spacing 0.06
 set boxwidth 0.7
 set xrange [-0.6:words(steps) - 0.4]
 set yrange [0:*]

@@ -95,7 +95,7 @@ static bool write_terrain(const char *obj, const char *scene)
         fprintf(g, "camera fov 60\nimage 512 512\nambient 0.2 0.2 0.2\n"
                    "mesh file %s scale 10 offset -5 -1.5 3 color 0.5 0.6 0.4\n"
                    "light directional direction 1 -1 1 intensity 0.8 0.8 0.8\n",
-                obj);
+                strrchr(obj, '/') ? strrchr(obj, '/') + 1 : obj); /* beside */
     }
     ok = (f == NULL || fclose(f) == 0) && (g == NULL || fclose(g) == 0) && ok;
     return ok;
