@@ -294,14 +294,19 @@ static void *build_tasks(void *queue)
 
 #define BVH_MAX_THREADS 256
 
-/* The tasks, on threads threads (0: one per core); this one is one. */
-static void run_tasks(bvh_queue *q, int threads)
+/* The threads of a build asked for threads (0: one per core). */
+static int thread_count(int threads)
 {
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     int n = threads > 0 ? threads : cores > 0 ? (int)cores : 1;
+    return n < BVH_MAX_THREADS ? n : BVH_MAX_THREADS;
+}
+
+/* The tasks, on threads threads (0: one per core); this one is one. */
+static void run_tasks(bvh_queue *q, int threads)
+{
+    int n = thread_count(threads), started = 0;
     pthread_t id[BVH_MAX_THREADS];
-    int started = 0;
-    n = n < BVH_MAX_THREADS ? n : BVH_MAX_THREADS;
     while (started < n - 1 &&
            pthread_create(&id[started], NULL, build_tasks, q) == 0)
         started++; /* a thread that cannot start leaves its share to us */
@@ -457,7 +462,9 @@ static void build_binary(bvh_builder *bd, vec3 *centers, int count,
         bd->items[k] = k;
     }
     bd->centers = centers;
-    int small = count / 64 > 1024 ? count / 64 : 1024; /* a task's size */
+    /* a task's size: eight tasks a thread, enough to share them out */
+    int tasks_wanted = 8 * thread_count(bd->p.threads);
+    int small = count / tasks_wanted > 1024 ? count / tasks_wanted : 1024;
     bvh_queue q = {.bd = bd, .tasks = tasks};
     build_top(bd, 0, count, 0, 0, small, tasks, &q.task_count);
     atomic_init(&q.next, 0);

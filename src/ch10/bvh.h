@@ -215,20 +215,29 @@ static inline unsigned bvh_mask4(bvh_i4 hit)
 #endif
 }
 
-/* bvh_lanes_test_scalar of four lanes at once. */
+/* The slab of axis a narrows [*t0, *t1], lane by lane. */
+static inline void bvh_slab4(const float *box, int stride, const bvh_ray *r,
+                             int a, bvh_f4 *t0, bvh_f4 *t1)
+{
+    bvh_f4 face;
+    memcpy(&face, box + r->near[a] * stride, sizeof face);
+    bvh_f4 tn = (face - r->o_near[a]) * r->inv[a];
+    memcpy(&face, box + r->far[a] * stride, sizeof face);
+    bvh_f4 tf = (face - r->o_far[a]) * r->inv[a] * BVH_FAR_WIDENING;
+    *t0 = bvh_max4(tn, *t0), *t1 = bvh_min4(tf, *t1);
+}
+
+/* bvh_lanes_test_scalar of four lanes at once; the three axes written
+ * out, not looped over (the compiler does not unroll the loop at -O2). */
 static inline unsigned bvh_lanes4_test_vector(const float *box, int stride,
                                               const bvh_ray *r, float t_max,
                                               float t_near[4])
 {
     bvh_f4 t0 = {r->t_min, r->t_min, r->t_min, r->t_min};
-    bvh_f4 t1 = {t_max, t_max, t_max, t_max}, face;
-    for (int a = 0; a < 3; a++) {
-        memcpy(&face, box + r->near[a] * stride, sizeof face);
-        bvh_f4 tn = (face - r->o_near[a]) * r->inv[a];
-        memcpy(&face, box + r->far[a] * stride, sizeof face);
-        bvh_f4 tf = (face - r->o_far[a]) * r->inv[a] * BVH_FAR_WIDENING;
-        t0 = bvh_max4(tn, t0), t1 = bvh_min4(tf, t1);
-    }
+    bvh_f4 t1 = {t_max, t_max, t_max, t_max};
+    bvh_slab4(box, stride, r, 0, &t0, &t1);
+    bvh_slab4(box, stride, r, 1, &t0, &t1);
+    bvh_slab4(box, stride, r, 2, &t0, &t1);
     memcpy(t_near, &t0, sizeof t0);
     return bvh_mask4(t0 <= t1);
 }
@@ -333,10 +342,11 @@ static inline void bvh_push(bvh_walk *w, unsigned mask, const uint32_t *child,
                             const uint32_t *count, const float *t_near)
 {
     int first = w->pending;
+    /* An unused child is never in mask: its empty box (lo +inf, hi -inf)
+     * gives every ray t_near = +inf and t_far = -inf, whatever the sign
+     * of 1 / d, for the finite origins bvh_ray_of accepts. */
     for (; mask != 0; mask &= mask - 1) { /* the lowest bit left, each */
         int c = __builtin_ctz(mask);
-        if (count[c] == 0 && child[c] == BVH_NO_CHILD)
-            continue;
         bvh_todo todo = {child[c], count[c], t_near[c]};
         int k = w->pending++;
         for (; k > first && w->stack[k - 1].t_near < todo.t_near; k--)
