@@ -33,10 +33,12 @@ int triangle_packets_fill(triangle_packet *packets, const vec3 *vertices,
     for (int p = 0; p < n; p++) {
         memset(&packets[p], 0, sizeof packets[p]);
         for (int k = 0; k < PACKET_W; k++) {
-            int j = p * PACKET_W + k, item = items ? items[j] : j;
+            int j = p * PACKET_W + k;
             packets[p].triangle[k] = -1; /* empty, unless filled */
-            if (j < count)
+            if (j < count) { /* items has count entries, no more */
+                int item = items ? items[j] : j;
                 fill_lane(&packets[p], k, vertices, &triangles[item], item);
+            }
         }
     }
     return n;
