@@ -1,4 +1,5 @@
-/* mesh.c: meshes, their normals, and ray-mesh intersection (chapter 4). */
+/* mesh.c: meshes, their normals, and ray-mesh intersection (chapter 4),
+ * through a tree of the mesh from chapter 8 on. */
 #include "mesh.h"
 
 #include <stdlib.h>
