@@ -144,7 +144,8 @@ run_suites() {
     CK_FORK=yes CK_VERBOSITY=verbose CK_TIMEOUT_MULTIPLIER=0.1 \
     CK_DEFAULT_TIMEOUT=$((GRADE_TIMEOUT * 10)) \
     CHAPTER_BIN=$WB_BUILD/bin/ch$target \
-        timeout 900 "$WB_BUILD/test/ch$target" > "$work/tests.log" 2>&1
+        timeout 900 sh "$tools_dir/run_shards.sh" "$WB_BUILD/test/ch$target" \
+        > "$work/tests.log" 2>&1
 }
 
 for chapter in "$@"; do
