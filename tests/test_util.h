@@ -152,25 +152,47 @@ static inline pid_t start_bin(const char *const *args, run_limits limits)
     return pid;
 }
 
-/* The CPU time, user and system, of the last binary finish_bin waited for. */
-static double last_run_cpu_seconds;
+/* What the last binary that finish_bin waited for did, measured by the work
+ * rather than by a clock (which a loaded machine or a sanitizer slows):
+ * the bytes it read (rchar of /proc/PID/io: files, pipes and its own shared
+ * libraries; -1 where /proc/PID/io cannot be read, as off Linux) and its
+ * peak resident memory in KiB (on Linux the larger of its own and that of
+ * the test process it was forked from, as it stood before execv). */
+static long long last_run_bytes_read;
+static long last_run_peak_kib;
 
-static inline double children_cpu_seconds(void)
+/* rchar of /proc/pid/io, or -1 when there is no such file to read. */
+static inline long long proc_bytes_read(pid_t pid)
 {
-    struct rusage u;
-    ck_assert_int_eq(getrusage(RUSAGE_CHILDREN, &u), 0);
-    return (double)(u.ru_utime.tv_sec + u.ru_stime.tv_sec) +
-           1e-6 * (double)(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+    char path[64], line[128];
+    snprintf(path, sizeof path, "/proc/%ld/io", (long)pid);
+    FILE *f = fopen(path, "r");
+    long long n = -1;
+    while (f != NULL && fgets(line, sizeof line, f) != NULL)
+        if (sscanf(line, "rchar: %lld", &n) == 1)
+            break;
+    if (f)
+        fclose(f);
+    return n;
 }
 
 /* Waits for the binary started as pid; returns its exit status (128 + the
  * signal that ended it) and puts what it wrote on stderr into errors[size]. */
 static inline int finish_bin(pid_t pid, char *errors, size_t size)
 {
+    /* WNOWAIT leaves the child a zombie, whose /proc/PID/io is still there
+     * to read; wait4 then reaps it and gives its resource usage. */
+    siginfo_t info;
+    ck_assert_int_eq(waitid(P_PID, (id_t)pid, &info, WEXITED | WNOWAIT), 0);
+    last_run_bytes_read = proc_bytes_read(pid);
     int status;
-    double before = children_cpu_seconds();
-    ck_assert_int_eq(waitpid(pid, &status, 0), pid);
-    last_run_cpu_seconds = children_cpu_seconds() - before;
+    struct rusage usage;
+    ck_assert_int_eq(wait4(pid, &status, 0, &usage), pid);
+#ifdef __APPLE__
+    last_run_peak_kib = usage.ru_maxrss / 1024; /* bytes on macOS */
+#else
+    last_run_peak_kib = usage.ru_maxrss; /* KiB on Linux and the BSDs */
+#endif
     char err_path[128];
     snprintf(err_path, sizeof err_path, "%s/stderr.txt", tmpdir);
     FILE *f = fopen(err_path, "r");
