@@ -494,13 +494,13 @@ $(foreach n,$(YOURS_NUMS),$(eval $(call yours_chart_rule,$(n))))
 # without the book and finds no solution line in it (but does in src/).
 .PHONY: handout check-handout
 handout: deps
-	sh tools/handout.sh build/handout
+	+sh tools/handout.sh build/handout
 	sh tools/check_handout.sh build/handout
 	tar -czf build/handout.tar.gz -C build handout
 	@echo "wrote build/handout/ and build/handout.tar.gz"
 
 check-handout:
-	@sh tools/handout.sh build/handoutcheck --no-book > /dev/null
+	+@sh tools/handout.sh build/handoutcheck --no-book > /dev/null
 	@sh tools/check_handout.sh build/handoutcheck
 	@! sh tools/check_handout.sh src > /dev/null || \
 	  { echo "check-handout: the check finds no solution in src/ either"; exit 1; }

@@ -915,8 +915,8 @@ static const char *previous_bin(void)
     snprintf(path, sizeof path, "%s", bin);
     char *number = strrchr(path, 'h'); /* ...chNN */
     ck_assert(number != NULL && strlen(number) == 3);
-    int n = atoi(number + 1) - 1;
-    snprintf(number + 1, 3, "%02d", n);
+    unsigned n = (unsigned)atoi(number + 1) - 1;
+    snprintf(number + 1, 3, "%02u", n % 100); /* two digits, as chNN has */
     return path;
 }
 

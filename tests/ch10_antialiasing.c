@@ -218,7 +218,8 @@ static const char *previous_bin(void)
     snprintf(path, sizeof path, "%s", getenv("CHAPTER_BIN"));
     char *number = strrchr(path, 'h'); /* ...chNN */
     ck_assert(number != NULL && strlen(number) == 3);
-    snprintf(number + 1, 3, "%02d", atoi(number + 1) - 1);
+    unsigned n = (unsigned)atoi(number + 1) - 1;
+    snprintf(number + 1, 3, "%02u", n % 100); /* two digits, as chNN has */
     return path;
 }
 

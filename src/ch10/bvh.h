@@ -332,7 +332,7 @@ static inline void bvh_walk_start(bvh_walk *w, const bvh *t,
     const bvh_node *root = t->width == 2 ? &t->nodes[0] : NULL;
     bool leaf = root != NULL && root->count > 0; /* a tree of one leaf */
     w->t = t, w->r = *r, w->pending = 1, w->visited = 0;
-    w->best = NAN; /* no bound yet */
+    w->best = NAN, w->t_max = r->t_max; /* no bound yet: made at first */
     w->stack[0] = (bvh_todo){leaf ? root->index : 0, leaf ? root->count : 0,
                              r->t_min};
 }

@@ -64,7 +64,7 @@ static bool read_pixel_setting(parser *p, pixel_sampling *ps,
     static const char *const patterns[] = {"center", "grid", "jittered",
                                            "adaptive"};
     static const char *const filters[] = {"box", "tent"};
-    int k;
+    int k = 0; /* read_name sets it before use; the compiler cannot see so */
     if (parse_token_is(p, "samples"))
         return once(p, &w->samples) && read_samples(p, &ps->side);
     if (parse_token_is(p, "pattern"))
