@@ -29,23 +29,6 @@ static inline real rvec_dot(rvec a, rvec b)
 }
 /* sqrt in double then rounded: correctly rounded in float as well. */
 static inline real real_sqrt(real x) { return (real)sqrt((double)x); }
-/* <<vectors in the working precision>> += ch04 */
-static inline rvec rvec_add(rvec a, rvec b)
-{
-    return (rvec){a.x + b.x, a.y + b.y, a.z + b.z};
-}
-static inline rvec rvec_cross(rvec a, rvec b)
-{
-    return (rvec){a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z,
-                  a.x * b.y - a.y * b.x};
-}
-
-/* Zero area: the three points lie on a line (or coincide). */
-static inline bool is_degenerate(rvec a, rvec b, rvec c)
-{
-    rvec n = rvec_cross(rvec_sub(b, a), rvec_sub(c, a));
-    return n.x == 0 && n.y == 0 && n.z == 0;
-}
 
 /* <<geometric form>> ch02 */
 /* Sheet 1.4 for any origin: m = <c - o, d>, D^2 = |c - o|^2 - m^2,

@@ -30,7 +30,7 @@ static inline real rvec_dot(rvec a, rvec b)
 }
 /* sqrt in double then rounded: correctly rounded in float as well. */
 static inline real real_sqrt(real x) { return (real)sqrt((double)x); }
-/* <<vectors in the working precision>> += ch04 */
+/* <<triangle vectors in the working precision>> ch04 */
 static inline rvec rvec_add(rvec a, rvec b)
 {
     return (rvec){a.x + b.x, a.y + b.y, a.z + b.z};
