@@ -694,6 +694,16 @@ check-lines: $(TANGLE) | deps
 check-quotes:
 	@sh tools/check_quotes.sh bench/quotes.txt
 
+# The README quotes the build's own speed as bench/build_speed.sh measured
+# it (figures/build-speed.md): every line of that table, word for word.
+.PHONY: check-build-speed
+check-build-speed:
+	@[ -f figures/build-speed.md ] || { echo "figures/build-speed.md: missing: run sh bench/build_speed.sh --ci"; exit 1; }
+	@while IFS= read -r line; do [ -z "$$line" ] || grep -qxF -- "$$line" README.md || \
+	  { echo "README.md: error: does not quote figures/build-speed.md's line: $$line"; exit 1; }; \
+	done < figures/build-speed.md
+	@echo "check-build-speed: README.md quotes figures/build-speed.md"
+
 # chapters/README.md's map of layers and hooks is that of the last chapter.
 check-map: check-src
 	@sh tools/check_map.sh --self-test
@@ -728,7 +738,7 @@ PROGRAM_TESTS := test-tangle $(foreach n,$(NUMS),test-ch$(n)) check-figures \
                  check-failures check-diagrams check-lines check-commands
 BOOK_TESTS := benches check-src check-charts check-book check-map check-stray \
               check-allocations check-test-width check-quotes check-workbook \
-              check-handout check-epub check-pdf check-book-browser
+              check-handout check-epub check-pdf check-book-browser check-build-speed
 test: deps $(PROGRAM_TESTS) $(if $(SAN),,$(BOOK_TESTS))
 	@# the book is up to date by now (check-book): -o keeps it so
 	$(if $(SAN),,@$(MAKE) --no-print-directory -o build/book.html check-code-width)

@@ -58,7 +58,7 @@ START_TEST(test_a_binary_mesh_stops_at_its_first_nul)
     snprintf(scene_path, sizeof scene_path, "%s",
              write_file("s.scene", "image 8 6\nmesh file zeros.obj\n"));
     const char *args[] = {scene_path, "-o", tmp_path("out.png"), NULL};
-#if defined(__SANITIZE_ADDRESS__)
+#if defined(TEST_ASAN)
     run_limits limits = {
         0}; /* AddressSanitizer reserves terabytes of addresses */
 #else

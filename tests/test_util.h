@@ -20,6 +20,17 @@
 
 #include "scene_file.h"
 
+/* TEST_ASAN: AddressSanitizer is in the build (GCC says so with a macro,
+ * Clang with __has_feature); it reserves terabytes of address space, so a
+ * test that limits a program's memory cannot run under it. */
+#if defined(__SANITIZE_ADDRESS__)
+#define TEST_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define TEST_ASAN 1
+#endif
+#endif
+
 static char tmpdir[64];
 
 /* Fixtures: a fresh, empty folder for every test, removed afterwards. */

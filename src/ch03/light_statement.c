@@ -56,8 +56,10 @@ static bool read_light_setting(parser *p, light *L)
     static const char *const settings[] = {
         [LIGHT_POINT] = "position, intensity, attenuation",
         [LIGHT_DIRECTIONAL] = "direction, intensity",
-        [LIGHT_SPOT] = "position, direction, angle, exponent, intensity, "
-                       "attenuation",
+        /* one string on two lines, in parentheses so that no compiler
+         * takes it for two with a comma missing */
+        [LIGHT_SPOT] = ("position, direction, angle, exponent, intensity, "
+                        "attenuation"),
     };
     bool placed = L->kind != LIGHT_DIRECTIONAL, aimed = L->kind != LIGHT_POINT;
     if (parse_token_is(p, "intensity"))

@@ -112,8 +112,10 @@ static bool read_light_setting(parser *p, light *L)
     static const char *const settings[] = {
         [LIGHT_POINT] = "position, intensity, attenuation",
         [LIGHT_DIRECTIONAL] = "direction, intensity",
-        [LIGHT_SPOT] = "position, direction, angle, exponent, intensity, "
-                       "attenuation",
+        /* one string on two lines, in parentheses so that no compiler
+         * takes it for two with a comma missing */
+        [LIGHT_SPOT] = ("position, direction, angle, exponent, intensity, "
+                        "attenuation"),
         /* <<the settings of other kinds of light>> ch06 */
         [LIGHT_AREA] = "position, direction, radius, samples, pattern, intensity, "
                        "attenuation",

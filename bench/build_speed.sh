@@ -1,0 +1,115 @@
+#!/bin/sh
+# build_speed.sh [--ci] [--runs N] [--out FILE]: how fast the book builds
+# and tests itself, measured as a student meets it: each step in a fresh
+# clone of this repository's HEAD (the packages already installed), timed
+# as a whole, wall clock. A benchmark like the charts, never a test:
+#
+#   make               a fresh clone, everything built
+#   make test          after that make, every check
+#   make test-ch04     a fresh clone of its own, one chapter's suites
+#   make grade-ch02    after a graded workbook, exercise 2.1's chunk edited
+#   .ci/run            a fresh clone of its own, CI=true (with --ci only:
+#                      it takes minutes)
+#
+# Each step runs N times (--runs, default 1); the table gives the median
+# and, with N > 1, the smallest and largest. A step that fails is reported
+# as failed. The table, with the machine on its first line, goes to FILE
+# (default figures/build-speed.md, which the README quotes) and to stdout.
+set -u
+runs=1 ci="" out=figures/build-speed.md
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --ci) ci=1; shift ;;
+    --runs) runs=$2; shift 2 ;;
+    --out) out=$2; shift 2 ;;
+    *) echo "usage: $0 [--ci] [--runs N] [--out FILE]" >&2; exit 2 ;;
+  esac
+done
+repo=$(pwd)
+scratch=$(mktemp -d) || exit 1
+trap 'rm -rf "$scratch"' EXIT
+times=$scratch/times
+
+now() { date +%s.%N; }
+
+# clone NAME: a fresh clone of HEAD in the scratch folder; prints its path.
+clone() {
+  rm -rf "$scratch/$1"
+  git clone -q "$repo" "$scratch/$1" && echo "$scratch/$1"
+}
+
+# timed STEP DIR COMMAND...: runs COMMAND in DIR, appends "STEP SECONDS"
+# (or "STEP failed") to the times file; its output goes to STEP's log.
+timed() {
+  step=$1 dir=$2
+  shift 2
+  log="$scratch/$(echo "$step" | tr ' /' '__').log"
+  start=$(now)
+  if (cd "$dir" && "$@") >> "$log" 2>&1; then
+    echo "$step	$(echo "$(now) - $start" | bc)" >> "$times"
+  else
+    echo "$step	failed" >> "$times"
+    echo "build_speed: '$step' failed; its log:" >&2
+    tail -20 "$log" >&2
+  fi
+}
+
+# An edit of one chunk: exercise 2.1's body gets a comment line.
+edit_one_chunk() {
+  awk '/ex="2.1"/ { print; print "/* edited */"; next } { print }' \
+    workbook/02-spheres.md > workbook/02-spheres.md.new &&
+    mv workbook/02-spheres.md.new workbook/02-spheres.md
+}
+
+k=0
+while [ "$k" -lt "$runs" ]; do
+  k=$((k + 1))
+  d=$(clone build) || exit 1
+  timed "make" "$d" make
+  timed "make test" "$d" make test
+  d=$(clone chapter) || exit 1
+  timed "make test-ch04, fresh clone" "$d" make test-ch04
+  # A solved workbook, graded once; then one chunk edited and graded again.
+  (cd "$d" && make -s workbook SOLVED=1 && sed -i '/^\/\/ NOT DONE/d' workbook/*.md &&
+     make -s grade-ch02) > "$scratch/grade-setup.log" 2>&1
+  (cd "$d" && edit_one_chunk)
+  timed "make grade-ch02, one chunk edited" "$d" make grade-ch02
+  if [ -n "$ci" ]; then
+    d=$(clone ci) || exit 1
+    timed ".ci/run, fresh clone" "$d" env CI=true bash .ci/run
+  fi
+done
+
+# The machine, as the charts' CSVs name it.
+cpu=$(sed -n 's/^model name[ 	]*: //p' /proc/cpuinfo 2>/dev/null | head -n 1)
+cores=$(nproc 2>/dev/null || echo "?")
+cc_version=$(cc --version 2>/dev/null | head -n 1)
+load=$(cut -d ' ' -f 1 /proc/loadavg 2>/dev/null || echo "?")
+{
+  echo "Machine: ${cpu:-unknown}, $cores cores (load $load at the end);" \
+       "$cc_version; $(date -u '+%Y-%m-%d %H:%M UTC'); $runs run(s) a step."
+  echo
+  echo "| step | seconds, median | smallest | largest | target |"
+  echo "|---|---|---|---|---|"
+  awk -F '\t' '
+    { step[$1] = step[$1] " " $2; if (!($1 in seen)) { seen[$1] = 1; order[++n] = $1 } }
+    END {
+      target["make"] = "60"; target["make test"] = "150"
+      target["make test-ch04, fresh clone"] = "20"
+      target["make grade-ch02, one chunk edited"] = "5"
+      target[".ci/run, fresh clone"] = "420"
+      for (i = 1; i <= n; i++) {
+        s = order[i]; m = split(substr(step[s], 2), v, " ")
+        failed = 0
+        for (j = 1; j <= m; j++) if (v[j] == "failed") failed = 1
+        if (failed) { printf "| `%s` | failed | | | %s |\n", s, target[s]; continue }
+        for (a = 1; a <= m; a++) for (b = a + 1; b <= m; b++)
+          if (v[b] + 0 < v[a] + 0) { t = v[a]; v[a] = v[b]; v[b] = t }
+        med = (m % 2) ? v[(m + 1) / 2] : (v[m / 2] + v[m / 2 + 1]) / 2
+        printf "| `%s` | %.0f | %.0f | %.0f | %s |\n", s, med, v[1], v[m], target[s]
+      }
+    }' "$times"
+} > "$scratch/table"
+mkdir -p "$(dirname "$out")"
+cp "$scratch/table" "$out"
+cat "$out"
