@@ -85,6 +85,12 @@ PNG_LIBS     = $(call once,PNG_LIBS,pkg-config --libs libpng)
 CHECK_CFLAGS = $(call once,CHECK_CFLAGS,pkg-config --cflags check)
 CHECK_LIBS   = $(call once,CHECK_LIBS,pkg-config --libs check)
 
+# reuse_from NN OBJ: the start of a compile command of chapter NN that copies
+# the previous chapter's OBJ instead when all it was compiled from is the
+# same text (tools/reuse_object.c); nothing for the first chapter.
+REUSE := $(B)/tools/reuse_object
+reuse_from = $(if $(call previous,$(1)),$(REUSE) $(B)/obj/ch$(call previous,$(1))/$(2) build/tangle/ch$(call previous,$(1)) build/tangle/ch$(1) -- )
+
 # The target's folder, made when missing: no shell at all when it exists
 # (hundreds of recipes, and a shell is not free).
 dir_of_target = $(if $(wildcard $(@D)/.),,$(shell mkdir -p $(@D)))
@@ -159,9 +165,9 @@ $$(T$(1))/.stamp: $$(call chapters_upto,$(1)) tools/tangle.c | $(TANGLE)
 
 $$(T$(1))/%.c $$(T$(1))/%.h $$(T$(1))/%.scene: $$(T$(1))/.stamp ;
 
-$$(O$(1))/%.o: $$(T$(1))/%.c | deps
+$$(O$(1))/%.o: $$(T$(1))/%.c | deps $(REUSE)
 	@$$(dir_of_target)
-	$$(CC) $$(ALL_CFLAGS) $$(PNG_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
+	$(call reuse_from,$(1),$$*.o)$$(CC) $$(ALL_CFLAGS) $$(PNG_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
 
 $(BIN)/ch$(1): $$(OBJ$(1))
 	@$$(dir_of_target)
@@ -169,10 +175,19 @@ $(BIN)/ch$(1): $$(OBJ$(1))
 
 ch$(1): deps $(BIN)/ch$(1)
 
+# A file compiled in the chapter before is compiled first there, so that
+# its object can serve here when nothing it was compiled from changed.
+ifneq ($(call previous,$(1)),)
+$$(patsubst %.c,$$(O$(1))/%.o,$$(filter $$(SRC$(call previous,$(1))),$$(SRC$(1)))): \
+  $$(O$(1))/%.o: | $(B)/obj/ch$(call previous,$(1))/%.o
+$$(patsubst tests/%.c,$$(O$(1))/tests/%.o,$$(filter $$(SUITES$(call previous,$(1))),$$(SUITES$(1)))): \
+  $$(O$(1))/tests/%.o: | $(B)/obj/ch$(call previous,$(1))/tests/%.o
+endif
+
 # The suites of chapters 01..NN, compiled against chapter NN's program.
-$$(O$(1))/tests/%.o: tests/%.c $$(T$(1))/.stamp | deps
+$$(O$(1))/tests/%.o: tests/%.c $$(T$(1))/.stamp | deps $(REUSE)
 	@$$(dir_of_target)
-	$$(CC) $$(ALL_CFLAGS) $$(TEST_OPT) $$(TEST_DEFS) $$(PNG_CFLAGS) $$(CHECK_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
+	$(call reuse_from,$(1),tests/$$*.o)$$(CC) $$(ALL_CFLAGS) $$(TEST_OPT) $$(TEST_DEFS) $$(PNG_CFLAGS) $$(CHECK_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
 
 $$(O$(1))/tests/runner.o: tests/runner.c $$(SUITES$(1)) | deps
 	@$$(dir_of_target)
