@@ -88,7 +88,6 @@ CHECK_LIBS   = $(call once,CHECK_LIBS,pkg-config --libs check)
 # reuse_from NN OBJ: the start of a compile command of chapter NN that copies
 # the previous chapter's OBJ instead when all it was compiled from is the
 # same text (tools/reuse_object.c); nothing for the first chapter.
-REUSE := $(B)/tools/reuse_object
 reuse_from = $(if $(call previous,$(1)),$(REUSE) $(B)/obj/ch$(call previous,$(1))/$(2) build/tangle/ch$(call previous,$(1)) build/tangle/ch$(1) -- )
 
 # The target's folder, made when missing: no shell at all when it exists
@@ -99,6 +98,7 @@ dir_of_target = $(if $(wildcard $(@D)/.),,$(shell mkdir -p $(@D)))
 B       := build/$(if $(SAN),san,rel)$(if $(SCALAR),-scalar)$(if $(NATIVE),-native)$(if $(LTO_FLAGS),-lto)
 BIN     := $(if $(SAN)$(SCALAR)$(NATIVE)$(LTO_FLAGS),$(B)/bin,bin)
 TANGLE  := $(B)/tools/tangle
+REUSE   := $(B)/tools/reuse_object
 
 CHAPTERS := $(sort $(wildcard chapters/[0-9][0-9]-*.md))
 NUMS     := $(foreach c,$(CHAPTERS),$(firstword $(subst -, ,$(notdir $(c)))))
