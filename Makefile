@@ -72,8 +72,9 @@ TEST_DEFS := -D_DEFAULT_SOURCE -D_DARWIN_C_SOURCE
 TEST_OPT := $(if $(SAN),,-O1)
 ALL_CFLAGS = $(CSTD) $(WARN) $(OPT) $(ARCH) -pthread $(CFLAGS) -MMD -MP
 
-# Parallel by default, one job a core; make -jN still chooses.
-ifeq ($(findstring -j,$(MAKEFLAGS))$(findstring jobserver,$(MAKEFLAGS)),)
+# Parallel by default, one job a core; make -jN still chooses, and a make
+# run by a recipe shares its parent's jobs.
+ifeq ($(MAKELEVEL),0)
 MAKEFLAGS += -j$(shell nproc 2>/dev/null || sysctl -n hw.ncpu 2>/dev/null || echo 2)
 endif
 
