@@ -1,4 +1,5 @@
-# The literate ray tracer: one non-recursive Makefile.
+# The literate ray tracer: one non-recursive Makefile. It runs one job a
+# core unless given -jN.
 #
 #   make              install missing packages (as root), tangle, build every
 #                     bin/chNN, render the figures, build build/book.html
@@ -13,7 +14,8 @@
 #   make figures      render figures/chNN-*.png, the failure figures too
 #   make failures     render figures/chNN-failure-*.png: what a naive method
 #                     draws (left) next to what the program draws (right)
-#   make charts       run bench/ and redraw figures/chNN-*.svg
+#   make charts       run bench/ (built with link-time optimization, under
+#                     build/rel-lto) and redraw figures/chNN-*.svg
 #   make diagrams     redraw the explanatory figures/chNN-diagram-*.svg
 #   make book         build/book.html          make clean
 #   make book-check   the book in headless Chromium at 1280x900 (installs it
@@ -25,7 +27,8 @@
 #                     (chapters 1 to 7)
 #   make handout      build/handout/ and its .tar.gz: no solutions in it
 #   make pdf, epub    the book's and the handout's editions
-#   make SAN=1 test   the same with AddressSanitizer and UBSan
+#   make SAN=1 test   what runs the programs (suites, figures, commands)
+#                     with AddressSanitizer and UBSan
 #   make WERROR=1     warnings are errors (CI)
 #   make SCALAR=1, NATIVE=1   chapter 9's BVH tests in scalar code, or with
 #                     every instruction of this machine
