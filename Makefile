@@ -715,6 +715,13 @@ check-lines: $(TANGLE) | deps
 check-quotes:
 	@sh tools/check_quotes.sh bench/quotes.txt
 
+# Every paragraph of prose closes the brackets it opens (pandoc would scan
+# the rest of the book for each: tools/check_brackets.awk).
+.PHONY: check-brackets
+check-brackets:
+	@awk -f tools/check_brackets.awk book.md $(CHAPTERS)
+	@echo "check-brackets: every paragraph closes its brackets"
+
 # The README quotes the build's own speed as bench/build_speed.sh measured
 # it (figures/build-speed.md): every line of that table, word for word.
 .PHONY: check-build-speed
@@ -759,7 +766,8 @@ PROGRAM_TESTS := test-tangle $(foreach n,$(NUMS),test-ch$(n)) check-figures \
                  check-failures check-diagrams check-lines check-commands
 BOOK_TESTS := benches check-src check-charts check-book check-map check-stray \
               check-allocations check-test-width check-quotes check-workbook \
-              check-handout check-epub check-pdf check-book-browser check-build-speed
+              check-handout check-epub check-pdf check-book-browser check-build-speed \
+              check-brackets
 test: deps $(PROGRAM_TESTS) $(if $(SAN),,$(BOOK_TESTS))
 	@# the book is up to date by now (check-book): -o keeps it so
 	$(if $(SAN),,@$(MAKE) --no-print-directory -o build/book.html check-code-width)
