@@ -301,7 +301,8 @@ failures: deps $(FAILURE_FIGS)
 # each program exits non-zero, failing its render, when the naive half no
 # longer shows the failure).
 check-failures: $(patsubst figures/%,$(B)/fig/%,$(FAILURE_FIGS)) $(B)/tools/pngdiff
-	@sh tools/check_failures.sh $(B)/tools/pngdiff $(B)/fig $(FAILURE_FIGS)
+	@sh tools/check_figures.sh --made-by failures $(B)/tools/pngdiff $(B)/fig $(FAILURE_FIGS)
+	@echo "check-failures: $(words $(FAILURE_FIGS)) failure figures up to date"
 
 # figures/ holds the committed copies of the renders in $(B)/fig: a copy is
 # rewritten only when its bytes change.

@@ -1,4 +1,4 @@
-# committed_figure.sh: sourced by check_figures.sh and check_failures.sh.
+# committed_figure.sh: sourced by check_figures.sh.
 # committed_figure FIG COPY MAKE_TARGET: writes the committed FIG to COPY,
 # from git's HEAD when FIG is tracked (so that a figure that `make` has just
 # rewritten cannot vouch for itself), else the file as it is; fails, saying
