@@ -635,18 +635,23 @@ build/fuzz/%_fuzz: fuzz/%_fuzz.c $(FUZZ_LIB) | fuzz-deps
 
 fuzz-build: $(foreach t,$(FUZZ_TARGETS),build/fuzz/$(t)_fuzz)
 
-# Runs from an empty scratch folder, so that a scene's mesh paths find nothing.
-fuzz: fuzz-build
-	@for t in $(FUZZ_TARGETS); do \
-	  mkdir -p build/fuzz/corpus/$$t build/fuzz/scratch; \
-	  echo "== fuzzing $$t for $(FUZZ_SECONDS) s"; \
-	  (cd build/fuzz/scratch && ../$${t}_fuzz ../corpus/$$t ../../../fuzz/corpus/$$t \
-	    -dict=../../../fuzz/$$t.dict -max_total_time=$(FUZZ_SECONDS) -timeout=10 \
+# The targets run side by side, one a job (make runs a job a core), each
+# from an empty scratch folder of its own, so that a scene's mesh paths find
+# nothing; FUZZ_SECONDS is each one's time on the clock.
+FUZZ_RUNS := $(addprefix fuzz-run-,$(FUZZ_TARGETS))
+.PHONY: $(FUZZ_RUNS)
+fuzz: $(FUZZ_RUNS)
+	@echo "make fuzz: $(FUZZ_TARGETS) ran $(FUZZ_SECONDS) s each and found nothing"
+
+$(FUZZ_RUNS): fuzz-run-%: build/fuzz/%_fuzz
+	@mkdir -p build/fuzz/corpus/$* build/fuzz/scratch-$*
+	@echo "== fuzzing $* for $(FUZZ_SECONDS) s"
+	@(cd build/fuzz/scratch-$* && ../$*_fuzz ../corpus/$* ../../../fuzz/corpus/$* \
+	    -dict=../../../fuzz/$*.dict -max_total_time=$(FUZZ_SECONDS) -timeout=10 \
 	    -rss_limit_mb=2048 -print_final_stats=1 -close_fd_mask=3 \
-	    -artifact_prefix=../$$t- > ../$$t.log 2>&1); status=$$?; \
-	  grep -E '^(#[0-9]+.*DONE|stat::|==[0-9]+==ERROR|SUMMARY)' build/fuzz/$$t.log; \
-	  [ $$status = 0 ] || { echo "fuzz: $$t found a problem: see build/fuzz/$$t.log"; exit 1; }; \
-	done
+	    -artifact_prefix=../$*- > ../$*.log 2>&1); status=$$?; \
+	  grep -E '^(#[0-9]+.*DONE|stat::|==[0-9]+==ERROR|SUMMARY)' build/fuzz/$*.log | sed 's/^/$*: /'; \
+	  [ $$status = 0 ] || { echo "fuzz: $* found a problem: see build/fuzz/$*.log"; exit 1; }
 
 # ---------------------------------------------------------------- valgrind
 # make valgrind: every test binary (Check not forking, so that valgrind sees

@@ -78,20 +78,49 @@ static double nearest_t(const mesh *m, ray r, walk_kind walk, int *triangle)
     return k >= 0 ? th.t : INFINITY;
 }
 
-/* How many of the rays get a different nearest hit through the tree of m
- * than by brute force: another t, or another triangle at the same t (the
- * tie rule gives a tie to the lower index, in every search). */
-static int disagreements(const mesh *m, const ray *rays, int n, walk_kind walk)
+/* The nearest hit of each ray by brute force, every triangle tried. */
+typedef struct {
+    double *t;
+    int *triangle;
+} answers;
+
+static answers brute_answers(const mesh *m, const ray *rays, int n)
 {
     mesh b = brute(m);
+    answers a = {malloc((size_t)n * sizeof *a.t),
+                 malloc((size_t)n * sizeof *a.triangle)};
+    for (int k = 0; k < n; k++)
+        a.t[k] = nearest_t(&b, rays[k], WALK_ITERATIVE, &a.triangle[k]);
+    return a;
+}
+
+static void free_answers(answers *a)
+{
+    free(a->t), free(a->triangle);
+}
+
+/* How many of the rays get a different nearest hit through the tree of m
+ * than the brute-force answers: another t, or another triangle at the same
+ * t (the tie rule gives a tie to the lower index, in every search). */
+static int differ_from(const mesh *m, const ray *rays, int n, walk_kind walk,
+                       const answers *truth)
+{
     int differ = 0;
     for (int k = 0; k < n; k++) {
-        int tri_tree, tri_brute;
+        int tri_tree;
         double t_tree = nearest_t(m, rays[k], walk, &tri_tree);
-        double t_brute = nearest_t(&b, rays[k], WALK_ITERATIVE, &tri_brute);
-        if (!(t_tree == t_brute) || tri_tree != tri_brute)
+        if (!(t_tree == truth->t[k]) || tri_tree != truth->triangle[k])
             differ++;
     }
+    return differ;
+}
+
+/* The same, with the brute-force answers found here. */
+static int disagreements(const mesh *m, const ray *rays, int n, walk_kind walk)
+{
+    answers truth = brute_answers(m, rays, n);
+    int differ = differ_from(m, rays, n, walk, &truth);
+    free_answers(&truth);
     return differ;
 }
 
@@ -223,11 +252,15 @@ static void expect_agreement(mesh *m, int count, const char *what)
         ck_assert_msg(m->tree.node_count > 0, "%s: no tree", what);
         seed(0x5EED0000u + (uint64_t)k);
         int n = adversarial_rays(m, rays, count);
-        for (int walk = 0; walk < 2; walk++)
+        answers truth = brute_answers(m, rays, n); /* once for both walks */
+        for (int walk = 0; walk < 2; walk++) {
+            int differ = differ_from(m, rays, n, (walk_kind)walk, &truth);
             ck_assert_msg(
-                disagreements(m, rays, n, (walk_kind)walk) == 0,
+                differ == 0,
                 "%s, build %d, walk %d: %d of %d rays differ from brute force",
-                what, k, walk, disagreements(m, rays, n, (walk_kind)walk), n);
+                what, k, walk, differ, n);
+        }
+        free_answers(&truth);
     }
     free(rays);
 }
