@@ -2,9 +2,10 @@
 # check_workbook.sh -- the workbook's own tests (make check-workbook, in make test).
 #
 # Usage: MAKE=make tools/check_workbook.sh
-# Works in build/wbcheck/: writes workbooks there and grades them with
-# make grade WB_DIR=... WB_BUILD=build/wbcheck/build (incremental from one
-# run to the next). Checks that
+# Works in build/wbcheck/: each check below has a folder of its own there
+# (NAME/wb, the workbook; NAME/build, where make grade builds it,
+# incrementally from one run to the next), and checks 2, 3 and 4 run side
+# by side, one a core. Checks that
 #   1. an untouched workbook grades "Progress: 0 of N", N >= 36, at least 4
 #      exercises a chapter, exit 0; make workbook overwrites no file;
 #   2. with every stub started, no exercise passes (each stub fails one of
@@ -16,14 +17,22 @@
 #      the same grade, a syntax error is reported at its workbook line, a
 #      lost fence at its exercise's heading, and the other chapters are
 #      graded all the same.
-# Prints what went wrong and exits 1 at the first failed check.
+# Prints what went wrong in each failed check and exits 1.
 set -u
 MAKE=${MAKE:-make}
-t=build/wbcheck
-wb=$t/wb
+top=build/wbcheck
 data=tests/data/workbook
-mkdir -p "$t"
+mkdir -p "$top"
 
+# use NAME: the check's folder t, its workbook wb.
+use() {
+    t=$top/$1
+    wb=$t/wb
+    mkdir -p "$t"
+    : > "$t/out"
+}
+
+# Ends the check (a subshell when run side by side) with what went wrong.
 fail() {
     echo "check-workbook: $*"
     sed 's/^/  | /' "$t/out" | head -60
@@ -62,14 +71,17 @@ answer() {
         !open { print }' "$1" > "$1.new" && mv "$1.new" "$1"
 }
 
-# ---- 1. untouched
-awk -f tools/exercises.awk chapters/[0-9][0-9]-*.md > "$t/list" || exit 1
-n=$(wc -l < "$t/list")
+list=$top/list
+awk -f tools/exercises.awk chapters/[0-9][0-9]-*.md > "$list" || exit 1
+n=$(wc -l < "$list")
 [ "$n" -ge 36 ] || { echo "check-workbook: only $n exercises, fewer than 36"; exit 1; }
 for c in chapters/[0-9][0-9]-*.md; do
-    k=$(awk -F '\t' -v c="$c" '$2 == c' "$t/list" | wc -l)
+    k=$(awk -F '\t' -v c="$c" '$2 == c' "$list" | wc -l)
     [ "$k" -ge 4 ] || { echo "check-workbook: $c has $k exercises, fewer than 4"; exit 1; }
 done
+
+# ---- 1. untouched
+use untouched
 fresh
 echo "my own line" >> "$wb/01-camera.md"
 $MAKE -s --no-print-directory workbook WB_DIR="$wb" > "$t/out" 2>&1
@@ -79,54 +91,76 @@ grade ""
 grep -qx "Progress: 0 of $n exercises" "$t/out" || fail "expected Progress: 0 of $n"
 
 # ---- 2. every stub started: each one fails
-sed -i '/^\/\/ NOT DONE/d' "$wb"/*.md
-grade ""
-[ "$status" != 0 ] || fail "the stubs should not grade with status 0"
-passed=$(grep -cE '^  [0-9]+\.[0-9]+ .* done$' "$t/out")
-[ "$passed" = 0 ] || fail "$passed stubs pass their tests: those exercises cannot be graded"
-graded=$(grep -cE '^  [0-9]+\.[0-9]+ .* (failing|timed out|crashed)' "$t/out")
-[ "$graded" = "$n" ] || fail "only $graded of $n stubs were graded as failing"
+check_stubs() {
+    use stubs
+    fresh
+    sed -i '/^\/\/ NOT DONE/d' "$wb"/*.md
+    grade ""
+    [ "$status" != 0 ] || fail "the stubs should not grade with status 0"
+    passed=$(grep -cE '^  [0-9]+\.[0-9]+ .* done$' "$t/out")
+    [ "$passed" = 0 ] || fail "$passed stubs pass their tests: those exercises cannot be graded"
+    graded=$(grep -cE '^  [0-9]+\.[0-9]+ .* (failing|timed out|crashed)' "$t/out")
+    [ "$graded" = "$n" ] || fail "only $graded of $n stubs were graded as failing"
+}
 
 # ---- 3. the book's code passes
-fresh SOLVED=1
-grade ""
-[ "$status" = 0 ] || fail "a SOLVED=1 workbook should grade with status 0"
-grep -qx "Progress: $n of $n exercises" "$t/out" || fail "expected Progress: $n of $n"
+check_solved() {
+    use solved
+    fresh SOLVED=1
+    grade ""
+    [ "$status" = 0 ] || fail "a SOLVED=1 workbook should grade with status 0"
+    grep -qx "Progress: $n of $n exercises" "$t/out" || fail "expected Progress: $n of $n"
+}
 
 # ---- 4. the sheet's forms, a loop and a crash; in the same grade, a syntax
 # error in chapter 4 and a lost fence in chapter 6 (chapters the wrong
 # answers are not in, so that each is seen)
-answer "$wb/02-spheres.md" 2.3 "$data/sheet-sphere.c"
-answer "$wb/03-phong.md" 3.1 "$data/sheet-half-vector.c"
-answer "$wb/03-phong.md" 3.3 "$data/sheet-tone-map.c"
-answer "$wb/05-transforms.md" 5.2 "$data/sheet-normal.c"
-answer "$wb/07-refraction.md" 7.1 "$data/sheet-snell.c"
-answer "$wb/01-camera.md" 1.2 "$data/loops.c"
-answer "$wb/07-refraction.md" 7.3 "$data/crashes.c"
-fence=$(grep -n 'ex="4.1"' "$wb/04-triangles.md" | cut -d: -f1)
-sed -i "$((fence + 1))i this is not C" "$wb/04-triangles.md"
-heading=$(grep -n '^## Exercise 6.1:' "$wb/06-shadows.md" | cut -d: -f1)
-sed -i '/ex="6.1"/d' "$wb/06-shadows.md"
-GRADE_TIMEOUT=4 grade ""
-[ "$status" != 0 ] || fail "wrong answers should not grade with status 0"
-expect_verdict 2.3 "measure from the ray's origin, c - o"
-expect_verdict 3.1 "h is the unit vector (l + v) / |l + v|"
-expect_verdict 3.3 "the tone map is min(alpha I^beta, 1), not the sheet's max"
-expect_verdict 5.2 "a normal moves by (M^-1)^T n, not by M n"
-expect_verdict 7.1 "sin1 / sin2 = eta2 / eta1, not the sheet's eta1 / eta2"
-expect_verdict 1.2 "timed out: test_gamma_22"
-expect_verdict 7.3 "crashed (signal 11): test_brewster_angle_of_glass_is_56_31_degrees"
-grep -q "^$wb/04-triangles.md:$((fence + 1)):[0-9]*: error" "$t/out" ||
-    fail "the syntax error should be reported at $wb/04-triangles.md:$((fence + 1))"
-grep -q "^$wb/06-shadows.md:$heading: error: exercise 6.1" "$t/out" ||
-    fail "the lost fence should be reported at $wb/06-shadows.md:$heading"
-expect_verdict 4.1 "not graded"
-expect_verdict 6.1 "not graded"
-# the chapters that hold no wrong answer are graded all the same: done
-for id in $(awk -F '\t' '$2 ~ /\/(0[89]|[1-9][0-9])-/ { print $1 }' "$t/list"); do
-    verdict "$id" | grep -q ' done$' ||
-        fail "exercise $id, untouched, should be done while others are wrong"
+check_wrong() {
+    use wrong
+    fresh SOLVED=1
+    answer "$wb/02-spheres.md" 2.3 "$data/sheet-sphere.c"
+    answer "$wb/03-phong.md" 3.1 "$data/sheet-half-vector.c"
+    answer "$wb/03-phong.md" 3.3 "$data/sheet-tone-map.c"
+    answer "$wb/05-transforms.md" 5.2 "$data/sheet-normal.c"
+    answer "$wb/07-refraction.md" 7.1 "$data/sheet-snell.c"
+    answer "$wb/01-camera.md" 1.2 "$data/loops.c"
+    answer "$wb/07-refraction.md" 7.3 "$data/crashes.c"
+    fence=$(grep -n 'ex="4.1"' "$wb/04-triangles.md" | cut -d: -f1)
+    sed -i "$((fence + 1))i this is not C" "$wb/04-triangles.md"
+    heading=$(grep -n '^## Exercise 6.1:' "$wb/06-shadows.md" | cut -d: -f1)
+    sed -i '/ex="6.1"/d' "$wb/06-shadows.md"
+    GRADE_TIMEOUT=4 grade ""
+    [ "$status" != 0 ] || fail "wrong answers should not grade with status 0"
+    expect_verdict 2.3 "measure from the ray's origin, c - o"
+    expect_verdict 3.1 "h is the unit vector (l + v) / |l + v|"
+    expect_verdict 3.3 "the tone map is min(alpha I^beta, 1), not the sheet's max"
+    expect_verdict 5.2 "a normal moves by (M^-1)^T n, not by M n"
+    expect_verdict 7.1 "sin1 / sin2 = eta2 / eta1, not the sheet's eta1 / eta2"
+    expect_verdict 1.2 "timed out: test_gamma_22"
+    expect_verdict 7.3 "crashed (signal 11): test_brewster_angle_of_glass_is_56_31_degrees"
+    grep -q "^$wb/04-triangles.md:$((fence + 1)):[0-9]*: error" "$t/out" ||
+        fail "the syntax error should be reported at $wb/04-triangles.md:$((fence + 1))"
+    grep -q "^$wb/06-shadows.md:$heading: error: exercise 6.1" "$t/out" ||
+        fail "the lost fence should be reported at $wb/06-shadows.md:$heading"
+    expect_verdict 4.1 "not graded"
+    expect_verdict 6.1 "not graded"
+    # the chapters that hold no wrong answer are graded all the same: done
+    for id in $(awk -F '\t' '$2 ~ /\/(0[89]|[1-9][0-9])-/ { print $1 }' "$list"); do
+        verdict "$id" | grep -q ' done$' ||
+            fail "exercise $id, untouched, should be done while others are wrong"
+    done
+}
+
+# 2, 3 and 4 side by side; each prints only when it fails.
+check_stubs > "$top/stubs.verdict" 2>&1 & stubs=$!
+check_solved > "$top/solved.verdict" 2>&1 & solved=$!
+check_wrong > "$top/wrong.verdict" 2>&1 & wrong=$!
+failed=0
+for check in stubs solved wrong; do
+    eval "pid=\$$check"
+    wait "$pid" || { failed=1; cat "$top/$check.verdict"; }
 done
+[ "$failed" = 0 ] || exit 1
 
 echo "check-workbook: $n exercises; stubs fail, the book's code passes, the sheet's" \
      "forms are named, errors are located"
