@@ -686,6 +686,20 @@ build/book.html: book.md $(CHAPTERS) tools/weave.lua tools/weave_names.lua tools
 	@$(dir_of_target)
 	sh tools/weave.sh book.md $@ $(CHAPTERS)
 
+# The weaver stops at a chunk no program uses: a made-up chapter woven
+# with and without one.
+.PHONY: check-weave-errors
+check-weave-errors: | deps
+	@d=$$(mktemp -d) && \
+	printf '# A\n\n```{.c file="a.c"}\nint main(void) { return 0; }\n<<used>>\n```\n\n```{.c chunk="used"}\nint y;\n```\n' > $$d/01-a.md && \
+	sh tools/weave.sh book.md $$d/good.html $$d/01-a.md > $$d/log 2>&1 || \
+	  { cat $$d/log; echo "check-weave-errors: a good chapter did not weave"; rm -rf $$d; exit 1; }; \
+	printf '\n```{.c chunk="unused"}\nint x;\n```\n' >> $$d/01-a.md; \
+	if sh tools/weave.sh book.md $$d/bad.html $$d/01-a.md > $$d/log 2>&1 || \
+	   ! grep -q '<<unused>> is defined but never used' $$d/log; then \
+	  cat $$d/log; echo "check-weave-errors: an unused chunk did not stop the weave"; rm -rf $$d; exit 1; fi; \
+	rm -rf $$d; echo "check-weave-errors: an unused chunk stops the weave: ok"
+
 check-book: build/book.html $(B)/tools/check_book
 	$(B)/tools/check_book build/book.html
 
@@ -779,7 +793,7 @@ PROGRAM_TESTS := test-tangle $(foreach n,$(NUMS),test-ch$(n)) \
 BOOK_TESTS := benches check-src check-charts check-book check-map check-stray \
               check-allocations check-test-width check-quotes check-workbook \
               check-handout check-epub check-pdf check-book-browser check-build-speed \
-              check-brackets
+              check-brackets check-weave-errors
 test: deps $(PROGRAM_TESTS) $(if $(SAN),,$(BOOK_TESTS))
 	@# the book is up to date by now (check-book): -o keeps it so
 	$(if $(SAN),,@$(MAKE) --no-print-directory -o build/book.html check-code-width)

@@ -5,7 +5,9 @@
 # every function replaced by a comment and a return of zero: what is not a
 # function body (comments, #include, types, prototypes, tables, <<chunk>>
 # lines between functions) is kept, so that the stub declares what the
-# book's code declares. The book writes a function's "{" alone at column 0,
+# book's code declares. A <<chunk>> line in a body stays too, so that the
+# chapters that add to that chunk still find it: when the body returns a
+# variable of its own, the stub declares it, zero, before the chunk lines. The book writes a function's "{" alone at column 0,
 # or the whole function on one line; a body is what lies between that "{"
 # and the "}" that closes it, found by counting braces outside strings,
 # characters and comments.
@@ -47,7 +49,52 @@ function stub_braces(line,    code, opens, closes) {
     return opens - closes
 }
 
-function stub_of(code,    lines, n, i, out, depth, sig, in_body, line) {
+# The last statement of the body, when it is "return NAME;": NAME.
+function stub_returned_variable(    i) {
+    for (i = stub_body_count; i > 0; i--) {
+        if (stub_body_line[i] ~ /^[ \t]*(\}[ \t]*)?$/)
+            continue
+        if (match(stub_body_line[i], /^[ \t]+return [A-Za-z_][A-Za-z_0-9]*;/))
+            return substr(stub_body_line[i], RSTART, RLENGTH)
+        return ""
+    }
+    return ""
+}
+
+# "TYPE NAME" from the body's declaration of NAME, or "".
+function stub_declaration_of(name,    i, line) {
+    for (i = 1; i <= stub_body_count; i++) {
+        line = stub_body_line[i]
+        if (line ~ /^[ \t]+return[ \t]/)
+            continue
+        if (line ~ ("^[ \t]+[A-Za-z_][A-Za-z_0-9]*[ \t*]+" name "[ \t]*(=|;)")) {
+            sub("[ \t]*(=|;).*", "", line)
+            sub(/^[ \t]+/, "", line)
+            return line
+        }
+    }
+    return ""
+}
+
+# The stub of the body just read, for a function returning TYPE.
+function stub_body(type,    i, chunks, name, declared) {
+    chunks = ""
+    for (i = 1; i <= stub_body_count; i++)
+        if (stub_body_line[i] ~ /^[ \t]+<<[^>]+>>[ \t]*$/)
+            chunks = chunks stub_body_line[i] "\n"
+    if (chunks == "")
+        return "    " stub_return(type) "\n"
+    name = stub_returned_variable()
+    sub(/^[ \t]+return /, "", name)
+    sub(/;$/, "", name)
+    declared = name == "" ? "" : stub_declaration_of(name)
+    if (declared == "")
+        return chunks "    " stub_return(type) "\n"
+    return "    " declared " = {0}; /* your code here */\n" chunks \
+           "    return " name ";\n"
+}
+
+function stub_of(code,    lines, n, i, out, depth, sig, in_body, line, type) {
     n = split(code, lines, "\n")
     out = ""
     depth = 0
@@ -59,8 +106,9 @@ function stub_of(code,    lines, n, i, out, depth, sig, in_body, line) {
             depth += stub_braces(line)
             if (depth == 0) {
                 in_body = 0
-                out = out "}\n"
-            }
+                out = out stub_body(type) "}\n"
+            } else
+                stub_body_line[++stub_body_count] = line
             continue
         }
         if (depth == 0 && line ~ /^[A-Za-z_].*\(/ && line !~ /;[ \t]*$/ && sig == "")
@@ -72,7 +120,9 @@ function stub_of(code,    lines, n, i, out, depth, sig, in_body, line) {
             continue
         }
         if (depth == 0 && line ~ /^\{[ \t]*$/ && sig != "") {
-            out = out "{\n    " stub_return(stub_return_type(sig)) "\n"
+            out = out "{\n"
+            type = stub_return_type(sig)
+            stub_body_count = 0
             in_body = 1
             depth = 1
             sig = ""

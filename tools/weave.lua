@@ -319,19 +319,31 @@ local function files_of(key, visiting)
   return files_cache[key]
 end
 
-local function warn_about_references()
+-- A chunk used and never defined, or defined and never used, is an error:
+-- the program would lack code, or the book would show code that is in no
+-- program. All are reported, then the weave stops.
+local function check_references()
+  local errors = 0
+  local function report(message)
+    io.stderr:write("weave.lua: error: ", message, "\n")
+    errors = errors + 1
+  end
   for _, name in ipairs(sorted_keys(users_of)) do
     if not pieces_of[chunk_key(name)] then
       local user = users_of[name][1]
-      warn("<<" .. name .. ">> is used in " .. describe(user) .. " ("
-           .. chapter_label(user.chapter) .. ") but never defined")
+      report("<<" .. name .. ">> is used in " .. describe(user) .. " ("
+             .. chapter_label(user.chapter) .. ") but never defined")
     end
   end
   for _, key in ipairs(sorted_keys(pieces_of)) do
     local first = pieces_of[key][1]
     if not first.is_file and not users_of[first.name] then
-      warn(describe(first) .. " is defined but never used")
+      report(describe(first) .. " is defined but never used")
     end
+  end
+  if errors > 0 then
+    io.stderr:write("weave.lua: ", errors, " chunk reference error(s)\n")
+    os.exit(1)
   end
 end
 
@@ -726,7 +738,7 @@ function Pandoc(doc)
     Link = collect_id, Image = collect_id,
   })
   assign_ids()
-  warn_about_references()
+  check_references()
   if FORMAT:match("html") or FORMAT:match("epub") then
     doc = doc:walk({ CodeBlock = render_code_block, Div = render_exercise_notes })
     for _, block in ipairs(index_blocks()) do doc.blocks:insert(block) end

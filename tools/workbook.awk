@@ -43,7 +43,34 @@ function trim_end(text) {
     return text
 }
 
+# The <<chunk>> lines of TEXT, one a line, in their order.
+function chunk_lines(text,    lines, n, i, found) {
+    n = split(text, lines, "\n")
+    found = ""
+    for (i = 1; i <= n; i++)
+        if (lines[i] ~ /^[ \t]*<<[^>]+>>[ \t]*$/) {
+            sub(/^[ \t]+/, "", lines[i])
+            found = found lines[i] "\n"
+        }
+    return found
+}
+
+# A stub keeps every <<chunk>> line of the book's code: later chapters add
+# to those chunks, and a stub without one would silently lose their code.
+function check_stub_keeps_chunks(    book, stub) {
+    book = chunk_lines(body)
+    stub = chunk_lines(stub_of(body))
+    if (book == stub)
+        return
+    printf "%s:%d: error: the stub of exercise %s does not keep the " \
+           "chunk lines of its code:\n%s", FILENAME, fence_line, id, book \
+           > "/dev/stderr"
+    stub_errors++
+}
+
 function write_exercise(    code, tests_list, fence_attr) {
+    if (!solved)
+        check_stub_keeps_chunks()
     tests_list = tests
     gsub(/ +/, "`\n- `", tests_list)
     printf "## Exercise %s: %s \"%s\"\n\n", id, kind, key
@@ -126,6 +153,7 @@ in_code { next }
     if (is_exercise) {
         k++
         id = number "." k
+        fence_line = FNR
         kind = attribute($0, "chunk") != "" ? "chunk" : "file"
         key = attribute($0, kind)
         tests = attribute($0, "tests")
@@ -140,3 +168,5 @@ in_notes && /^:::+[ \t]*$/ { in_notes = 0; write_exercise(); next }
 in_notes && /^\*\*Your task\.\*\*/ { section = "task" }
 in_notes && /^\*\*Hint\.\*\*/ { section = "hint"; sub(/^\*\*Hint\.\*\* */, "") }
 in_notes { add_note($0) }
+
+END { exit stub_errors > 0 }
