@@ -581,13 +581,13 @@ WO$(1) := $(WB_BUILD)/obj/ch$(1)
 WOBJ$(1) := $$(patsubst %.c,$$(WO$(1))/%.o,$$(SRC$(1)))
 WLIB$(1) := $$(filter-out $$(WO$(1))/main.o,$$(WOBJ$(1)))
 
-$$(WO$(1))/%.o: $$(WT$(1))/%.c | deps
+$$(WO$(1))/%.o: $$(WT$(1))/%.c | deps $(REUSE)
 	@$$(dir_of_target)
-	$$(CC) $$(WB_CFLAGS) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
+	$(call wb_reuse_from,$(1),$$*.o)$$(CC) $$(WB_CFLAGS) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
 
-$$(WO$(1))/tests/%.o: tests/%.c | deps
+$$(WO$(1))/tests/%.o: tests/%.c | deps $(REUSE)
 	@$$(dir_of_target)
-	$$(CC) $$(WB_CFLAGS) $$(TEST_OPT) $$(TEST_DEFS) $$(PNG_CFLAGS) $$(CHECK_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
+	$(call wb_reuse_from,$(1),tests/$$*.o)$$(CC) $$(WB_CFLAGS) $$(TEST_OPT) $$(TEST_DEFS) $$(PNG_CFLAGS) $$(CHECK_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
 
 $$(WO$(1))/tests/runner.o: tests/runner.c $$(SUITES$(1)) | deps
 	@$$(dir_of_target)
@@ -606,6 +606,21 @@ $(WB_BUILD)/bin/ch$(1): $$(WOBJ$(1))
 -include $$(wildcard $$(WO$(1))/*.d $$(WO$(1))/tests/*.d)
 endef
 $(foreach n,$(NUMS),$(eval $(call workbook_rules,$(n))))
+
+# WB_REUSE=NN (tools/grade.sh sets it): chapter NN's program is built with
+# the chapter before it, whose program some suites compare with; a file of
+# NN that is the same text as there, with the same headers, is compiled
+# there first and its object copied (tools/reuse_object).
+wb_reuse_from = $(if $(filter $(1),$(WB_REUSE)),$(if $(call previous,$(1)),$(REUSE) $(WB_BUILD)/obj/ch$(call previous,$(1))/$(2) $(WB_BUILD)/tangle/ch$(call previous,$(1)) $(WB_BUILD)/tangle/ch$(1) -- ))
+define workbook_reuse_rules
+$$(patsubst %.c,$(WB_BUILD)/obj/ch$(1)/%.o,$$(filter $$(SRC$(2)),$$(SRC$(1)))): \
+  $(WB_BUILD)/obj/ch$(1)/%.o: | $(WB_BUILD)/obj/ch$(2)/%.o
+$$(patsubst tests/%.c,$(WB_BUILD)/obj/ch$(1)/tests/%.o,$$(filter $$(SUITES$(2)),$$(SUITES$(1)))): \
+  $(WB_BUILD)/obj/ch$(1)/tests/%.o: | $(WB_BUILD)/obj/ch$(2)/tests/%.o
+endef
+ifneq ($(and $(WB_REUSE),$(call previous,$(WB_REUSE))),)
+$(eval $(call workbook_reuse_rules,$(WB_REUSE),$(call previous,$(WB_REUSE))))
+endif
 
 # ---------------------------------------------------------------- fuzzing
 # make fuzz FUZZ_SECONDS=60: each libFuzzer target for that long, built with

@@ -4,8 +4,8 @@
 # Usage: MAKE=make tools/check_workbook.sh
 # Works in build/wbcheck/: each check below has a folder of its own there
 # (NAME/wb, the workbook; NAME/build, where make grade builds it,
-# incrementally from one run to the next), and checks 2, 3 and 4 run side
-# by side, one a core. Checks that
+# incrementally from one run to the next), and checks 2 to 5 run side by
+# side, one a core. Checks that
 #   1. an untouched workbook grades "Progress: 0 of N", N >= 36, at least 4
 #      exercises a chapter, exit 0; make workbook overwrites no file;
 #   2. with every stub started, no exercise passes (each stub fails one of
@@ -15,8 +15,12 @@
 #      naming the correction (sphere, half vector, tone map, normal, Snell),
 #      a loop is "timed out" and a null pointer "crashed (signal 11)"; in
 #      the same grade, a syntax error is reported at its workbook line, a
-#      lost fence at its exercise's heading, and the other chapters are
-#      graded all the same.
+#      lost fence at its exercise's heading, and the other chapters'
+#      exercises pass their tests but are not done, the program failing
+#      elsewhere; the exit status is 1;
+#   5. a 1.1 that passes its own tests but breaks chapter 5's camera is not
+#      done, chapter 5's failing tests are listed as failing elsewhere, and
+#      the exit status is 1.
 # Prints what went wrong in each failed check and exits 1.
 set -u
 MAKE=${MAKE:-make}
@@ -144,19 +148,40 @@ check_wrong() {
         fail "the lost fence should be reported at $wb/06-shadows.md:$heading"
     expect_verdict 4.1 "not graded"
     expect_verdict 6.1 "not graded"
-    # the chapters that hold no wrong answer are graded all the same: done
+    # the chapters that hold no wrong answer are graded all the same: their
+    # tests pass, and they are not done while the program fails elsewhere
     for id in $(awk -F '\t' '$2 ~ /\/(0[89]|[1-9][0-9])-/ { print $1 }' "$list"); do
-        verdict "$id" | grep -q ' done$' ||
-            fail "exercise $id, untouched, should be done while others are wrong"
+        verdict "$id" | grep -q ' its tests pass, but [0-9]* other test(s) fail' ||
+            fail "exercise $id, untouched, should pass its tests, not be done"
     done
 }
 
-# 2, 3 and 4 side by side; each prints only when it fails.
+# ---- 5. only 1.1 started, the book's code without the line that lets
+# chapter 5 place the camera: 1.1's tests pass, chapter 5's look-at tests
+# fail, no started exercise names them, and the grade says so
+check_elsewhere() {
+    use elsewhere
+    fresh SOLVED=1
+    awk '/ex="1.1"/ { code = 1; next } code && /^```/ { exit } code' \
+        "$wb/01-camera.md" | grep -vx '    <<place the primary ray>>' \
+        > "$t/camera.c"
+    fresh
+    answer "$wb/01-camera.md" 1.1 "$t/camera.c"
+    grade -ch05
+    [ "$status" != 0 ] || fail "a program that breaks chapter 5 should not grade with status 0"
+    expect_verdict 1.1 "its tests pass, but"
+    grep -A 1000 '^Failing, and named by no exercise you started' "$t/out" |
+        grep -q '^  test_look_at_keeps_up_up (tests/ch05_transforms.c:' ||
+        fail "chapter 5's look-at test should be listed as failing elsewhere"
+}
+
+# 2 to 5 side by side; each prints only when it fails.
 check_stubs > "$top/stubs.verdict" 2>&1 & stubs=$!
 check_solved > "$top/solved.verdict" 2>&1 & solved=$!
 check_wrong > "$top/wrong.verdict" 2>&1 & wrong=$!
+check_elsewhere > "$top/elsewhere.verdict" 2>&1 & elsewhere=$!
 failed=0
-for check in stubs solved wrong; do
+for check in stubs solved wrong elsewhere; do
     eval "pid=\$$check"
     wait "$pid" || { failed=1; cat "$top/$check.verdict"; }
 done

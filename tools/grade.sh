@@ -16,13 +16,16 @@
 # (no "// NOT DONE" line) replacing the book's chunks (tangle
 # --skip-not-done), so that #line directives send every compiler message to
 # the workbook line the reader typed. A workbook file that does not compile
-# is left out the same way. The program and the suites of chapters 01..NN
-# are built under WB_BUILD (make, incrementally) and the suites run in
+# is left out the same way. The program and the suites of chapters 01..NN,
+# and the program of the chapter before (some suites compare the two), are
+# built under WB_BUILD (make, incrementally) and every suite runs in
 # Check's fork mode with a time limit per test. One line per exercise
 # follows: done, failing (its first failing test, in the order the
 # exercise names them, and the test's message), timed out, crashed (signal
-# N), not started; then "Progress: D of N exercises". The exit status is 0
-# only when every started exercise is done and every workbook file is good.
+# N), not started, or "its tests pass, but" when other tests fail; then
+# the failing tests that no started exercise names (tools/grade_report.awk)
+# and "Progress: D of N exercises". The exit status is 0 only when every
+# started exercise is done, no test fails and every workbook file is good.
 set -u
 
 if [ "$#" -lt 2 ]; then
@@ -38,6 +41,8 @@ WB_BUILD=${WB_BUILD:-build/workbook}
 GRADE_TIMEOUT=${GRADE_TIMEOUT:-10}
 tools_dir=$(dirname "$0")
 work=$WB_BUILD/ch$target
+previous=""
+[ "$#" -gt 1 ] && previous=$(printf '%02d' "$(expr "$target" - 1)")
 mkdir -p "$work"
 list=$work/exercises.tsv     # ID CHAPTER LINE KIND KEY TESTS
 state=$work/state.tsv        # ID STATE WORKBOOK FIRST LAST
@@ -103,13 +108,26 @@ good_files() {
     done
 }
 
-tangle_all() {
+# tangle_to NN CHAPTER.md...: the chapters and their good workbook files,
+# tangled into $WB_BUILD/tangle/chNN.
+tangle_to() {
+    into=$WB_BUILD/tangle/ch$1
+    shift
     # shellcheck disable=SC2046  # one workbook path a word
-    "$TANGLE" --line --skip-not-done -o "$WB_BUILD/tangle/ch$target" "$@" \
+    "$TANGLE" --line --skip-not-done -o "$into" "$@" \
         $(good_files "$@") 2> "$work/tangle.log" || { cat "$work/tangle.log" >&2; return 1; }
-    if [ -d "$WB_BUILD/tangle/ch$target/scenes" ]; then
-        ln -sfn "$(pwd)/meshes" "$WB_BUILD/tangle/ch$target/scenes/meshes"
+    if [ -d "$into/scenes" ]; then
+        ln -sfn "$(pwd)/meshes" "$into/scenes/meshes"
     fi
+}
+
+# The graded chapter's program, and the chapter before's: some suites
+# compare the two programs' pictures.
+tangle_all() {
+    tangle_to "$target" "$@" || return 1
+    [ -n "$previous" ] || return 0
+    # shellcheck disable=SC2046  # the chapters but the last, a word each
+    tangle_to "$previous" $(echo "$@" | sed 's/ [^ ]*$//')
 }
 
 # Two jobs, unless a parent make shares its own (make -j2 grade).
@@ -123,8 +141,8 @@ build() {
     for attempt in 1 2 3; do
         tangle_all "$@" || return 1
         if $MAKE $jobs --no-print-directory -s WB_DIR="$WB_DIR" WB_BUILD="$WB_BUILD" \
-                "$WB_BUILD/test/ch$target" "$WB_BUILD/bin/ch$target" \
-                > "$work/build.log" 2>&1; then
+                WB_REUSE="$target" "$WB_BUILD/test/ch$target" "$WB_BUILD/bin/ch$target" \
+                ${previous:+"$WB_BUILD/bin/ch$previous"} > "$work/build.log" 2>&1; then
             return 0
         fi
         cat "$work/build.log" >&2

@@ -7,11 +7,15 @@
 # (ID, state, workbook file, first and last line of its chunk), TESTS.log
 # what the suites printed in Check's verbose mode, one line per test:
 #   FILE:LINE:P|F|E:TCASE:TEST:ITERATION: MESSAGE
-# An exercise is done when every test it names passed; otherwise the first
-# of them (in the exercise's order) that did not pass says why: failing
-# with the test's message, timed out, or crashed (signal N). Prints
+# Every suite of the chapters graded ran against the reader's program. An
+# exercise is done when every test it names passed and no other test
+# failed; otherwise the first of its tests (in the exercise's order) that
+# did not pass says why: failing with the test's message, timed out, or
+# crashed (signal N). A failing test that no started exercise names is
+# listed after the exercises, as the reader's code breaking something
+# elsewhere: every test passes with the book's code alone. Prints
 # "Progress: D of N exercises" last, and exits 1 unless every started
-# exercise is done and no workbook file was left out.
+# exercise is done, no other test failed and no workbook file was left out.
 
 function verdict(id,    names, n, i, t, r) {
     n = split(tests[id], names, " ")
@@ -48,15 +52,36 @@ FILENAME == ARGV[2] { split($0, f, "\t"); st[f[1]] = f[2]; file_of[f[1]] = f[3];
         next
     sub(/^ /, "", line)
     sub(/^\(after this point\) /, "", line)
+    if (!(part[5] in result))
+        ran[++ran_count] = part[5]
     if (!(part[5] in result) || result[part[5]] == "P") {
         result[part[5]] = part[3]
         message[part[5]] = line
+        where[part[5]] = part[1] ":" part[2]
     }
+}
+
+# The failing tests that no started exercise names, in the order they ran,
+# into broken[1..]; returns how many.
+function broken_elsewhere(    i, j, n, names, count_broken) {
+    for (i = 1; i <= count; i++) {
+        if (st[order[i]] != "started")
+            continue
+        n = split(tests[order[i]], names, " ")
+        for (j = 1; j <= n; j++)
+            named[names[j]] = 1
+    }
+    count_broken = 0
+    for (i = 1; i <= ran_count; i++)
+        if (result[ran[i]] != "P" && !(ran[i] in named))
+            broken[++count_broken] = ran[i]
+    return count_broken
 }
 
 END {
     done = 0
     failed = 0
+    elsewhere = built == "yes" ? broken_elsewhere() : 0
     while ((getline line < bad_files) > 0) {
         left_out[line] = 1
         failed++
@@ -74,11 +99,21 @@ END {
             v = "not started (no workbook file: make workbook)"
         else
             v = "not graded: its workbook file has an error (see above)"
+        if (v == "done" && elsewhere > 0)
+            v = "its tests pass, but " elsewhere " other test(s) fail (below)"
         if (v == "done")
             done++
         else if (s == "started" || s == "broken")
             failed++
         printf "  %-5s %-38s %s\n", id, key[id], v
+    }
+    if (elsewhere > 0) {
+        print "Failing, and named by no exercise you started (your code," \
+              " elsewhere: each passes with the book's code):"
+        for (i = 1; i <= elsewhere; i++)
+            printf "  %s (%s): %s\n", broken[i], where[broken[i]],
+                   message[broken[i]]
+        failed++
     }
     printf "Progress: %d of %d exercises\n", done, count
     exit failed > 0
