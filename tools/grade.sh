@@ -5,7 +5,8 @@
 #     tools/grade.sh NN CHAPTER.md...     (the chapters 01..NN, in order)
 # Environment: TANGLE (the tangler), MAKE, WB_DIR (the workbook, default
 # workbook), WB_BUILD (where it is built, default build/workbook),
-# GRADE_TIMEOUT (seconds a test may take, default 10), GRADE_TANGLE_ONLY
+# GRADE_TIMEOUT (seconds a test may take, default 10; a quarter of its own
+# limit for a test that sets one, as the heavy ones do), GRADE_TANGLE_ONLY
 # (1: check and tangle the workbook, build and run nothing).
 #
 # For every chapter its workbook file WB_DIR/NN-name.md (make workbook
@@ -62,10 +63,15 @@ find_fence() {
         open && /^```[ \t]*$/ { print open, NR, started; exit }' "$1"
 }
 
-# The line of exercise ID's heading in FILE (1 if it has none).
-heading_line() {
-    awk -v id="$2" 'index($0, "## Exercise " id ":") == 1 { print NR; found = 1; exit }
-                    END { if (!found) print 1 }' "$1"
+# Where exercise ID's fence belongs in FILE: the first line after its hint
+# (the heading's line if there is none; 1 if there is no heading).
+fence_place() {
+    awk -v id="$2" '
+        index($0, "## Exercise " id ":") == 1 { heading = NR; next }
+        heading && !hint_done && /^<\/details>/ { hint_done = 1; next }
+        hint_done && NF { print NR; found = 1; exit }
+        heading && /^## Exercise / { exit }
+        END { if (!found) print (heading ? heading : 1) }' "$1"
 }
 
 # Checks one workbook file with the chapters; records its exercises.
@@ -89,7 +95,7 @@ check_file() {
     while read -r id; do
         fence=$(find_fence "$wb" "$id")
         if [ -z "$fence" ]; then
-            echo "$wb:$(heading_line "$wb" "$id"): error: exercise $id has lost its" \
+            echo "$wb:$(fence_place "$wb" "$id"): error: exercise $id has lost its" \
                  "chunk fence (a line \`\`\`{.c ... .exercise ex=\"$id\"})" >&2
             grep -qx "$wb" "$bad_files" || echo "$wb" >> "$bad_files"
             printf '%s\tbroken\t%s\t0\t0\n' "$id" "$wb" >> "$state"
@@ -159,8 +165,8 @@ build() {
 }
 
 run_suites() {
-    CK_FORK=yes CK_VERBOSITY=verbose CK_TIMEOUT_MULTIPLIER=0.1 \
-    CK_DEFAULT_TIMEOUT=$((GRADE_TIMEOUT * 10)) \
+    CK_FORK=yes CK_VERBOSITY=verbose CK_TIMEOUT_MULTIPLIER=0.25 \
+    CK_DEFAULT_TIMEOUT=$((GRADE_TIMEOUT * 4)) \
     CHAPTER_BIN=$WB_BUILD/bin/ch$target \
         timeout 900 sh "$tools_dir/run_shards.sh" "$WB_BUILD/test/ch$target" \
         > "$work/tests.log" 2>&1

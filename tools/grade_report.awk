@@ -35,6 +35,15 @@ function verdict(id,    names, n, i, t, r) {
     return "done"
 }
 
+# A message as the test's source spells it: the C library's macros were
+# expanded when the assertion was turned into text.
+function readable(text) {
+    gsub(/\(__builtin_inff ?\(\)\)/, "INFINITY", text)
+    gsub(/\(__builtin_nanf ?\(""\)\)/, "NAN", text)
+    gsub(/\(\(double\)2\.22044604925031308084726333618164062e-16L\)/, "DBL_EPSILON", text)
+    return text
+}
+
 FILENAME == ARGV[1] { split($0, f, "\t"); order[++count] = f[1]; key[f[1]] = f[5]
                       tests[f[1]] = f[6]; next }
 FILENAME == ARGV[2] { split($0, f, "\t"); st[f[1]] = f[2]; file_of[f[1]] = f[3]; next }
@@ -56,7 +65,7 @@ FILENAME == ARGV[2] { split($0, f, "\t"); st[f[1]] = f[2]; file_of[f[1]] = f[3];
         ran[++ran_count] = part[5]
     if (!(part[5] in result) || result[part[5]] == "P") {
         result[part[5]] = part[3]
-        message[part[5]] = line
+        message[part[5]] = readable(line)
         where[part[5]] = part[1] ":" part[2]
     }
 }
