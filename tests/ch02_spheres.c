@@ -99,6 +99,22 @@ START_TEST(test_sphere_behind_the_origin_is_not_seen)
 }
 END_TEST
 
+START_TEST(test_the_nearer_root_is_the_hit)
+{
+    /* roots 4 and 6: the ray meets the sphere first at 4 */
+    sphere sp = {.center = {0, 0, 5}, .radius = 1};
+    ray r = {ORIGIN, PLUS_Z};
+    double t = 0;
+    ck_assert(sphere_hit_t(&sp, r, 0, INFINITY, &t));
+    ck_assert_msg(t == 4, "t = %g: the nearer root is 4, where the ray first "
+                          "meets the sphere", t);
+    ck_assert_msg(sphere_hit_t(&sp, r, 4.5, INFINITY, &t) && t == 6,
+                  "t_min 4.5: the nearer root is behind it, the hit is 6");
+    ck_assert_msg(!sphere_hit_t(&sp, r, 0, 3.9, &t),
+                  "t_max 3.9: both roots lie beyond it, no hit");
+}
+END_TEST
+
 START_TEST(test_origin_inside_sees_the_far_side)
 {
     sphere sp = {.center = {0, 0, 0}, .radius = 2};
@@ -409,6 +425,7 @@ Suite *ch02_spheres_suite(void)
     tcase_add_test(roots, test_tangent_ray_gives_a_double_root);
     tcase_add_test(roots, test_ray_beside_the_sphere_misses);
     tcase_add_test(roots, test_sphere_behind_the_origin_is_not_seen);
+    tcase_add_test(roots, test_the_nearer_root_is_the_hit);
     tcase_add_test(roots, test_origin_inside_sees_the_far_side);
     tcase_add_test(roots, test_roots_are_ordered);
     tcase_add_test(roots, test_the_method_table_names_each_form);

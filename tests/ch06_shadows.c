@@ -338,6 +338,42 @@ END_TEST
 
 /* ------------------------------------------------------------ area light */
 
+/* Cell k of n as the task describes it: m = floor(sqrt(n)) rows, the
+ * first n % m of them one cell wider, each row as tall as its share of
+ * the cells: [x0, x0 + w) x [y0, y0 + h). */
+static void described_cell(int k, int n, double *x0, double *y0, double *w,
+                           double *h)
+{
+    int m = (int)floor(sqrt((double)n)), before = 0;
+    for (int row = 0; row < m; row++) {
+        int cols = n / m + (row < n % m);
+        if (k < before + cols) {
+            *w = 1.0 / cols, *h = (double)cols / n;
+            *x0 = (k - before) * *w, *y0 = (double)before / n;
+            return;
+        }
+        before += cols;
+    }
+    ck_abort_msg("no cell %d of %d", k, n);
+}
+
+/* Sample k of n lies in cell k: one in each cell, none left empty. */
+static void expect_one_sample_a_cell(int pattern, int n, sample_stream *g)
+{
+    const double slack = 4e-16; /* a few roundings of numbers below 1 */
+    for (int k = 0; k < n; k++) {
+        double u, v, x0, y0, w, h;
+        sample_square(pattern, k, n, g, &u, &v);
+        described_cell(k, n, &x0, &y0, &w, &h);
+        ck_assert_msg(u >= x0 - slack && u < x0 + w + slack &&
+                          v >= y0 - slack && v < y0 + h + slack,
+                      "%s, n = %d: sample %d at (%g, %g) is outside its "
+                      "cell [%g, %g) x [%g, %g): each of the n cells must "
+                      "hold one sample", pattern == SAMPLE_GRID ? "grid"
+                      : "stratified", n, k, u, v, x0, x0 + w, y0, y0 + h);
+    }
+}
+
 START_TEST(test_area_light_samples_cover_the_disc_evenly)
 {
     /* Stratified and grid: exactly one sample in each of n cells of area
@@ -362,11 +398,10 @@ START_TEST(test_area_light_samples_cover_the_disc_evenly)
         }
     }
     sample_stream g = sample_stream_at((vec3){0, 0, 0}, (vec3){0, 0, 0});
-    for (int k = 0; k < n; k++) { /* cell k holds sample k, and no other */
-        double u, v;
-        sample_square(SAMPLE_STRATIFIED, k, n, &g, &u, &v);
-        ck_assert(u >= 0 && u < 1 && v >= 0 && v < 1);
-    }
+    const int counts[] = {1, 2, 3, 8, 37, 64};
+    for (int c = 0; c < 6; c++)
+        for (int pattern = SAMPLE_STRATIFIED; pattern <= SAMPLE_GRID; pattern++)
+            expect_one_sample_a_cell(pattern, counts[c], &g);
     double sum = 0;
     L.pattern = SAMPLE_UNIFORM;
     for (int k = 0; k < 100000; k++) {

@@ -20,7 +20,8 @@
 #      elsewhere; the exit status is 1;
 #   5. a 1.1 that passes its own tests but breaks chapter 5's camera is not
 #      done, chapter 5's failing tests are listed as failing elsewhere, and
-#      the exit status is 1.
+#      the exit status is 1; in the same grade, 2.4 taking the far root and
+#      6.3's points not stratified fail with messages naming the mistake.
 # Prints what went wrong in each failed check and exits 1.
 set -u
 MAKE=${MAKE:-make}
@@ -159,9 +160,11 @@ check_wrong() {
     done
 }
 
-# ---- 5. only 1.1 started, the book's code without the line that lets
-# chapter 5 place the camera: 1.1's tests pass, chapter 5's look-at tests
-# fail, no started exercise names them, and the grade says so
+# ---- 5. only three exercises started: 1.1, the book's code without the
+# line that lets chapter 5 place the camera: 1.1's tests pass, chapter 5's
+# look-at tests fail, no started exercise names them, and the grade says
+# so; 2.4 taking the far root and 6.3 with points that are not stratified,
+# each caught by a message that names the mistake
 check_elsewhere() {
     use elsewhere
     fresh SOLVED=1
@@ -170,9 +173,13 @@ check_elsewhere() {
         > "$t/camera.c"
     fresh
     answer "$wb/01-camera.md" 1.1 "$t/camera.c"
-    grade -ch05
+    answer "$wb/02-spheres.md" 2.4 "$data/far-root.c"
+    answer "$wb/06-shadows.md" 6.3 "$data/unstratified.c"
+    grade -ch06
     [ "$status" != 0 ] || fail "a program that breaks chapter 5 should not grade with status 0"
     expect_verdict 1.1 "its tests pass, but"
+    expect_verdict 2.4 "test_the_nearer_root_is_the_hit: t = 6: the nearer root is 4"
+    expect_verdict 6.3 "is outside its cell"
     grep -A 1000 '^Failing, and named by no exercise you started' "$t/out" |
         grep -q '^  test_look_at_keeps_up_up (tests/ch05_transforms.c:' ||
         fail "chapter 5's look-at test should be listed as failing elsewhere"
