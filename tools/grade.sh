@@ -142,6 +142,13 @@ case ${MAKEFLAGS:-} in
     *) jobs="-j${GRADE_JOBS:-2}" ;;
 esac
 
+# The compiler's warnings about the reader's code, at the workbook's lines
+# (each once: the chapter before's program compiles the same lines).
+show_warnings() {
+    awk -v wb="$WB_DIR/" 'index($0, wb) == 1 && / warning: / && !seen[$0]++' \
+        "$work/build.log" >&2
+}
+
 # Builds; a workbook file named by a compiler error is left out, once.
 build() {
     for attempt in 1 2 3; do
@@ -149,6 +156,7 @@ build() {
         if $MAKE $jobs --no-print-directory -s WB_DIR="$WB_DIR" WB_BUILD="$WB_BUILD" \
                 WB_REUSE="$target" "$WB_BUILD/test/ch$target" "$WB_BUILD/bin/ch$target" \
                 ${previous:+"$WB_BUILD/bin/ch$previous"} > "$work/build.log" 2>&1; then
+            show_warnings
             return 0
         fi
         cat "$work/build.log" >&2
