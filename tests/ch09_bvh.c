@@ -440,6 +440,27 @@ START_TEST(test_thread_counts_build_the_same_tree)
 }
 END_TEST
 
+START_TEST(test_a_build_starts_no_more_threads_than_tasks)
+{
+    /* eight triangles are one task: the calling thread alone, whatever
+     * the count asked for; the bunny's tasks share out over the threads */
+    mesh small = fan_mesh(8, (vec3){0.25, -0.5, 4});
+    for (int width = 2; width <= 8; width *= 2) {
+        mesh b = with_bvh(&small, width, 256);
+        ck_assert_msg(b.bvh.build_threads == 1,
+                      "8 triangles, %d wide: %d threads", width,
+                      b.bvh.build_threads);
+        mesh_free_tree(&b);
+    }
+    mesh_free(&small);
+    mesh bunny = load("meshes/bunny.obj");
+    mesh b = with_bvh(&bunny, 4, 3);
+    ck_assert_int_eq(b.bvh.build_threads, 3);
+    mesh_free_tree(&b);
+    mesh_free(&bunny);
+}
+END_TEST
+
 /* The leaf of reference c of node k of t (count 0: none): its first
  * packet and its triangles. */
 static uint32_t leaf_of(const bvh *t, int k, int c, uint32_t *count)
@@ -681,6 +702,7 @@ Suite *ch09_bvh_suite(void)
     tcase_add_test(nodes, test_float_boxes_hold_their_items);
     tcase_add_test(nodes, test_wide_nodes_hold_their_leaves_items);
     tcase_add_test(nodes, test_thread_counts_build_the_same_tree);
+    tcase_add_test(nodes, test_a_build_starts_no_more_threads_than_tasks);
     tcase_add_test(nodes, test_running_out_of_memory_in_a_build_leaves_no_tree);
     tcase_add_test(nodes, test_every_leaf_s_packets_hold_its_triangles);
     tcase_add_test(nodes, test_the_bvh_of_a_mesh_stays_within_its_bytes);

@@ -302,10 +302,13 @@ static int thread_count(int threads)
     return n < BVH_MAX_THREADS ? n : BVH_MAX_THREADS;
 }
 
-/* The tasks, on threads threads (0: one per core); this one is one. */
-static void run_tasks(bvh_queue *q, int threads)
+/* The tasks, on threads threads (0: one per core), this one among them;
+ * never more threads than tasks. Returns how many threads worked. */
+static int run_tasks(bvh_queue *q, int threads)
 {
     int n = thread_count(threads), started = 0;
+    if (n > q->task_count)
+        n = q->task_count > 1 ? q->task_count : 1; /* a small mesh: one */
     pthread_t id[BVH_MAX_THREADS];
     while (started < n - 1 &&
            pthread_create(&id[started], NULL, build_tasks, q) == 0)
@@ -313,6 +316,7 @@ static void run_tasks(bvh_queue *q, int threads)
     build_tasks(q);
     for (int k = 0; k < started; k++)
         pthread_join(id[k], NULL);
+    return started + 1;
 }
 
 /* <<closing the gaps>> ch09 */
@@ -468,7 +472,7 @@ static void build_binary(bvh_builder *bd, vec3 *centers, int count,
     bvh_queue q = {.bd = bd, .tasks = tasks};
     build_top(bd, 0, count, 0, 0, small, tasks, &q.task_count);
     atomic_init(&q.next, 0);
-    run_tasks(&q, bd->p.threads);
+    t->build_threads = run_tasks(&q, bd->p.threads);
     close_gaps(bd->slots, 0, t, 0);
 }
 

@@ -91,6 +91,7 @@ typedef struct bvh {
     int node_capacity;     /* allocated */
     int *items;            /* leaf after leaf */
     int item_count, leaf_count, depth;
+    int build_threads;     /* the threads its build ran on */
 } bvh;
 
 /* <<bvh building>> ch09 */
