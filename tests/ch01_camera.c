@@ -409,7 +409,7 @@ START_TEST(test_scene_rejects_bad_image_sizes)
     expect_parse_error("image 320 -240", 1, 11, "from 1 to 16384");
     expect_parse_error("image 100000 100000", 1, 7, "from 1 to 16384");
     expect_parse_error("image 1e15 1", 1, 7, "from 1 to 16384");
-    expect_parse_error("image 1e16 1", 1, 7, "whole number");
+    expect_parse_error("image 1e16 1", 1, 7, "from 1 to 16384"); /* whole */
     expect_parse_error("image 16384 16384", 1, 13, "at most 16777216 pixels");
 }
 END_TEST

@@ -494,6 +494,16 @@ START_TEST(test_numbers_may_have_any_number_of_digits)
 }
 END_TEST
 
+START_TEST(test_a_whole_number_too_large_is_out_of_range)
+{
+    /* 2^64 + 16: whole, and no long holds it; the message is the range's */
+    expect_parse_error("image 18446744073709551632 6\n", 1, 7,
+                       "an image width from 1 to");
+    expect_parse_error("image 8 -1e300\n", 1, 9, "an image height from 1 to");
+    expect_parse_error("image 8.5 6\n", 1, 7, "(a whole number)");
+}
+END_TEST
+
 /* Runs the binary on args; stderr must hold want and no byte of avoid. */
 static void expect_stderr(const char *const *args, const char *want,
                           const char *avoid)
@@ -766,6 +776,7 @@ Suite *ch01_robustness_suite(void)
     tcase_add_test(input, test_a_scene_must_be_a_regular_file);
     tcase_add_test(input, test_a_byte_order_mark_is_skipped);
     tcase_add_test(input, test_numbers_may_have_any_number_of_digits);
+    tcase_add_test(input, test_a_whole_number_too_large_is_out_of_range);
     tcase_add_test(input, test_errors_escape_what_a_terminal_would_obey);
     tcase_add_test(input, test_long_file_names_are_named_in_full);
     suite_add_tcase(s, input);

@@ -218,12 +218,15 @@ bool parse_number_below(parser *p, const char *what, double lo, double hi,
 
 bool parse_int_in(parser *p, const char *what, long lo, long hi, long *out)
 {
-    long n;
-    if (!parse_int(p, what, &n))
+    double value;
+    if (!parse_number(p, what, &value))
         return false;
-    if (n < lo || n > hi)
+    if (value != floor(value))
+        return parse_expected(p, "expected %s (a whole number)", what);
+    /* a whole number too large for any long is out of range all the same */
+    if (value < (double)lo || value > (double)hi)
         return parse_expected(p, "expected %s from %ld to %ld", what, lo, hi);
-    *out = n;
+    *out = (long)value;
     return true;
 }
 /* <<numbers and colours>> += ch02 */
