@@ -633,6 +633,28 @@ START_TEST(test_bad_accelerator_options_are_usage_errors)
 }
 END_TEST
 
+START_TEST(test_a_kd_tree_heat_map_over_bvhs_is_refused)
+{
+    /* the heat map counts kd-tree nodes: over BVHs it would be black */
+    expect_parse_error("kdtree heatmap 60\naccelerator bvh\nimage 8 6\n", 2,
+                       1, "heat map draws kd-tree nodes");
+    scene s;
+    scene_error err;
+    ck_assert_msg(parse_text(&s, "kdtree heatmap 60\naccelerator kdtree\n",
+                             &err), "%s", err.message);
+    scene_free(&s);
+    char errors[1024], out[200], scene[200]; /* tmp_path's buffer is reused */
+    snprintf(scene, sizeof scene, "%s",
+             write_file("heat.scene", "kdtree heatmap 60\n"));
+    snprintf(out, sizeof out, "%s", tmp_path("never.png"));
+    const char *args[] = {scene, "--accelerator", "bvh", "-o", out, NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+    ck_assert_msg(strstr(errors, "--accelerator bvh gives the meshes BVHs"),
+                  "%s", errors);
+    ck_assert(!file_exists(out));
+}
+END_TEST
+
 static char *read_whole(const char *path, size_t *length)
 {
     FILE *f = fopen(path, "rb");
@@ -714,6 +736,7 @@ Suite *ch09_bvh_suite(void)
     tcase_add_test(choose, test_bad_accelerator_statements_are_located);
     tcase_add_test(choose, test_the_bvh_counts_against_the_geometry_budget);
     tcase_add_test(choose, test_bad_accelerator_options_are_usage_errors);
+    tcase_add_test(choose, test_a_kd_tree_heat_map_over_bvhs_is_refused);
     tcase_add_test(choose, test_the_bunny_scene_is_the_same_with_either_tree);
     tcase_add_test(choose, test_ties_come_out_the_same_with_either_tree);
     suite_add_tcase(s, choose);

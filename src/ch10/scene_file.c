@@ -563,6 +563,13 @@ bool scene_parse(scene *s, const char *text, size_t length, const char *name,
     scene_tree_failure why;
     if (!scene_build_trees(s, &why))
         return tree_error(s, name, &why, err);
+    /* <<finish the scene>> += ch09 */
+    if (s->heatmap > 0 && scene_mesh_accelerator(s) == MESH_ACCELERATOR_BVH)
+        return parse_fail_on_line(
+            err, name, s->accelerator_option ? 0 : s->accelerator_line,
+            PARSE_BAD_INPUT, "the kdtree statement's heat map draws kd-tree "
+            "nodes, and %s gives the meshes BVHs",
+            s->accelerator_option ? "--accelerator bvh" : "this statement");
     /* <<finish the scene>> += ch10 */
     if (!pixel_check_budget(s, name, s->pixel_line, err))
         return false;
