@@ -7,7 +7,8 @@
 # incrementally from one run to the next), and checks 2 to 5 run side by
 # side, one a core. Checks that
 #   1. an untouched workbook grades "Progress: 0 of N", N >= 36, at least 4
-#      exercises a chapter, exit 0; make workbook overwrites no file;
+#      exercises a chapter, exit 0; make workbook overwrites no file; no
+#      task holds TeX ($...$);
 #   2. with every stub started, no exercise passes (each stub fails one of
 #      its tests), and the exit status is not 0;
 #   3. a SOLVED=1 workbook grades "Progress: N of N", exit 0;
@@ -92,6 +93,9 @@ fresh
 echo "my own line" >> "$wb/01-camera.md"
 $MAKE -s --no-print-directory workbook WB_DIR="$wb" > "$t/out" 2>&1
 grep -qx "my own line" "$wb/01-camera.md" || fail "make workbook overwrote a file"
+# the tasks are read as plain text: no TeX left in them
+tex=$(awk '/^```/ { code = !code; next } !code && /\$[^$ ][^$]*\$/' "$wb"/*.md | head -3)
+[ -z "$tex" ] || fail "a task holds TeX: $tex"
 grade ""
 [ "$status" = 0 ] || fail "an untouched workbook should grade with status 0"
 grep -qx "Progress: 0 of $n exercises" "$t/out" || fail "expected Progress: 0 of $n"

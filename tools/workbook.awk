@@ -30,8 +30,36 @@ function attribute(line, key) {
     return substr(line, RSTART + length(key) + 2, RLENGTH - length(key) - 3)
 }
 
+# TeX of inline math ($...$) as plain text, for a file read as it is:
+# $2^{-53}$ is 2^-53, $t_\text{max}$ t_max, $\lceil n/W \rceil$ ceil(n/W).
+function plain_math(tex) {
+    gsub(/\\text\{/, "{", tex)
+    gsub(/\\lceil */, "ceil(", tex)
+    gsub(/ *\\rceil/, ")", tex)
+    gsub(/\\lfloor */, "floor(", tex)
+    gsub(/ *\\rfloor/, ")", tex)
+    gsub(/\\times/, "x", tex)
+    gsub(/\\cdot/, "*", tex)
+    gsub(/\\le(q)?/, "<=", tex)
+    gsub(/\\ge(q)?/, ">=", tex)
+    gsub(/\\/, "", tex)
+    gsub(/[{}]/, "", tex)
+    return tex
+}
+
+function plain_line(line,    out) {
+    out = ""
+    while (match(line, /\$[^$]+\$/)) {
+        out = out substr(line, 1, RSTART - 1) \
+              plain_math(substr(line, RSTART + 1, RLENGTH - 2))
+        line = substr(line, RSTART + RLENGTH)
+    }
+    return out line
+}
+
 # The notes' text so far, joined into paragraphs.
 function add_note(line) {
+    line = plain_line(line)
     if (section == "task")
         task = task line "\n"
     else if (section == "hint")
