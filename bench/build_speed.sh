@@ -8,6 +8,8 @@
 #   make test          after that make, every check
 #   make test-ch04     a fresh clone of its own, one chapter's suites
 #   make grade-ch02    after a graded workbook, exercise 2.1's chunk edited
+#   make grade-ch08    the same, exercise 8.1's chunk edited
+#   make grade-ch10    the same, exercise 10.1's chunk edited
 #   .ci/run            a fresh clone of its own, CI=true (with --ci only:
 #                      it takes minutes)
 #
@@ -54,11 +56,11 @@ timed() {
   fi
 }
 
-# An edit of one chunk: exercise 2.1's body gets a comment line.
+# edit_one_chunk EX FILE: exercise EX's code in workbook/FILE gets a
+# comment line.
 edit_one_chunk() {
-  awk '/ex="2.1"/ { print; print "/* edited */"; next } { print }' \
-    workbook/02-spheres.md > workbook/02-spheres.md.new &&
-    mv workbook/02-spheres.md.new workbook/02-spheres.md
+  awk -v ex="ex=\"$1\"" 'index($0, ex) { print; print "/* edited */"; next } { print }' \
+    "workbook/$2" > "workbook/$2.new" && mv "workbook/$2.new" "workbook/$2"
 }
 
 k=0
@@ -71,9 +73,12 @@ while [ "$k" -lt "$runs" ]; do
   timed "make test-ch04, fresh clone" "$d" make test-ch04
   # A solved workbook, graded once; then one chunk edited and graded again.
   (cd "$d" && make -s workbook SOLVED=1 && sed -i '/^\/\/ NOT DONE/d' workbook/*.md &&
-     make -s grade-ch02) > "$scratch/grade-setup.log" 2>&1
-  (cd "$d" && edit_one_chunk)
-  timed "make grade-ch02, one chunk edited" "$d" make grade-ch02
+     make -s grade-ch02 grade-ch08 grade-ch10) > "$scratch/grade-setup.log" 2>&1
+  for edit in "02 2.1 02-spheres.md" "08 8.1 08-kdtree.md" "10 10.1 10-antialiasing.md"; do
+    set -- $edit
+    (cd "$d" && edit_one_chunk "$2" "$3")
+    timed "make grade-ch$1, one chunk edited" "$d" make grade-ch$1
+  done
   if [ -n "$ci" ]; then
     d=$(clone ci) || exit 1
     timed ".ci/run, fresh clone" "$d" env CI=true bash .ci/run
@@ -97,6 +102,8 @@ load=$(cut -d ' ' -f 1 /proc/loadavg 2>/dev/null || echo "?")
       target["make"] = "60"; target["make test"] = "150"
       target["make test-ch04, fresh clone"] = "20"
       target["make grade-ch02, one chunk edited"] = "5"
+      target["make grade-ch08, one chunk edited"] = "5"
+      target["make grade-ch10, one chunk edited"] = "10"
       target[".ci/run, fresh clone"] = "420"
       for (i = 1; i <= n; i++) {
         s = order[i]; m = split(substr(step[s], 2), v, " ")
