@@ -8,6 +8,7 @@
  * must give exactly the answers of the double leaf test: their filter may
  * keep too much, never too little. */
 #include <check.h>
+#include "shard.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>

@@ -5,21 +5,24 @@
  * names a function `Suite *name_suite(void)` in tests/name.c. The exit status
  * is 0 only when every test of every suite passed.
  *
- * RUNNER_SHARD=K/N runs only the suites whose place in the list, counted
- * from 0, leaves K when divided by N: N runners, one a shard, run the
- * suites on N cores at once. */
+ * RUNNER_SHARD=K/N runs only the tests whose number, counted from 0 over
+ * every suite in the list's order, leaves K when divided by N (tests/
+ * shard.h): N runners, one a shard, run the tests on N cores at once. */
 #include <check.h>
 #include <stdio.h>
 #include <stdlib.h>
 
-/* Whether suite number index belongs to this runner's shard. */
-static int in_shard(int index)
+/* Whether the next test added belongs to this runner's shard. */
+int runner_keeps_next_test(void)
 {
-    const char *shard = getenv("RUNNER_SHARD");
-    int k, n;
-    if (shard == NULL || sscanf(shard, "%d/%d", &k, &n) != 2 || n < 1)
-        return 1; /* no shard, or a malformed one: every suite */
-    return index % n == k;
+    static int next = 0, k = -1, n = 1;
+    if (k < 0) { /* the first test: read the shard, or keep every test */
+        const char *shard = getenv("RUNNER_SHARD");
+        if (shard == NULL || sscanf(shard, "%d/%d", &k, &n) != 2 || n < 1 ||
+            k < 0 || k >= n)
+            k = 0, n = 1;
+    }
+    return next++ % n == k;
 }
 
 #define X(name) Suite *name##_suite(void);
@@ -29,10 +32,7 @@ SUITE_LIST
 int main(void)
 {
     SRunner *runner = srunner_create(NULL);
-    int index = 0;
-#define X(name)                                                              \
-    if (in_shard(index++))                                                   \
-        srunner_add_suite(runner, name##_suite());
+#define X(name) srunner_add_suite(runner, name##_suite());
     SUITE_LIST
 #undef X
     srunner_run_all(runner, CK_ENV); /* CK_VERBOSITY=verbose: every test */

@@ -8,6 +8,7 @@
  * runner calls tangle_suite().
  */
 #include <check.h>
+#include "shard.h"
 #include <errno.h>
 #include <fcntl.h>
 #include <stdarg.h>

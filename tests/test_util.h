@@ -8,6 +8,7 @@
 #define TEST_UTIL_H
 
 #include <check.h>
+#include "shard.h"
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>

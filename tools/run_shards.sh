@@ -1,6 +1,6 @@
 #!/bin/sh
 # run_shards.sh RUNNER: runs a test binary made by tests/runner.c as N
-# processes at once, each with RUNNER_SHARD=K/N (its share of the suites),
+# processes at once, each with RUNNER_SHARD=K/N (its share of the tests),
 # then prints their output in order, shard by shard; exits 0 only when
 # every shard passed. N is $SHARDS, or the number of cores.
 set -u
