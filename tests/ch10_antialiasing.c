@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "antialias.h"
 #include "image.h"
@@ -465,6 +466,38 @@ START_TEST(test_bad_pixel_options_are_usage_errors)
 }
 END_TEST
 
+/* Whether tmpdir/stderr.txt holds a whole line yet. */
+static bool stderr_has_a_line(void)
+{
+    FILE *f = fopen(tmp_path("stderr.txt"), "r");
+    bool line = false;
+    for (int c; f != NULL && !line && (c = fgetc(f)) != EOF;)
+        line = c == '\n';
+    if (f)
+        fclose(f);
+    return line;
+}
+
+START_TEST(test_the_progress_line_gives_a_rate_of_pixels)
+{
+    /* 16 rays a pixel, into a log: the rate the line gives is of the rows
+     * done, pixels, and must say so (a rate of rays would be 16 times it). */
+    const char *args[] = {"-o",      tmp_path("big.png"), "--size",
+                          "4096x4096", "--pixel",         "pattern grid samples 16",
+                          NULL};
+    pid_t pid = start_bin(args, (run_limits){.alarm_seconds = 120});
+    struct timespec ms = {0, 1000000};
+    for (int waited = 0; !stderr_has_a_line() && waited < 100000; waited++)
+        nanosleep(&ms, NULL); /* the first line comes after one second */
+    kill(pid, SIGTERM);
+    char errors[4096];
+    int status = finish_bin(pid, errors, sizeof errors);
+    ck_assert_msg(status == 128 + SIGTERM, "status %d: %s", status, errors);
+    ck_assert_msg(strstr(errors, " Mpixels/s ") != NULL, "%s", errors);
+    ck_assert_msg(strstr(errors, "rays/s") == NULL, "%s", errors);
+}
+END_TEST
+
 Suite *ch10_antialiasing_suite(void)
 {
     Suite *s = suite_create("ch10 antialiasing");
@@ -483,6 +516,7 @@ Suite *ch10_antialiasing_suite(void)
     tcase_add_test(renders, test_the_default_is_chapter_9s_picture);
     tcase_add_test(renders, test_thread_counts_give_the_same_image);
     tcase_add_test(renders, test_stats_report_rays_per_pixel_and_depths);
+    tcase_add_test(renders, test_the_progress_line_gives_a_rate_of_pixels);
     suite_add_tcase(s, renders);
     TCase *failures = tcase_create("where it fails");
     tcase_add_test(
