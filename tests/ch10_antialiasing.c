@@ -550,8 +550,9 @@ START_TEST(test_the_progress_line_gives_a_rate_of_pixels)
 {
     /* 16 rays a pixel, into a log: the rate the line gives is of the rows
      * done, pixels, and must say so (a rate of rays would be 16 times it). */
-    const char *args[] = {"-o",      tmp_path("big.png"), "--size",
-                          "4096x4096", "--pixel",         "pattern grid samples 16",
+    const char *args[] = {"-o",        tmp_path("big.png"),
+                          "--size",    "4096x4096",
+                          "--pixel",   "pattern grid samples 16",
                           NULL};
     pid_t pid = start_bin(args, (run_limits){.alarm_seconds = 120});
     struct timespec ms = {0, 1000000};
