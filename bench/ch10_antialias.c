@@ -109,8 +109,6 @@ enum { WAYS_N = sizeof WAYS / sizeof WAYS[0] };
 static render_stats render_way(scene *s, pixel_sampling ps, image *img)
 {
     s->pixels = ps;
-    if (!pixel_corners_prepare(&s->corners, img->width, img->height))
-        abort();
     render_stats st = {0};
     render(s, img, &st);
     return st;

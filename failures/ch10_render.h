@@ -27,8 +27,7 @@ static inline render_stats render_pixels(scene *s, pixel_sampling ps,
                                          image *img)
 {
     s->pixels = ps;
-    if (!image_init(img, s->cam.width, s->cam.height) ||
-        !pixel_corners_prepare(&s->corners, s->cam.width, s->cam.height)) {
+    if (!image_init(img, s->cam.width, s->cam.height)) {
         fprintf(stderr, "error: out of memory\n");
         exit(2);
     }

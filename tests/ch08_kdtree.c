@@ -369,6 +369,80 @@ START_TEST(test_tree_agrees_with_brute_force_on_huge_and_tiny_triangles)
 }
 END_TEST
 
+/* Rays lying in split planes of m's tree (the direction's component on
+ * the plane's axis exactly 0, of either sign), from outside the box, aimed
+ * at points of the plane inside it and at points of the mesh's edges that
+ * lie in the plane: both children of such a node share one interval. */
+static int rays_in_split_planes(const mesh *m, ray *rays, int n)
+{
+    vec3 c = vec3_scale(vec3_add(m->bounds.lo, m->bounds.hi), 0.5);
+    vec3 e = vec3_sub(m->bounds.hi, m->bounds.lo);
+    double radius = vec3_length(e) + 1;
+    int made = 0;
+    for (int k = 0; made < n && k < 64 * n; k++) {
+        const kdtree_node *node = &m->tree.nodes[k % m->tree.node_count];
+        int axis = (int)(node->bits & 3);
+        if (axis == 3)
+            continue;
+        vec3 target = {m->bounds.lo.x + e.x * uniform01(),
+                       m->bounds.lo.y + e.y * uniform01(),
+                       m->bounds.lo.z + e.z * uniform01()};
+        for (int i = 0; i < m->triangle_count && k % 2; i++) {
+            const int *v = m->triangles[(i + k) % m->triangle_count].v;
+            vec3 a = m->vertices[v[0]], b = m->vertices[v[1]];
+            if (vec3_axis(a, axis) == node->split &&
+                vec3_axis(b, axis) == node->split) { /* an edge in it */
+                target = vec3_lerp(a, b, uniform01());
+                break;
+            }
+        }
+        vec3_set_axis(&target, axis, node->split);
+        vec3 o = vec3_add(c, vec3_scale(rng_unit_vector(&rng, 1e-3), radius));
+        vec3_set_axis(&o, axis, node->split);
+        vec3 d = vec3_normalize(vec3_sub(target, o));
+        vec3_set_axis(&d, axis, made % 4 < 2 ? 0.0 : -0.0); /* 1/d: +-inf */
+        rays[made++] = (ray){o, d};
+    }
+    return made;
+}
+
+/* Both walks against brute force on rays in the split planes of m's tree,
+ * built by each method. */
+static void expect_agreement_in_split_planes(mesh *m, int count,
+                                             const char *what)
+{
+    static const kdtree_method methods[2] = {KDTREE_SAH, KDTREE_MEDIAN};
+    ray *rays = malloc((size_t)count * sizeof *rays);
+    for (int k = 0; k < 2; k++) {
+        build(m, methods[k]);
+        seed(0x91A0E000u + (uint64_t)k);
+        int n = rays_in_split_planes(m, rays, count);
+        ck_assert_int_eq(n, count);
+        answers truth = brute_answers(m, rays, n);
+        for (int walk = 0; walk < 2; walk++)
+            ck_assert_msg(differ_from(m, rays, n, (walk_kind)walk, &truth) ==
+                              0,
+                          "%s, build %d, walk %d: %d of %d rays in split "
+                          "planes differ from brute force",
+                          what, k, walk,
+                          differ_from(m, rays, n, (walk_kind)walk, &truth),
+                          n);
+        free_answers(&truth);
+    }
+    free(rays);
+}
+
+START_TEST(test_tree_agrees_with_brute_force_on_rays_in_split_planes)
+{
+    mesh teapot = load("meshes/teapot-8.obj"); /* its seam lies in x = 0 */
+    expect_agreement_in_split_planes(&teapot, 2000, "teapot");
+    mesh_free(&teapot);
+    mesh grid = plane_mesh(16); /* edges in the planes x = c and y = c */
+    expect_agreement_in_split_planes(&grid, 2000, "grid");
+    mesh_free(&grid);
+}
+END_TEST
+
 START_TEST(test_sweep_and_sorting_builds_make_the_same_tree)
 {
     mesh a = load("meshes/teapot-8.obj"), b = load("meshes/teapot-8.obj");
@@ -1260,6 +1334,8 @@ Suite *ch08_kdtree_suite(void)
     tcase_add_test(agree, test_tree_agrees_with_brute_force_on_the_teapot);
     tcase_add_test(agree, test_tree_agrees_with_brute_force_on_the_bunny);
     tcase_add_test(agree, test_tree_agrees_with_brute_force_on_a_plane);
+    tcase_add_test(agree,
+                   test_tree_agrees_with_brute_force_on_rays_in_split_planes);
     tcase_add_test(
         agree, test_tree_agrees_with_brute_force_on_huge_and_tiny_triangles);
     tcase_add_test(agree, test_any_hit_agrees_with_the_closest_hit);

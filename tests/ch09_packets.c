@@ -538,6 +538,32 @@ START_TEST(test_empty_lanes_are_never_kept)
 }
 END_TEST
 
+START_TEST(test_an_empty_lane_lets_the_edges_stop_the_filter)
+{
+    /* Three triangles in the octant x, y, z >= 0 and at least one empty
+     * lane; rays parallel to z at x < 0 pass beside all three, an edge
+     * between the ray and each: the filter must stop at the edges. */
+    little_mesh m = {0};
+    add_triangle(&m, (triangle_corners){{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}});
+    add_triangle(&m, (triangle_corners){{{2, 0, 0}, {0, 2, 0}, {0, 0, 2}}});
+    add_triangle(&m, (triangle_corners){{{3, 0, 0}, {0, 3, 0}, {0, 0, 3}}});
+    pack(&m);
+    ck_assert_int_eq(m.packets[0].triangle[TRIANGLE_PACKET_WIDTH - 1], -1);
+    int stopped = 0;
+    for (int n = 0; n < 100; n++) {
+        ray r = {{-0.5 - 0.01 * n, 0.25 + 0.02 * n, -5}, {0, 0, 1}};
+        watertight_ray w = watertight_ray_of(r);
+        packet_ray pr = packet_ray_of(&w);
+        ck_assert_uint_eq(
+            triangle_packet_candidates_simd(&m.packets[0], &pr, 0, INFINITY),
+            0);
+        stopped += triangle_packet_stops_at_edges(&m.packets[0], &pr);
+    }
+    ck_assert_int_eq(stopped, 100);
+    free(m.packets);
+}
+END_TEST
+
 START_TEST(test_packets_hold_the_mesh_s_triangles_in_float)
 {
     rng_state g = {3};
@@ -614,6 +640,7 @@ Suite *ch09_packets_suite(void)
     tcase_add_test(packets,
                    test_packets_keep_the_tie_rule_in_and_across_packets);
     tcase_add_test(packets, test_empty_lanes_are_never_kept);
+    tcase_add_test(packets, test_an_empty_lane_lets_the_edges_stop_the_filter);
     tcase_add_test(packets, test_packets_hold_the_mesh_s_triangles_in_float);
     tcase_add_test(packets, test_the_filter_decides_far_rays_alone);
     suite_add_tcase(s, packets);

@@ -121,6 +121,27 @@ START_TEST(test_statistics_add_up_whatever_the_thread_count)
 }
 END_TEST
 
+/* The teapot's mesh gets a BVH (the default): the kd-trees' line of
+ * --stats must not carry the build time, which is the BVH's. */
+START_TEST(test_the_kd_trees_line_holds_no_bvh_build_time)
+{
+    char errors[4096], scene_path[192];
+    snprintf(scene_path, sizeof scene_path, "%s", teapot_scene());
+    const char *args[] = {scene_path, "--stats", "-o", tmp_path("s.png"),
+                          NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
+    const char *kd = strstr(errors, "kd-trees ");
+    ck_assert_ptr_nonnull(kd);
+    ck_assert_ptr_nonnull(strstr(kd, " 0: 0 nodes")); /* no kd-tree built */
+    char line[256];
+    snprintf(line, sizeof line, "%.*s", (int)strcspn(kd, "\n"), kd);
+    ck_assert_msg(strstr(line, " ms") == NULL,
+                  "the kd-trees' line gives a time: %s", line);
+    ck_assert_ptr_nonnull(strstr(errors, "\ntrees built in "));
+    ck_assert_ptr_nonnull(strstr(errors, "\nbvhs "));
+}
+END_TEST
+
 START_TEST(test_bad_thread_counts_are_usage_errors)
 {
     const char *bad[] = {"0", "-1", "abc", "2x", "257", "", "1e3"};
@@ -225,6 +246,7 @@ Suite *ch09_speed_suite(void)
     tcase_add_test(threads, test_ties_come_out_alike_on_any_number_of_threads);
     tcase_add_test(threads, test_statistics_add_up_whatever_the_thread_count);
     tcase_add_test(threads, test_bad_thread_counts_are_usage_errors);
+    tcase_add_test(threads, test_the_kd_trees_line_holds_no_bvh_build_time);
     tcase_add_test(threads, test_bands_on_threads_draw_what_one_render_draws);
     tcase_add_test(threads, test_the_threads_counts_add_up_to_one_renders);
     suite_add_tcase(s, threads);

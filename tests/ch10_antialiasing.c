@@ -6,11 +6,13 @@
  * the default is chapter 9's picture byte for byte, that threads change
  * nothing, the two failures of the chapter, and bad pixel statements. */
 #include <check.h>
+#include <pthread.h>
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 
 #include "antialias.h"
 #include "image.h"
@@ -27,14 +29,21 @@ static void parse_ok(scene *s, const char *text)
                   "%d:%d: %s", err.line, err.col, err.message);
 }
 
-/* Renders s (its corners prepared) on `threads` threads into img. */
-static render_stats render_scene(scene *s, image *img, int threads)
+/* Renders s on `threads` threads into img. */
+static render_stats render_scene(const scene *s, image *img, int threads)
 {
     ck_assert(image_init(img, s->cam.width, s->cam.height));
-    ck_assert(pixel_corners_prepare(&s->corners, s->cam.width,
-                                    s->cam.height));
     render_stats st = {0};
     render_in_bands(s, img, &(render_settings){.threads = threads}, &st);
+    return st;
+}
+
+/* Renders s into img in one call of render: one band, the whole image. */
+static render_stats render_whole(const scene *s, image *img)
+{
+    ck_assert(image_init(img, s->cam.width, s->cam.height));
+    render_stats st = {0};
+    render(s, img, &st);
     return st;
 }
 
@@ -113,12 +122,17 @@ static void flat_scene(scene *s, const char *settings)
 
 START_TEST(test_a_flat_image_costs_one_ray_per_corner)
 {
-    for (int threads = 1; threads <= 3; threads += 2) {
+    /* threads 0: one call of render, one band: (W + 1)(H + 1) corners;
+     * in bands of BAND_ROWS rows, each band traces its rows of corners,
+     * and the row between two bands is traced by both: (W + 1)(H + b) */
+    for (int threads = 0; threads <= 3; threads += threads == 0 ? 1 : 2) {
         scene s;
         image img;
         flat_scene(&s, "pattern adaptive threshold 0 depth 4");
-        render_stats st = render_scene(&s, &img, threads);
-        ck_assert_int_eq(st.primary_rays, 41 * 31);
+        render_stats st = threads == 0 ? render_whole(&s, &img)
+                                       : render_scene(&s, &img, threads);
+        int bands = threads == 0 ? 1 : (30 + BAND_ROWS - 1) / BAND_ROWS;
+        ck_assert_int_eq(st.primary_rays, 41 * (30 + bands));
         ck_assert_int_eq(st.pixel_depths[0], 40 * 30);
         for (int k = 0; k < 40 * 30; k++) /* four equal corners: exact */
             ck_assert(img.pixels[k].x == 0.3 && img.pixels[k].z == 0.7);
@@ -165,7 +179,7 @@ START_TEST(test_an_edge_is_divided_and_a_flat_region_is_not)
     scene s;
     image img;
     parse_ok(&s, EDGE_SCENE);
-    render_stats st = render_scene(&s, &img, 1);
+    render_stats st = render_whole(&s, &img);
     /* the 30 pixels of column 20 to depth 3, at 2^(3+2) - 4 + 3 = 31 rays
      * each besides the corners (the chapter's sum); no other pixel */
     ck_assert_int_eq(st.pixel_depths[3], 30);
@@ -177,6 +191,60 @@ START_TEST(test_an_edge_is_divided_and_a_flat_region_is_not)
     double edge = img.pixels[15 * 40 + 20].x / white;
     ck_assert_double_eq_tol(edge, 0.7, 1.0 / 16); /* the finest step */
     image_free(&img);
+    scene_free(&s);
+}
+END_TEST
+
+/* One render of a scene on a thread of its own. */
+typedef struct {
+    const scene *s;
+    image img;
+    render_stats st;
+} concurrent_render;
+
+static void *render_concurrently(void *job)
+{
+    concurrent_render *r = job;
+    render_in_bands(r->s, &r->img, &(render_settings){.threads = 2}, &r->st);
+    return NULL;
+}
+
+static void expect_same_render(const image *a, const render_stats *sa,
+                               const image *b, const render_stats *sb)
+{
+    size_t bytes = (size_t)a->width * a->height * sizeof a->pixels[0];
+    ck_assert(memcmp(a->pixels, b->pixels, bytes) == 0);
+    ck_assert_int_eq(sa->primary_rays, sb->primary_rays);
+    ck_assert(memcmp(sa->pixel_rays, sb->pixel_rays, sizeof sa->pixel_rays) ==
+              0);
+}
+
+START_TEST(test_a_scene_is_left_as_it_was_by_its_renders)
+{
+    /* The adaptive pattern's corners belong to the render: a second
+     * render of the scene, and two at once, trace and draw what the first
+     * did (were the corners kept in the scene, the second would find
+     * them traced, or half traced by the other). */
+    scene s;
+    parse_ok(&s, EDGE_SCENE);
+    const scene *cs = &s;
+    image first, again;
+    render_stats st_first = render_scene(cs, &first, 2);
+    render_stats st_again = render_scene(cs, &again, 2);
+    expect_same_render(&first, &st_first, &again, &st_again);
+    concurrent_render r[2] = {{.s = cs}, {.s = cs}};
+    pthread_t thread[2];
+    for (int k = 0; k < 2; k++) {
+        ck_assert(image_init(&r[k].img, s.cam.width, s.cam.height));
+        ck_assert_int_eq(
+            pthread_create(&thread[k], NULL, render_concurrently, &r[k]), 0);
+    }
+    for (int k = 0; k < 2; k++) {
+        ck_assert_int_eq(pthread_join(thread[k], NULL), 0);
+        expect_same_render(&first, &st_first, &r[k].img, &r[k].st);
+        image_free(&r[k].img);
+    }
+    image_free(&first), image_free(&again);
     scene_free(&s);
 }
 END_TEST
@@ -280,14 +348,15 @@ END_TEST
 
 START_TEST(test_stats_report_rays_per_pixel_and_depths)
 {
-    /* the edge scene: (41 x 31 + 30 x 31) / 1200 = 1.834 rays a pixel, the
-     * edge's 31 and a share of the corners the largest; 30 of 1200 pixels
-     * (2.5%) at depth 3, the rest at 0 */
+    /* the edge scene, 30 rows in 4 bands of 8, whose 34 rows of corners
+     * are 41 rays each: (41 x 34 + 30 x 31) / 1200 = 1.937 rays a pixel,
+     * the edge's 31 and a share of the corners the largest; 30 of 1200
+     * pixels (2.5%) at depth 3, the rest at 0 */
     char errors[4096], path[192];
     snprintf(path, sizeof path, "%s", write_file("edge.scene", EDGE_SCENE));
     const char *args[] = {path, "--stats", "-o", tmp_path("e.png"), NULL};
     ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
-    ck_assert_msg(strstr(errors, "rays per pixel     1.83 mean, 32 largest"),
+    ck_assert_msg(strstr(errors, "rays per pixel     1.94 mean, 32 largest"),
                   "%s", errors);
     ck_assert_msg(strstr(errors, "pixels by depth    0       1170  97.5%"),
                   "%s", errors);
@@ -465,6 +534,39 @@ START_TEST(test_bad_pixel_options_are_usage_errors)
 }
 END_TEST
 
+/* Whether tmpdir/stderr.txt holds a whole line yet. */
+static bool stderr_has_a_line(void)
+{
+    FILE *f = fopen(tmp_path("stderr.txt"), "r");
+    bool line = false;
+    for (int c; f != NULL && !line && (c = fgetc(f)) != EOF;)
+        line = c == '\n';
+    if (f)
+        fclose(f);
+    return line;
+}
+
+START_TEST(test_the_progress_line_gives_a_rate_of_pixels)
+{
+    /* 16 rays a pixel, into a log: the rate the line gives is of the rows
+     * done, pixels, and must say so (a rate of rays would be 16 times it). */
+    const char *args[] = {"-o",        tmp_path("big.png"),
+                          "--size",    "4096x4096",
+                          "--pixel",   "pattern grid samples 16",
+                          NULL};
+    pid_t pid = start_bin(args, (run_limits){.alarm_seconds = 120});
+    struct timespec ms = {0, 1000000};
+    for (int waited = 0; !stderr_has_a_line() && waited < 100000; waited++)
+        nanosleep(&ms, NULL); /* the first line comes after one second */
+    kill(pid, SIGTERM);
+    char errors[4096];
+    int status = finish_bin(pid, errors, sizeof errors);
+    ck_assert_msg(status == 128 + SIGTERM, "status %d: %s", status, errors);
+    ck_assert_msg(strstr(errors, " Mpixels/s ") != NULL, "%s", errors);
+    ck_assert_msg(strstr(errors, "rays/s") == NULL, "%s", errors);
+}
+END_TEST
+
 Suite *ch10_antialiasing_suite(void)
 {
     Suite *s = suite_create("ch10 antialiasing");
@@ -483,6 +585,8 @@ Suite *ch10_antialiasing_suite(void)
     tcase_add_test(renders, test_the_default_is_chapter_9s_picture);
     tcase_add_test(renders, test_thread_counts_give_the_same_image);
     tcase_add_test(renders, test_stats_report_rays_per_pixel_and_depths);
+    tcase_add_test(renders, test_the_progress_line_gives_a_rate_of_pixels);
+    tcase_add_test(renders, test_a_scene_is_left_as_it_was_by_its_renders);
     suite_add_tcase(s, renders);
     TCase *failures = tcase_create("where it fails");
     tcase_add_test(

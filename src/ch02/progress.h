@@ -4,7 +4,7 @@
 
 typedef struct {
     double start;     /* when the render began, on the monotonic clock */
-    int width;        /* pixels a row: the rate of primary rays follows */
+    int width;        /* pixels a row: the rate of pixels follows */
     double next_line; /* not on a terminal: when the next line is due */
 } progress;
 

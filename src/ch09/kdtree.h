@@ -176,8 +176,10 @@ static inline bool kdtree_walk_next(kdtree_walk *w, double best,
             if (w->pending == 0)
                 return false;
             w->now = w->stack[--w->pending];
-            if (w->now.t_min > best * (1 + KDTREE_SLACK))
-                return false; /* the rest lies beyond the nearest hit */
+            if (w->now.t_min > best * (1 + KDTREE_SLACK)) {
+                w->now.node = -1; /* beyond the hit; one below may not be */
+                continue;
+            }
         }
         const kdtree_node *n = &w->nodes[w->now.node];
         int axis = (int)(n->bits & 3);

@@ -10,7 +10,8 @@
 void report_stats(const render_stats *st, const moment at[4]);
 /* <<report declarations>> ch08 */
 
-/* The kd-trees of s: their nodes, leaves, depth and build time. */
+/* The kd-trees of s (their nodes, leaves and depth), and the time that
+ * building all of s's trees took. */
 void report_trees(const scene *s);
 
 /* A hint for each mesh of s with more triangles than the pixels it covers

@@ -105,7 +105,9 @@ static inline packet_int kept_in_vectors(const triangle_packet *p,
     typedef packet_int lane_mask;
     const lanes *a = p->corner[0], *b = p->corner[1], *c = p->corner[2];
     lanes p_reach = p->reach;
+    lane_mask empty = p->triangle < 0; /* -1 where no triangle is */
     /* <<the float filter>> ch09 */
+    /* <<the float filter's edge functions>> ch09 */
     int kx = r->kx, ky = r->ky, kz = r->kz;
     float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
     lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;
@@ -120,9 +122,10 @@ static inline packet_int kept_in_vectors(const triangle_packet *p,
     lanes ym = lanes_abs(ay) + lanes_abs(by) + lanes_abs(cy);
     lanes e_e = (2 * e_s * (xm + ym) + 2 * e_s * e_s + 2 * gamma_of(2) * xm * ym) *
                     BOUND_MARGIN + FLT_MIN; /* U, V or W */
-    lane_mask outside = ((u < -e_e) | (v < -e_e) | (w < -e_e)) &
-                        ((u > e_e) | (v > e_e) | (w > e_e));
-    if (lanes_all(outside)) /* an edge between, in every lane */
+    lane_mask outside = (((u < -e_e) | (v < -e_e) | (w < -e_e)) &
+                         ((u > e_e) | (v > e_e) | (w > e_e))) |
+                        empty;
+    if (lanes_all(outside)) /* an edge between, or nothing, in every lane */
         return (lane_mask){0};
     lanes det = u + v + w;
     lanes za = r->sz * az, zb = r->sz * bz, zc = r->sz * cz;
@@ -139,7 +142,7 @@ static inline packet_int kept_in_vectors(const triangle_packet *p,
                     ((det < 0) & (-n - e_n >= t_max * (e_d - det) * T_MARGIN));
     lane_mask behind = ((det > 0) & (n + e_n < 0)) | ((det < 0) & (n - e_n > 0));
     lane_mask kept = (outside | (sure & (far | behind))) == 0;
-    return kept & (p->triangle >= 0);
+    return kept;
 }
 
 /* Lane k of kept_in_vectors, computed alone: 1 or 0. */
@@ -152,7 +155,9 @@ static inline int kept_alone(const triangle_packet *p, int k,
     for (int axis = 0; axis < 3; axis++)
         a[axis] = p->corner[0][axis][k], b[axis] = p->corner[1][axis][k],
         c[axis] = p->corner[2][axis][k];
+    int empty = p->triangle[k] < 0;
     /* <<the float filter>> ch09 */
+    /* <<the float filter's edge functions>> ch09 */
     int kx = r->kx, ky = r->ky, kz = r->kz;
     float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
     lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;
@@ -167,9 +172,10 @@ static inline int kept_alone(const triangle_packet *p, int k,
     lanes ym = lanes_abs(ay) + lanes_abs(by) + lanes_abs(cy);
     lanes e_e = (2 * e_s * (xm + ym) + 2 * e_s * e_s + 2 * gamma_of(2) * xm * ym) *
                     BOUND_MARGIN + FLT_MIN; /* U, V or W */
-    lane_mask outside = ((u < -e_e) | (v < -e_e) | (w < -e_e)) &
-                        ((u > e_e) | (v > e_e) | (w > e_e));
-    if (lanes_all(outside)) /* an edge between, in every lane */
+    lane_mask outside = (((u < -e_e) | (v < -e_e) | (w < -e_e)) &
+                         ((u > e_e) | (v > e_e) | (w > e_e))) |
+                        empty;
+    if (lanes_all(outside)) /* an edge between, or nothing, in every lane */
         return (lane_mask){0};
     lanes det = u + v + w;
     lanes za = r->sz * az, zb = r->sz * bz, zc = r->sz * cz;
@@ -186,7 +192,36 @@ static inline int kept_alone(const triangle_packet *p, int k,
                     ((det < 0) & (-n - e_n >= t_max * (e_d - det) * T_MARGIN));
     lane_mask behind = ((det > 0) & (n + e_n < 0)) | ((det < 0) & (n - e_n > 0));
     lane_mask kept = (outside | (sure & (far | behind))) == 0;
-    return kept & (p->triangle[k] >= 0);
+    return kept;
+}
+
+bool triangle_packet_stops_at_edges(const triangle_packet *p,
+                                    const packet_ray *r)
+{
+    typedef packet_float lanes;
+    typedef packet_int lane_mask;
+    const lanes *a = p->corner[0], *b = p->corner[1], *c = p->corner[2];
+    lanes p_reach = p->reach;
+    lane_mask empty = p->triangle < 0;
+    /* <<the float filter's edge functions>> ch09 */
+    int kx = r->kx, ky = r->ky, kz = r->kz;
+    float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
+    lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;
+    lanes ax = (a[kx] - ox) - r->sx * az, ay = (a[ky] - oy) - r->sy * az;
+    lanes bx = (b[kx] - ox) - r->sx * bz, by = (b[ky] - oy) - r->sy * bz;
+    lanes cx = (c[kx] - ox) - r->sx * cz, cy = (c[ky] - oy) - r->sy * cz;
+    lanes u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
+    /* <<the edge functions' error bound>> ch09 */
+    lanes reach = p_reach + r->origin_reach; /* >= |corner| + |origin| */
+    lanes e_s = gamma_of(11) * reach;        /* a sheared x or y */
+    lanes xm = lanes_abs(ax) + lanes_abs(bx) + lanes_abs(cx); /* >= max |x| */
+    lanes ym = lanes_abs(ay) + lanes_abs(by) + lanes_abs(cy);
+    lanes e_e = (2 * e_s * (xm + ym) + 2 * e_s * e_s + 2 * gamma_of(2) * xm * ym) *
+                    BOUND_MARGIN + FLT_MIN; /* U, V or W */
+    lane_mask outside = (((u < -e_e) | (v < -e_e) | (w < -e_e)) &
+                         ((u > e_e) | (v > e_e) | (w > e_e))) |
+                        empty;
+    return lanes_all(outside);
 }
 
 /* <<the tests of packets, made>> ch09 */

@@ -3,9 +3,7 @@
 
 #include <math.h>
 #include <stdint.h>
-#include <stdlib.h>
 #include "image.h"
-#include "memory.h"
 
 /* <<the sample hash>> ch10 */
 /* SplitMix64's finaliser: every output bit depends on every input bit. */
@@ -83,30 +81,4 @@ long long pixel_worst_rays(const pixel_sampling *ps, int width,
     long long side = (1LL << ps->depth) + 1; /* points of a pixel a side */
     return (long long)(width + 1) * (height + 1) +
            pixels * (side * side - 4);
-}
-
-/* <<the grid of corners>> ch10 */
-bool pixel_corners_prepare(pixel_corners *c, int width, int height)
-{
-    size_t count = ((size_t)width + 1) * ((size_t)height + 1);
-    if (c->width != width || c->height != height || c->colors == NULL) {
-        pixel_corners_free(c);
-        c->colors = memory_alloc(count, sizeof *c->colors);
-        c->rows = memory_alloc((size_t)height + 1, sizeof *c->rows);
-        if (c->colors == NULL || c->rows == NULL) {
-            pixel_corners_free(c);
-            return false;
-        }
-        c->width = width, c->height = height;
-    }
-    for (int j = 0; j <= height; j++)
-        atomic_init(&c->rows[j], CORNERS_UNTRACED);
-    return true;
-}
-
-void pixel_corners_free(pixel_corners *c)
-{
-    free(c->colors);
-    free(c->rows);
-    *c = (pixel_corners){0};
 }

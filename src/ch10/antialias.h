@@ -8,7 +8,6 @@
 #ifndef ANTIALIAS_H
 #define ANTIALIAS_H
 
-#include <stdatomic.h>
 #include "pixel.h"
 #include "vec.h"
 
@@ -35,20 +34,5 @@ bool pixel_corners_differ(const pixel_sampling *ps, const vec3 c[4]);
 /* The most primary rays a width x height image may take with ps. */
 long long pixel_worst_rays(const pixel_sampling *ps, int width,
                            int height);
-
-/* The adaptive pattern's corners of every pixel: (width + 1) x
- * (height + 1) colours, and each row's state (see render.c). */
-typedef struct {
-    int width, height; /* of the image */
-    vec3 *colors;
-    atomic_int *rows;
-} pixel_corners;
-
-enum { CORNERS_UNTRACED, CORNERS_TRACING, CORNERS_DONE };
-
-/* Makes c ready for one render of a width x height image: every row
- * untraced. Call it before each render; false when out of memory. */
-bool pixel_corners_prepare(pixel_corners *c, int width, int height);
-void pixel_corners_free(pixel_corners *c);
 
 #endif

@@ -98,10 +98,9 @@ static void warn_of_empty_meshes(const scene *s)
 }
 /* <<loading the scene>> += ch10 */
 
-/* --pixel over the scene's settings, the budget at the image's final
- * size, and the corners' grid of an adaptive render; false after
- * printing why. */
-static bool prepare_pixels(const options *opt, scene *s, const char *prog)
+/* --pixel over the scene's settings, and the budget at the image's
+ * final size; false after printing why. */
+static bool prepare_pixels(const options *opt, scene *s)
 {
     scene_error err;
     const char *name = opt->pixel ? "--pixel" : "--size";
@@ -109,11 +108,6 @@ static bool prepare_pixels(const options *opt, scene *s, const char *prog)
          !pixel_settings_parse(s, opt->pixel, "--pixel", &err)) ||
         !pixel_check_budget(s, name, 0, &err)) {
         message_print_error(err.file, err.line, err.col, err.message);
-        return false;
-    }
-    if (s->pixels.pattern == PIXEL_ADAPTIVE &&
-        !pixel_corners_prepare(&s->corners, s->cam.width, s->cam.height)) {
-        message_print_error(prog, 0, 0, "no memory for the pixels' corners");
         return false;
     }
     return true;
@@ -165,7 +159,7 @@ int main(int argc, char **argv)
     if (opt.stats)
         report_bvhs(&s);
     /* <<once the scene is loaded>> += ch10 */
-    if (!prepare_pixels(&opt, &s, argv[0]))
+    if (!prepare_pixels(&opt, &s))
         goto done;
     const char *input =
         output_is(opt.output, opt.scene_path) ? opt.scene_path : NULL;

@@ -13,7 +13,7 @@ progress progress_start(int width)
 }
 
 /* <<show the progress>> ch09 */
-/* "[#####     ]  50%  2.31 Mrays/s  3 s left" on a terminal, once the
+/* "[#####     ]  50%  2.31 Mpixels/s  3 s left" on a terminal, once the
  * render has taken a second; elsewhere a line every 10 s at most. */
 void progress_show(void *context, int rows_done, int rows)
 {
@@ -26,7 +26,7 @@ void progress_show(void *context, int rows_done, int rows)
     static const char bar[] = "##############################"; /* 30 */
     int filled = 30 * rows_done / rows;
     double left = rows_done ? elapsed * (rows - rows_done) / rows_done : 0;
-    fprintf(stderr, "%s[%.*s%*s] %3d%%  %.2f Mrays/s  %.0f s left%s",
+    fprintf(stderr, "%s[%.*s%*s] %3d%%  %.2f Mpixels/s  %.0f s left%s",
             terminal ? "\r" : "", filled, bar, 30 - filled, "",
             100 * rows_done / rows,
             1e-6 * rows_done * (double)p->width / elapsed, left,

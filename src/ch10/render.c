@@ -14,7 +14,6 @@
 #include <unistd.h>
 #include "memory.h"
 /* <<render includes>> += ch10 */
-#include <sched.h>
 #include "antialias.h"
 
 /* What the pixel whose primary ray is r shows. */
@@ -76,21 +75,14 @@ static vec3 rays_heat(int rays, int white)
 }
 /* <<the corners of a band>> ch10 */
 
-/* Corner row j, traced by whichever band asks for it first. */
-static void corner_row(const scene *s, const camera_view *view, int j,
-                       render_stats *stats)
+enum { STRIP = 256 }; /* columns of corners a band keeps at a time */
+
+/* The corners (i, j) of corner row j, i0 <= i <= i1, into row. */
+static void corner_row(const scene *s, const camera_view *view, int i0,
+                       int i1, int j, vec3 *row, render_stats *stats)
 {
-    const pixel_corners *c = &s->corners;
-    int untraced = CORNERS_UNTRACED;
-    if (atomic_compare_exchange_strong(&c->rows[j], &untraced,
-                                       CORNERS_TRACING)) {
-        vec3 *row = c->colors + (size_t)j * (c->width + 1);
-        for (int i = 0; i <= c->width; i++)
-            row[i] = color_at(s, view, i, j, stats);
-        atomic_store(&c->rows[j], CORNERS_DONE);
-    }
-    while (atomic_load(&c->rows[j]) != CORNERS_DONE)
-        sched_yield(); /* the next band's thread is tracing it */
+    for (int i = i0; i <= i1; i++)
+        row[i - i0] = color_at(s, view, i, j, stats);
 }
 /* <<the points of a pixel>> ch10 */
 
@@ -143,16 +135,20 @@ static vec3 square_mean(pixel_points *p, int a, int b, int size, int depth)
 }
 /* <<an adaptive pixel>> ch10 */
 
-/* Pixel (i, j) by Whitted's scheme, from the grid of corners. */
+/* Pixel (i, j) by Whitted's scheme; top[0], top[1] are its upper corners,
+ * bottom[0], bottom[1] its lower ones. */
 static vec3 adaptive_pixel(const scene *s, const camera_view *view, int i,
-                           int j, render_stats *stats, int *rays)
+                           int j, const vec3 *top, const vec3 *bottom,
+                           render_stats *stats, int *rays)
 {
-    pixel_points p = {.s = s, .view = view, .stats = stats, .i = i,
-                      .j = j, .cells = 1 << s->pixels.depth};
-    int n = p.cells, stride = s->corners.width + 1;
-    const vec3 *top = s->corners.colors + (size_t)j * stride;
-    p.color[0][0] = top[i], p.color[0][n] = top[i + 1];
-    p.color[n][0] = top[stride + i], p.color[n][n] = top[stride + i + 1];
+    pixel_points p; /* only the marks of this depth's points are cleared */
+    int n = 1 << s->pixels.depth;
+    p.s = s, p.view = view, p.stats = stats, p.i = i, p.j = j, p.cells = n;
+    p.rays = 0, p.deepest = 0;
+    for (int b = 0; b <= n; b++)
+        memset(p.traced[b], 0, (size_t)(n + 1) * sizeof p.traced[b][0]);
+    p.color[0][0] = top[0], p.color[0][n] = top[1];
+    p.color[n][0] = bottom[0], p.color[n][n] = bottom[1];
     p.traced[0][0] = p.traced[0][n] = p.traced[n][0] = p.traced[n][n] =
         true;
     vec3 c = square_mean(&p, 0, 0, n, 0);
@@ -162,25 +158,53 @@ static vec3 adaptive_pixel(const scene *s, const camera_view *view, int i,
 }
 /* <<rows of sampled pixels>> ch10 */
 
+/* Pixel (i, j) into img: its colour c, or its rays on the heat map. */
+static void show_pixel(const scene *s, image *img, int i, int j, vec3 c,
+                       int rays, render_stats *stats)
+{
+    stats->pixel_rays[rays]++;
+    if (s->pixels.heatmap > 0)
+        c = rays_heat(rays, s->pixels.heatmap);
+    image_set(img, i, j, c);
+}
+
+/* Pixels i0 <= i < i1 of rows [first, last), adaptive: the corners kept
+ * two rows at a time, the row above and the row below. */
+static void adaptive_strip(const scene *s, image *img,
+                           const camera_view *view, int i0, int i1,
+                           int first, int last, render_stats *stats)
+{
+    vec3 rows[2][STRIP + 1], *top = rows[0], *bottom = rows[1];
+    corner_row(s, view, i0, i1, first, top, stats);
+    for (int j = first; j < last; j++) {
+        corner_row(s, view, i0, i1, j + 1, bottom, stats);
+        for (int i = i0; i < i1; i++) {
+            int rays;
+            vec3 c = adaptive_pixel(s, view, i, j, &top[i - i0],
+                                    &bottom[i - i0], stats, &rays);
+            show_pixel(s, img, i, j, c, rays, stats);
+        }
+        vec3 *above = top;
+        top = bottom, bottom = above; /* this row's bottom is the next top */
+    }
+}
+
 static void render_rows_sampled(const scene *s, image *img,
                                 const camera_view *view, int first,
                                 int last, render_stats *stats)
 {
-    bool adaptive = s->pixels.pattern == PIXEL_ADAPTIVE;
-    /* the corners, prepared for this image: else a caller's mistake */
-    assert(!adaptive || (s->corners.width == img->width &&
-                         s->corners.height == img->height));
-    for (int j = first; adaptive && first < last && j <= last; j++)
-        corner_row(s, view, j, stats);
+    if (s->pixels.pattern == PIXEL_ADAPTIVE) {
+        for (int i0 = 0; i0 < img->width && first < last; i0 += STRIP)
+            adaptive_strip(s, img, view, i0,
+                           img->width - i0 < STRIP ? img->width : i0 + STRIP,
+                           first, last, stats);
+        return;
+    }
     for (int j = first; j < last; j++)
         for (int i = 0; i < img->width; i++) {
             int rays;
-            vec3 c = adaptive ? adaptive_pixel(s, view, i, j, stats, &rays)
-                              : sampled_pixel(s, view, i, j, stats, &rays);
-            stats->pixel_rays[rays]++;
-            if (s->pixels.heatmap > 0)
-                c = rays_heat(rays, s->pixels.heatmap);
-            image_set(img, i, j, c);
+            vec3 c = sampled_pixel(s, view, i, j, stats, &rays);
+            show_pixel(s, img, i, j, c, rays, stats);
         }
 }
 

@@ -54,8 +54,6 @@ void scene_free(scene *s)
     free(s->transforms);
     /* <<free scene members>> += ch08 */
     kdtree_free(&s->object_tree);
-    /* <<free scene members>> += ch10 */
-    pixel_corners_free(&s->corners);
     memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
 }
 

@@ -102,7 +102,6 @@ typedef struct {
     /* <<scene members>> += ch10 */
     pixel_sampling pixels; /* the pixel statement's */
     int pixel_line;        /* its line; 0: the file has none */
-    pixel_corners corners; /* the adaptive pattern's, made before a render */
 } scene;
 
 void scene_init(scene *s);

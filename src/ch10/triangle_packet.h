@@ -84,6 +84,11 @@ unsigned triangle_packet_candidates_scalar(const triangle_packet *p,
                                            const packet_ray *r, double t_min,
                                            double t_max);
 
+/* Does the filter stop at the edge functions: does an edge, or the lack
+ * of a triangle, rule out every lane of p for r? */
+bool triangle_packet_stops_at_edges(const triangle_packet *p,
+                                    const packet_ray *r);
+
 /* The nearest triangle of count packets that r hits in (t_min, t_max],
  * chapter 4's test deciding on corners, whose element p * W + k holds the
  * double corners of packet p's lane k (chapter 8's leaf_corners, for
