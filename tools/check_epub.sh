@@ -34,10 +34,11 @@ checker=$(command -v epubcheck) || {
 }
 log=$(mktemp)
 trap 'rm -f "$log"' EXIT
+# --locale en: the summary read below is in English whatever the machine's.
 if [ "$(dd if="$checker" bs=2 count=1 2> /dev/null)" = PK ]; then
-    java -jar "$checker" "$epub" > "$log" 2>&1
+    java -jar "$checker" --locale en "$epub" > "$log" 2>&1
 else
-    "$checker" "$epub" > "$log" 2>&1
+    "$checker" --locale en "$epub" > "$log" 2>&1
 fi
 # "Messages: 0 fatals / 3 errors / 0 warnings / 0 infos"
 counts=$(sed -n 's/^Messages: \([0-9]*\) fatals* \/ \([0-9]*\) errors* .*/\1 \2/p' "$log")
