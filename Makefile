@@ -520,12 +520,33 @@ $(foreach n,$(YOURS_NUMS),$(eval $(call yours_chart_rule,$(n))))
 # the woven book, with the workbook, tests, tools, meshes and figures; a
 # student can make grade there. check-handout (in make test) builds it
 # without the book and finds no solution line in it (but does in src/).
+# The folder is made again only when what it is made from has changed
+# (its book.html stands for it), and then without the editions of the
+# old one; the tarball holds the folder with the editions made so far.
 .PHONY: handout check-handout
-handout: deps
+# (Of the PNG figures, the renders, which make keeps up to date: a PNG
+# that a benchmark writes has no rule here, and would be taken for one.)
+HANDOUT_FROM := Makefile README.md book.md chapters/README.md $(CHAPTERS) \
+                $(wildcard tools/* tools/*/* tests/* tests/*/* tests/*/*/* meshes/* meshes/*/*) \
+                $(filter-out %.png,$(wildcard figures/*)) $(ALL_FIGS) $(FAILURE_FIGS)
+# The editions asked for in this make, which the tarball must hold too.
+# One that does not exist yet is made in this make, so the tarball is made
+# again (said outright: make would not wait for a missing prerequisite of
+# a tarball that is otherwise up to date, every file being .SECONDARY).
+HANDOUT_EDITIONS := $(if $(filter pdf,$(MAKECMDGOALS)),build/handout/book.pdf) \
+                    $(if $(filter epub,$(MAKECMDGOALS)),build/handout/book.epub)
+HANDOUT_NEW := $(filter-out $(wildcard $(HANDOUT_EDITIONS)),$(HANDOUT_EDITIONS))
+.PHONY: handout-editions-new
+handout: build/handout.tar.gz
+
+build/handout/book.html: $(HANDOUT_FROM) | deps
 	+sh tools/handout.sh build/handout
 	sh tools/check_handout.sh build/handout
-	tar -czf build/handout.tar.gz -C build handout
-	@echo "wrote build/handout/ and build/handout.tar.gz"
+
+build/handout.tar.gz: build/handout/book.html $(HANDOUT_EDITIONS) $(if $(HANDOUT_NEW),handout-editions-new)
+	tar -czf $@ -C build handout
+	@echo "wrote build/handout/ and build/handout.tar.gz:" \
+	  $$(cd build/handout && ls book.html book.pdf book.epub 2> /dev/null)
 
 check-handout:
 	+@sh tools/handout.sh build/handoutcheck --no-book > /dev/null
@@ -534,23 +555,31 @@ check-handout:
 	  { echo "check-handout: the check finds no solution in src/ either"; exit 1; }
 
 # make pdf, make epub: both editions, the book's (build/book.pdf, .epub) and
-# the handout's (build/handout/book.pdf, .epub). The PDF is headless
-# Chromium's print with the stylesheet's print rules (tools/pdf.sh, which
-# installs Chromium as root), the EPUB pandoc's, MathML kept (tools/epub.sh).
+# the handout's (build/handout/book.pdf, .epub), each made again only when
+# what it is made from has changed, and the handout's tarball with them.
+# The PDF is headless Chromium's print with the stylesheet's print rules
+# (tools/pdf.sh, which installs Chromium as root), the EPUB pandoc's,
+# MathML kept, its links and SVG figures made valid EPUB (tools/epub.sh).
 # make test checks the book's: every chapter starts a page of the PDF (where
 # Chromium and pdftotext are installed), the EPUB is a whole zip whose
-# navigation lists every chapter.
+# navigation lists every chapter, and epubcheck finds no error in it
+# (where epubcheck is installed: make installs it).
 .PHONY: pdf epub check-pdf check-epub
-pdf: build/book.pdf handout
-	sh tools/pdf.sh build/handout/book.html build/handout/book.pdf
-epub: build/book.epub handout
+pdf: build/book.pdf build/handout/book.pdf build/handout.tar.gz
+epub: build/book.epub build/handout/book.epub build/handout.tar.gz
+
+EPUB_TOOLS := tools/epub.sh tools/epub_links.awk tools/epub_svg.awk
+build/handout/book.pdf: build/handout/book.html tools/pdf.sh
+	sh tools/pdf.sh $< $@
+build/handout/book.epub: build/handout/book.html $(EPUB_TOOLS)
 	cd build/handout && sh tools/epub.sh book.md book.epub chapters/[0-9][0-9]-*.md
 
 build/book.pdf: build/book.html tools/pdf.sh
 	sh tools/pdf.sh $< $@
 
-build/book.epub: book.md $(CHAPTERS) tools/weave.lua tools/weave_names.lua tools/epub.sh \
-                 tools/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) | deps
+# (CHARTS is set further down: the charts are named here by wildcard.)
+build/book.epub: book.md $(CHAPTERS) tools/weave.lua tools/weave_names.lua $(EPUB_TOOLS) \
+                 tools/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(wildcard figures/ch[0-9][0-9]-*.svg) | deps
 	sh tools/epub.sh book.md $@ $(CHAPTERS)
 
 check-epub: build/book.epub

@@ -8,7 +8,8 @@
 #   screen. A share of 0 is drawn on the row "0" below the log axis.
 load "bench/chart.gp"
 set terminal svg size 1000,480 font "Helvetica,12" background "white"
-set output 'figures/ch08-model-budget.svg'
+# in stem's folder, as every chart (check-charts draws into build/chartcheck)
+set output stem[1:strlen(stem) - strlen('ch08-budget')].'ch08-model-budget.svg'
 # the rows of one method and kind, in the order of the file (of the levels)
 rows(m, k) = sprintf("< awk -F, '$1 == \"%s\" && $5 == \"%s\"' %s", m, k, csv)
 # the smallest non-zero share is one pixel of some 30,000: above 10^-5

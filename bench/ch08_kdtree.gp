@@ -71,7 +71,8 @@ plot rows("sah-".f, "build_ms") using 4:3 with linespoints pt 9 ps 1 lc rgb "#d9
 unset multiplot
 
 set terminal svg size 1000,460 font "Helvetica,12" background "white"
-set output 'figures/ch08-build-scaling.svg'
+# in stem's folder, as every chart (check-charts draws into build/chartcheck)
+set output stem[1:strlen(stem) - strlen('ch08-kdtree')].'ch08-build-scaling.svg'
 unset logscale
 set logscale x
 set format x "10^{%L}"

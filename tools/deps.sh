@@ -3,9 +3,17 @@
 # Run by `make` before anything is compiled. Debian and Ubuntu: apt-get,
 # as root or with passwordless sudo; anywhere else it prints the command.
 # Extra packages can be asked for by name: `sh tools/deps.sh clang`.
+# Wanted, not needed: epubcheck (make test checks the EPUB with it where it
+# is installed, and says it skipped the check where it is not) is
+# installed with the others when apt-get can, and its absence, or an
+# apt-get that cannot fetch it (no network), never stops the build; a
+# failed attempt is remembered in build/deps-wanted.failed, so that it is
+# not made again by every make (make clean forgets it).
 
 missing=""
 need() { missing="$missing $1"; }
+wanted=""
+want() { wanted="$wanted $1"; }
 
 command -v pkg-config >/dev/null 2>&1 || need pkg-config
 command -v cc >/dev/null 2>&1 || need gcc
@@ -18,13 +26,18 @@ fi
 command -v pandoc >/dev/null 2>&1 || need pandoc
 command -v gnuplot >/dev/null 2>&1 || need gnuplot-nox
 command -v unzip >/dev/null 2>&1 || need unzip # make test reads the EPUB
+command -v zip >/dev/null 2>&1 || need zip     # tools/epub.sh writes it
+command -v epubcheck >/dev/null 2>&1 || want epubcheck
+failed_wanted=build/deps-wanted.failed
+[ -f "$failed_wanted" ] && [ "$(cat "$failed_wanted")" = "$wanted" ] && wanted=""
 for extra in "$@"; do
   dpkg -s "$extra" >/dev/null 2>&1 || need "$extra"
 done
 
-[ -z "$missing" ] && exit 0
+[ -z "$missing$wanted" ] && exit 0
 
 if ! command -v apt-get >/dev/null 2>&1; then
+  [ -z "$missing" ] && exit 0
   echo "deps: missing:$missing" >&2
   echo "deps: install them with your package manager; see README.md (Requirements)" >&2
   exit 1
@@ -34,13 +47,25 @@ if [ "$(id -u)" = 0 ]; then
 elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
   sudo="sudo"
 else
+  [ -z "$missing" ] && exit 0
   echo "deps: missing:$missing" >&2
   echo "deps: run this once, then make again:" >&2
-  echo "    sudo apt-get install -y$missing" >&2
+  echo "    sudo apt-get install -y$missing$wanted" >&2
   exit 1
 fi
-echo "deps: installing$missing"
 export DEBIAN_FRONTEND=noninteractive
+if [ -n "$wanted" ]; then
+  echo "deps: installing$wanted"
+  $sudo apt-get install -y -q --no-install-recommends $wanted >/dev/null 2>&1 || {
+    $sudo apt-get update -q >/dev/null 2>&1 &&
+    $sudo apt-get install -y -q --no-install-recommends $wanted >/dev/null 2>&1
+  } || {
+    echo "deps: could not install$wanted; make test skips what needs it" >&2
+    mkdir -p "$(dirname "$failed_wanted")" && echo "$wanted" > "$failed_wanted"
+  }
+fi
+[ -z "$missing" ] && exit 0
+echo "deps: installing$missing"
 # Install first from the lists the machine has; refresh them only if that fails.
 $sudo apt-get install -y --no-install-recommends $missing >/dev/null 2>&1 || {
   $sudo apt-get update -q >/dev/null &&

@@ -507,7 +507,7 @@ local function render_exercise_label(exercise)
   return '<div class="exercise-label"><strong>Exercise ' .. exercise.label
     .. '</strong> · write it yourself: <code>make hint EX=' .. exercise.label
     .. '</code>, <a href="#workbook">how the workbook works</a>'
-    .. '<br>graded by ' .. table.concat(tests, ", ") .. '</div>'
+    .. '<br />graded by ' .. table.concat(tests, ", ") .. '</div>'
 end
 
 local function render_piece(piece)
