@@ -4,8 +4,9 @@
 # Usage: MAKE=make tools/check_workbook.sh
 # Works in build/wbcheck/: each check below has a folder of its own there
 # (NAME/wb, the workbook; NAME/build, where make grade builds it,
-# incrementally from one run to the next), and checks 2 to 5 run side by
-# side, one a core. Checks that
+# incrementally from one run to the next), and checks 2, 3 and 5 run side
+# by side, check 4 after 3 in its folder (the wrong answers recompile only
+# the files they are in). Checks that
 #   1. an untouched workbook grades "Progress: 0 of N", N >= 36, at least 4
 #      exercises a chapter, exit 0; make workbook overwrites no file; no
 #      task holds TeX ($...$);
@@ -126,7 +127,7 @@ check_solved() {
 # error in chapter 4 and a lost fence in chapter 6 (chapters the wrong
 # answers are not in, so that each is seen)
 check_wrong() {
-    use wrong
+    use solved # after check 3, in its folder: only what changes is compiled
     fresh SOLVED=1
     answer "$wb/02-spheres.md" 2.3 "$data/sheet-sphere.c"
     answer "$wb/03-phong.md" 3.1 "$data/sheet-half-vector.c"
@@ -189,13 +190,12 @@ check_elsewhere() {
         fail "chapter 5's look-at test should be listed as failing elsewhere"
 }
 
-# 2 to 5 side by side; each prints only when it fails.
+# 2, 3 then 4, and 5 side by side; each prints only when it fails.
 check_stubs > "$top/stubs.verdict" 2>&1 & stubs=$!
-check_solved > "$top/solved.verdict" 2>&1 & solved=$!
-check_wrong > "$top/wrong.verdict" 2>&1 & wrong=$!
+{ check_solved && check_wrong; } > "$top/solved.verdict" 2>&1 & solved=$!
 check_elsewhere > "$top/elsewhere.verdict" 2>&1 & elsewhere=$!
 failed=0
-for check in stubs solved wrong elsewhere; do
+for check in stubs solved elsewhere; do
     eval "pid=\$$check"
     wait "$pid" || { failed=1; cat "$top/$check.verdict"; }
 done
