@@ -67,6 +67,12 @@ expect_verdict() {
         fail "exercise $1 should say '$2'"
 }
 
+# The book's code of exercise ID, from the (solved) workbook file FILE.
+solution() {
+    awk -v id="ex=\"$1\"" 'index($0, id) { code = 1; next } code && /^```/ { exit } code' \
+        "$wb/$2"
+}
+
 # Replaces the code of exercise ID in workbook file FILE by the file ANSWER.
 answer() {
     awk -v id="$2" -v answer="$3" '
@@ -173,12 +179,17 @@ check_wrong() {
 check_elsewhere() {
     use elsewhere
     fresh SOLVED=1
-    awk '/ex="1.1"/ { code = 1; next } code && /^```/ { exit } code' \
-        "$wb/01-camera.md" | grep -vx '    <<place the primary ray>>' \
+    solution 1.1 01-camera.md | grep -vx '    <<place the primary ray>>' \
         > "$t/camera.c"
+    # the far root: the larger root whenever it lies past t_min
+    near='roots\[0\] > t_min ? roots\[0\] : roots\[1\]'
+    far='roots[1] > t_min ? roots[1] : roots[0]'
+    solution 2.4 02-spheres.md | sed "s/$near/$far/" > "$t/far-root.c"
+    grep -q 'roots\[1\] > t_min' "$t/far-root.c" ||
+        fail "2.4's code no longer picks its root as the far-root plant expects"
     fresh
     answer "$wb/01-camera.md" 1.1 "$t/camera.c"
-    answer "$wb/02-spheres.md" 2.4 "$data/far-root.c"
+    answer "$wb/02-spheres.md" 2.4 "$t/far-root.c"
     answer "$wb/06-shadows.md" 6.3 "$data/unstratified.c"
     grade -ch06
     [ "$status" != 0 ] || fail "a program that breaks chapter 5 should not grade with status 0"
