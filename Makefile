@@ -76,6 +76,12 @@ TEST_DEFS := -D_DEFAULT_SOURCE -D_DARWIN_C_SOURCE
 # filter), and keep -O1.
 TEST_OPT := -O0
 $(B)/obj/%/tests/ch09_packets.o: TEST_OPT := -O1
+# The sanitized pass runs each runner's tests in the runner's own process
+# (tests/runner.c), but for those that need a process of their own: a
+# sanitized child takes tens of milliseconds to start and to be checked for
+# leaks as it exits, a minute of the pass over some three thousand tests.
+# The first pass, forked and with time limits, has stopped any test that hangs.
+RUNNER_ENV := $(if $(SAN),RUNNER_FORKLESS=1)
 ALL_CFLAGS = $(CSTD) $(WARN) $(OPT) $(ARCH) -pthread $(CFLAGS) -MMD -MP
 
 # Parallel by default, one job a core; make -jN still chooses, and a make
@@ -208,7 +214,7 @@ $(B)/test/ch$(1): $$(O$(1))/tests/runner.o $$(patsubst tests/%.c,$$(O$(1))/tests
 # a suite may compare the program with the previous chapter's (ties, ch08)
 test-ch$(1): deps $(B)/test/ch$(1) $(BIN)/ch$(1) $(if $(call previous,$(1)),$(BIN)/ch$(call previous,$(1)))
 	@echo "== suites 01..$(1) against the program of chapter $(1)"
-	CHAPTER_BIN=$(BIN)/ch$(1) CK_DEFAULT_TIMEOUT=60 sh tools/run_shards.sh $(B)/test/ch$(1)
+	CHAPTER_BIN=$(BIN)/ch$(1) CK_DEFAULT_TIMEOUT=60 $(RUNNER_ENV) sh tools/run_shards.sh $(B)/test/ch$(1)
 
 run-ch$(1): $(BIN)/ch$(1)
 	@mkdir -p build

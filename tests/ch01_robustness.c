@@ -764,7 +764,8 @@ Suite *ch01_robustness_suite(void)
     tcase_add_test(where, test_a_device_is_written_in_place);
     tcase_add_test(where, test_dash_is_standard_output);
     tcase_add_test(where, test_dev_stdout_is_written_through_its_link);
-    tcase_add_test(where, test_output_errors_come_before_the_render);
+    tcase_add_test_in_a_process(where,
+                                test_output_errors_come_before_the_render);
     tcase_add_test(where, test_a_replaced_file_keeps_its_mode);
     tcase_add_test(where, test_a_read_only_file_is_not_replaced);
     tcase_add_test(where, test_a_signal_leaves_no_temporary_file);

@@ -798,7 +798,8 @@ Suite *ch04_triangles_suite(void)
     tcase_add_test(bad, test_obj_corners_end_after_their_last_index);
     tcase_add_test(bad, test_obj_skips_a_byte_order_mark);
     tcase_add_test(bad, test_a_mesh_must_be_a_regular_file);
-    tcase_add_test(bad, test_a_mesh_too_large_is_refused_before_it_is_read);
+    tcase_add_test_in_a_process(
+        bad, test_a_mesh_too_large_is_refused_before_it_is_read);
     tcase_add_test(bad, test_a_mesh_named_twice_is_read_once);
     tcase_add_test(bad, test_the_scene_budget_is_kept);
     tcase_add_test(bad, test_running_out_of_memory_is_reported_as_such);

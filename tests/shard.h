@@ -6,16 +6,28 @@
  * and the slow tests of one suite are spread among them. Check adds every
  * kind of test through _tcase_add_test, so the suites need no change: the
  * macro asks the runner before each one (in its own expansion the name is
- * Check's function again). */
+ * Check's function again), and tells it whether the test expects a signal
+ * or an exit status, which only a process of its own can give. */
 #ifndef SHARD_H
 #define SHARD_H
 
 #include <check.h>
 
-/* Whether the next test added belongs to this runner's shard. */
-int runner_keeps_next_test(void);
+/* Whether the next test added belongs to this runner's share. */
+int runner_keeps_next_test(int expected_signal, int expected_exit);
 
-#define _tcase_add_test(...)                                                 \
-    (runner_keeps_next_test() ? _tcase_add_test(__VA_ARGS__) : (void)0)
+/* Says that the next test added needs a process of its own all the same. */
+void runner_next_test_needs_a_process(void);
+
+/* A test that measures a program it starts by the program's peak memory:
+ * Linux counts in a child's peak the memory of the process it was forked
+ * from, which a runner that runs every test itself grows with each one. */
+#define tcase_add_test_in_a_process(tc, tf)                                  \
+    (runner_next_test_needs_a_process(), tcase_add_test(tc, tf))
+
+#define _tcase_add_test(tc, tt, sig, exit_value, start, end)                 \
+    (runner_keeps_next_test((sig), (exit_value))                             \
+         ? _tcase_add_test(tc, tt, sig, exit_value, start, end)              \
+         : (void)0)
 
 #endif

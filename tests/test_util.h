@@ -169,7 +169,8 @@ static inline pid_t start_bin(const char *const *args, run_limits limits)
  * the bytes it read (rchar of /proc/PID/io: files, pipes and its own shared
  * libraries; -1 where /proc/PID/io cannot be read, as off Linux) and its
  * peak resident memory in KiB (on Linux the larger of its own and that of
- * the test process it was forked from, as it stood before execv). */
+ * the test process it was forked from, as it stood before execv: a test
+ * that reads it is added with tcase_add_test_in_a_process). */
 static long long last_run_bytes_read;
 static long last_run_peak_kib;
 
