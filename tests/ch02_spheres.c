@@ -34,7 +34,12 @@ static const struct {
 static const vec3 ORIGIN = {0, 0, 0};
 static const vec3 PLUS_Z = {0, 0, 1};
 
-static rng_state rng = {12345}; /* fixed seed: the same rays every run */
+/* fixed seed: the same rays every run */
+static const rng_state RNG_START = {12345};
+static rng_state rng;
+
+/* Each test draws the same numbers, whichever tests ran before it. */
+static void reseed(void) { rng = RNG_START; }
 
 static double uniform(double lo, double hi)
 {
@@ -421,6 +426,7 @@ Suite *ch02_spheres_suite(void)
 {
     Suite *s = suite_create("ch02 spheres");
     TCase *roots = tcase_create("formulas");
+    tcase_add_checked_fixture(roots, reseed, NULL);
     tcase_add_test(roots, test_two_hits_at_4_and_6);
     tcase_add_test(roots, test_tangent_ray_gives_a_double_root);
     tcase_add_test(roots, test_ray_beside_the_sphere_misses);
@@ -434,12 +440,14 @@ Suite *ch02_spheres_suite(void)
     suite_add_tcase(s, roots);
 
     TCase *edges = tcase_create("edge cases");
+    tcase_add_checked_fixture(edges, reseed, NULL);
     tcase_add_test(edges, test_negative_d_squared_from_rounding_is_a_hit);
     tcase_add_test(edges, test_naive_forms_fail_in_float_where_robust_holds);
     tcase_add_test(edges, test_double_forms_are_exact_near_and_robust_far);
     suite_add_tcase(s, edges);
 
     TCase *bad = tcase_create("bad input");
+    tcase_add_checked_fixture(bad, reseed, NULL);
     tcase_add_test(bad, test_sphere_statement_defaults_and_settings);
     tcase_add_test(bad, test_sphere_statement_rejects_bad_radii);
     tcase_add_test(bad, test_sphere_statement_rejects_bad_centres_and_settings);

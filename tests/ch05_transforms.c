@@ -41,8 +41,12 @@ static void expect_vec3(vec3 got, vec3 want, double tolerance, const char *what)
 
 #define expect_exact(got, want, what) expect_vec3((got), (want), 0, (what))
 
-static rng_state rng = {
-    0x9E3779B97F4A7C15ULL}; /* fixed seed: the same cases on every run */
+/* fixed seed: the same cases on every run */
+static const rng_state RNG_START = {0x9E3779B97F4A7C15ULL};
+static rng_state rng;
+
+/* Each test draws the same numbers, whichever tests ran before it. */
+static void reseed(void) { rng = RNG_START; }
 
 static double uniform(double lo, double hi)
 {
@@ -907,6 +911,7 @@ Suite *ch05_transforms_suite(void)
 {
     Suite *s = suite_create("ch05 transforms");
     TCase *formulas = tcase_create("formulas");
+    tcase_add_checked_fixture(formulas, reseed, NULL);
     tcase_add_test(formulas, test_point_plus_point_is_neither_point_nor_vector);
     tcase_add_test(formulas, test_standard_matrices_move_points_and_vectors);
     tcase_add_test(formulas, test_rotations_turn_the_way_the_chapter_says);
@@ -936,6 +941,7 @@ Suite *ch05_transforms_suite(void)
     suite_add_tcase(s, formulas);
 
     TCase *instances = tcase_create("instances");
+    tcase_add_checked_fixture(instances, reseed, NULL);
     tcase_add_checked_fixture(instances, make_tmpdir, remove_tmpdir);
     tcase_add_test(
         instances,
@@ -945,6 +951,7 @@ Suite *ch05_transforms_suite(void)
     suite_add_tcase(s, instances);
 
     TCase *bad = tcase_create("bad input");
+    tcase_add_checked_fixture(bad, reseed, NULL);
     tcase_add_checked_fixture(bad, make_tmpdir, remove_tmpdir);
     tcase_add_test(bad, test_transform_statements_reject_bad_input);
     tcase_add_test(bad, test_camera_placement_rejects_bad_input);

@@ -31,7 +31,11 @@ mesh ch08_make_mesh(const vec3 *points, int n_points, const int (*tris)[3],
                     int n_tris);
 void tie_scene_texts(char *obj, size_t obj_size, char *lone, size_t lone_size);
 
-static rng_state rng = {0xB7Bu};
+static const rng_state RNG_START = {0xB7Bu};
+static rng_state rng;
+
+/* Each test draws the same numbers, whichever tests ran before it. */
+static void reseed(void) { rng = RNG_START; }
 
 static mesh load(const char *path)
 {
@@ -708,6 +712,7 @@ Suite *ch09_bvh_suite(void)
 {
     Suite *s = suite_create("ch09 bvh");
     TCase *agree = tcase_create("agreement");
+    tcase_add_checked_fixture(agree, reseed, NULL);
     tcase_set_timeout(agree, 120);
     tcase_add_test(agree,
                    test_bvh_agrees_with_brute_force_and_kdtree_on_the_teapot);
@@ -718,6 +723,7 @@ Suite *ch09_bvh_suite(void)
     tcase_add_test(agree, test_rays_along_edges_and_faces_find_their_hits);
     suite_add_tcase(s, agree);
     TCase *nodes = tcase_create("nodes and builds");
+    tcase_add_checked_fixture(nodes, reseed, NULL);
     tcase_set_timeout(nodes, 120);
     tcase_add_test(nodes, test_vector_and_scalar_node_tests_agree);
     tcase_add_test(nodes, test_a_ray_in_a_face_plane_meets_the_box);
@@ -730,6 +736,7 @@ Suite *ch09_bvh_suite(void)
     tcase_add_test(nodes, test_the_bvh_of_a_mesh_stays_within_its_bytes);
     suite_add_tcase(s, nodes);
     TCase *choose = tcase_create("choosing it");
+    tcase_add_checked_fixture(choose, reseed, NULL);
     tcase_add_checked_fixture(choose, make_tmpdir, remove_tmpdir);
     tcase_set_timeout(choose, 120);
     tcase_add_test(choose, test_the_accelerator_statement_chooses_the_tree);
