@@ -390,14 +390,6 @@ static bool has_entry_starting(const char *folder, const char *prefix)
     return found;
 }
 
-/* Whether child PID has ended, without reaping it (finish_bin does). */
-static bool has_exited(pid_t pid)
-{
-    siginfo_t info = {0};
-    return waitid(P_PID, (id_t)pid, &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
-           info.si_pid == pid;
-}
-
 START_TEST(test_a_signal_leaves_no_temporary_file)
 {
     const int stops[] = {SIGINT, SIGTERM};
@@ -719,10 +711,20 @@ START_TEST(test_a_long_render_shows_progress_lines_in_a_log)
     pid_t pid = start_bin(args, (run_limits){.alarm_seconds = 120});
     struct timespec ms = {0, 1000000};
     int waited = 0;
-    while (!has_entry_starting(folder, "out.png.tmp-") && waited++ < 60000)
-        nanosleep(&ms, NULL); /* the output is opened just before the render */
+    /* the output is opened just before the render; a program that has
+     * ended will open none */
+    while (!has_entry_starting(folder, "out.png.tmp-") && !has_exited(pid) &&
+           waited++ < 60000)
+        nanosleep(&ms, NULL);
     pause_bin(pid, 1200);
-    for (waited = 0; stderr_lines() == 0 && waited < 30000; waited++)
+    /* The line comes with the next row drawn: milliseconds of work, even
+     * with the sanitizers. Waited for by the work done, not by a clock:
+     * two CPU seconds of the program's are hundreds of rows. */
+    double start = cpu_seconds_of(pid);
+    for (waited = 0; stderr_lines() == 0 && waited < 30000 &&
+                     !has_exited(pid) &&
+                     (start < 0 || cpu_seconds_of(pid) - start < 2.0);
+         waited++)
         nanosleep(&ms, NULL);
     pause_bin(pid, 1200);
     struct timespec band = {0, 200000000}; /* many bands, were it per band */

@@ -189,6 +189,33 @@ static inline long long proc_bytes_read(pid_t pid)
     return n;
 }
 
+/* Whether child PID has ended, without reaping it (finish_bin does). */
+static inline bool has_exited(pid_t pid)
+{
+    siginfo_t info = {0};
+    return waitid(P_PID, (id_t)pid, &info, WEXITED | WNOHANG | WNOWAIT) == 0 &&
+           info.si_pid == pid;
+}
+
+/* The CPU seconds child pid has used so far (user and system, all its
+ * threads: fields 14 and 15 of /proc/PID/stat), or -1 where that file
+ * cannot be read, as off Linux. */
+static inline double cpu_seconds_of(pid_t pid)
+{
+    char path[64];
+    snprintf(path, sizeof path, "/proc/%ld/stat", (long)pid);
+    FILE *f = fopen(path, "r");
+    unsigned long user = 0, system = 0;
+    /* the name, field 2, is in parentheses and may hold spaces */
+    int read = f ? fscanf(f, "%*d (%*[^)]) %*c %*d %*d %*d %*d %*d %*u %*u "
+                             "%*u %*u %*u %lu %lu",
+                          &user, &system)
+                 : 0;
+    if (f)
+        fclose(f);
+    return read == 2 ? (double)(user + system) / sysconf(_SC_CLK_TCK) : -1;
+}
+
 /* Waits for the binary started as pid; returns its exit status (128 + the
  * signal that ended it) and puts what it wrote on stderr into errors[size]. */
 static inline int finish_bin(pid_t pid, char *errors, size_t size)
