@@ -439,11 +439,12 @@ WB_BUILD ?= build/workbook
 $(WB_BUILD)/obj/%/tests/ch09_packets.o: TEST_OPT := -O1
 WB_FILES := $(patsubst chapters/%,$(WB_DIR)/%,$(CHAPTERS))
 # The reader's code is graded, not linted: a stub leaves parameters unused.
-# -O1: the grader's program renders only the suites' small scenes, and
-# compiles in two thirds of -O2's time after every edit.
+# The code is compiled as the book's is (the warnings do not change an
+# object), so that a file that holds only the book's code takes the book's
+# object (wb_reuse_book), and only what the reader wrote is compiled.
 WB_CFLAGS = $(CSTD) -Wall -Wextra -Wno-unused-parameter -Wno-unused-function \
             -Wno-unused-variable -Wno-unused-but-set-variable -Wno-missing-braces \
-            -O1 -g -pthread -MMD -MP
+            $(OPT) $(ARCH) -pthread $(CFLAGS) -MMD -MP
 LAST     := $(lastword $(NUMS))
 
 .PHONY: workbook grade hint watch $(foreach n,$(NUMS),grade-ch$(n))
@@ -619,13 +620,13 @@ WO$(1) := $(WB_BUILD)/obj/ch$(1)
 WOBJ$(1) := $$(patsubst %.c,$$(WO$(1))/%.o,$$(SRC$(1)))
 WLIB$(1) := $$(filter-out $$(WO$(1))/main.o,$$(WOBJ$(1)))
 
-$$(WO$(1))/%.o: $$(WT$(1))/%.c | deps $(REUSE)
+$$(WO$(1))/%.o: $$(WT$(1))/%.c | deps $(REUSE) $$(O$(1))/%.o
 	@$$(dir_of_target)
-	$(call wb_reuse_from,$(1),$$*.o)$$(CC) $$(WB_CFLAGS) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
+	$$(call wb_reuse_book,$(1),$$*.o) $$(call wb_reuse_from,$(1),$$*.o)$$(CC) $$(WB_CFLAGS) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
 
-$$(WO$(1))/tests/%.o: tests/%.c | deps $(REUSE)
+$$(WO$(1))/tests/%.o: tests/%.c | deps $(REUSE) $$(O$(1))/tests/%.o
 	@$$(dir_of_target)
-	$(call wb_reuse_from,$(1),tests/$$*.o)$$(CC) $$(WB_CFLAGS) $$(TEST_OPT) $$(TEST_DEFS) $$(PNG_CFLAGS) $$(CHECK_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
+	$$(call wb_reuse_book,$(1),tests/$$*.o) $$(call wb_reuse_from,$(1),tests/$$*.o)$$(CC) $$(WB_CFLAGS) $$(TEST_OPT) $$(TEST_DEFS) $$(PNG_CFLAGS) $$(CHECK_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
 
 $$(WO$(1))/tests/runner.o: tests/runner.c $$(SUITES$(1)) | deps
 	@$$(dir_of_target)
@@ -644,6 +645,11 @@ $(WB_BUILD)/bin/ch$(1): $$(WOBJ$(1))
 -include $$(wildcard $$(WO$(1))/*.d $$(WO$(1))/tests/*.d)
 endef
 $(foreach n,$(NUMS),$(eval $(call workbook_rules,$(n))))
+
+# wb_reuse_book NN OBJ: the book's own object of chapter NN (made first: an
+# order-only prerequisite) serves when the workbook's tangle of the file
+# and its headers is the book's code, #line directives aside.
+wb_reuse_book = $(REUSE) --code $(B)/obj/ch$(1)/$(2) build/tangle/ch$(1) $(WB_BUILD)/tangle/ch$(1) --
 
 # WB_REUSE=NN (tools/grade.sh sets it): chapter NN's program is built with
 # the chapter before it, whose program some suites compare with; a file of
@@ -798,6 +804,11 @@ check-brackets:
 	@awk -f tools/check_brackets.awk book.md $(CHAPTERS)
 	@echo "check-brackets: every paragraph closes its brackets"
 
+# tools/reuse_object copies an object only for the same code.
+.PHONY: check-reuse
+check-reuse: $(REUSE)
+	@sh tools/check_reuse.sh $(REUSE) $(CC)
+
 # The README quotes the build's own speed as bench/build_speed.sh measured
 # it (figures/build-speed.md): every line of that table, word for word.
 .PHONY: check-build-speed
@@ -846,7 +857,7 @@ PROGRAM_TESTS := test-tangle $(foreach n,$(NUMS),test-ch$(n)) \
 BOOK_TESTS := benches check-src check-charts check-book check-map check-stray \
               check-allocations check-test-width check-quotes check-workbook \
               check-handout check-epub check-pdf check-book-browser check-build-speed \
-              check-brackets check-weave-errors
+              check-brackets check-weave-errors check-reuse
 test: deps $(PROGRAM_TESTS) $(if $(SAN),,$(BOOK_TESTS))
 	@# the book is up to date by now (check-book): -o keeps it so
 	$(if $(SAN),,@$(MAKE) --no-print-directory -o build/book.html check-code-width)

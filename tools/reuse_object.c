@@ -1,7 +1,7 @@
 /* reuse_object.c: compile a chapter's file, or copy the previous chapter's
  * object when nothing it was compiled from has changed.
  *
- *   reuse_object PREV_OBJ PREV_DIR DIR -- COMPILER ARGS... -o OBJ ...
+ *   reuse_object [--code] PREV_OBJ PREV_DIR DIR -- COMPILER ARGS... -o OBJ ...
  *
  * Most files of chapter N are the same text as in chapter N-1, with the
  * same headers: compiled again they would give the same object. PREV_OBJ
@@ -16,7 +16,15 @@
  * flags must be those PREV_OBJ was compiled with but for the folders: the
  * Makefile's one rule for both sees to it. Exits 0 when it copied, 1 when
  * a copy failed half way (nothing is left at OBJ then), 127 when the
- * compiler could not be run. */
+ * compiler could not be run.
+ *
+ * --code compares the files' code only, without their #line directives:
+ * the grader's tangle of a workbook holds the book's code wherever the
+ * reader has not started an exercise, with #line directives that name the
+ * workbook instead of the chapter, and the book's own object then serves
+ * (its debugging information names the chapter's lines). Several
+ * reuse_object commands may follow one another: each that does not copy
+ * runs the next. */
 #include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -46,11 +54,45 @@ static char *read_all(const char *path, long *length)
     return text;
 }
 
+static bool code_only; /* --code: #line directives do not count */
+
+/* Whether the text at p starts a #line directive. */
+static bool is_line_directive(const char *p)
+{
+    return strncmp(p, "#line ", 6) == 0;
+}
+
+/* p past its line and its newline. */
+static const char *next_line(const char *p)
+{
+    const char *end = strchr(p, '\n');
+    return end ? end + 1 : p + strlen(p);
+}
+
+/* Whether texts x and y are the same but for lines that start "#line ". */
+static bool same_code(const char *x, const char *y)
+{
+    for (;;) {
+        while (is_line_directive(x))
+            x = next_line(x);
+        while (is_line_directive(y))
+            y = next_line(y);
+        if (*x == '\0' || *y == '\0')
+            return *x == *y;
+        const char *ex = next_line(x), *ey = next_line(y);
+        if (ex - x != ey - y || memcmp(x, y, (size_t)(ex - x)) != 0)
+            return false;
+        x = ex, y = ey;
+    }
+}
+
 static bool same_bytes(const char *a, const char *b)
 {
     long na, nb;
     char *x = read_all(a, &na), *y = read_all(b, &nb);
-    bool same = x != NULL && y != NULL && na == nb && memcmp(x, y, na) == 0;
+    bool same = x != NULL && y != NULL &&
+                (code_only ? same_code(x, y)
+                           : na == nb && memcmp(x, y, na) == 0);
     free(x), free(y);
     return same;
 }
@@ -66,12 +108,22 @@ static bool rebase(const char *path, const char *from, const char *to,
     return snprintf(out, size, "%s%s", to, path + k) < (int)size;
 }
 
-/* Whether every file the dependency text lists (after the first colon,
- * words split by blanks and backslash-newlines, up to the first blank
- * line) is the same under dir as under prev_dir. */
+/* The end of the dependency text's first rule: its first newline that no
+ * backslash continues (GCC's -MP rules for the headers follow it). */
+static char *end_of_first_rule(char *deps)
+{
+    for (char *p = strchr(deps, '\n'); p != NULL; p = strchr(p + 1, '\n'))
+        if (p == deps || p[-1] != '\\')
+            return p;
+    return NULL;
+}
+
+/* Whether every file the dependency text's first rule lists (after its
+ * colon, words split by blanks and backslash-newlines) is the same under
+ * dir as under prev_dir. */
 static bool inputs_unchanged(char *deps, const char *prev_dir, const char *dir)
 {
-    char *p = strchr(deps, ':'), *end = strstr(deps, "\n\n");
+    char *p = strchr(deps, ':'), *end = end_of_first_rule(deps);
     if (p == NULL)
         return false;
     if (end != NULL)
@@ -164,9 +216,11 @@ static bool reuse(const char *prev_obj, const char *prev_dir, const char *dir,
 
 int main(int argc, char **argv)
 {
+    if (argc > 1 && strcmp(argv[1], "--code") == 0)
+        code_only = true, argv++, argc--;
     if (argc < 6 || strcmp(argv[4], "--") != 0) {
-        fprintf(stderr, "usage: reuse_object PREV_OBJ PREV_DIR DIR -- "
-                        "COMPILER ARGS... -o OBJ ...\n");
+        fprintf(stderr, "usage: reuse_object [--code] PREV_OBJ PREV_DIR DIR "
+                        "-- COMPILER ARGS... -o OBJ ...\n");
         return 2;
     }
     int status;

@@ -122,13 +122,14 @@ NR == FNR && in_code && $0 ~ "^" fence "[`~]*[ \t]*$" {
         piece[name, pieces[name]] = stubbing ? stub_of(text) : text
     next
 }
-NR == FNR && in_code { text = text (text == "" ? "" : "\n") $0; next }
+NR == FNR && in_code { text = (text_lines++ ? text "\n" : "") $0; next }
 NR == FNR && /^(```|~~~)/ {
     in_code = 1
     fence = substr($0, 1, 3)
     name = attribute($0, "chunk")
     stubbing = !solved && $0 ~ /[{ ]\.exercise[ }]/
     text = ""
+    text_lines = 0 # a first line that is blank is kept
     if (name != "")
         pieces[name]++
     next
@@ -140,9 +141,11 @@ function exercise_code(k,    i, code) {
     if (kind == "file" || pieces[k] < 2)
         return solved ? body : stub_of(body)
     code = ""
+    # the book's code joined as the tangler joins it (a piece brings its
+    # own blank line), the stubs a blank line apart
     for (i = 1; i <= pieces[k]; i++)
         if (piece[k, i] != "")
-            code = code (code == "" ? "" : "\n\n") piece[k, i]
+            code = code (code == "" ? "" : solved ? "\n" : "\n\n") piece[k, i]
     return code
 }
 
@@ -171,7 +174,7 @@ in_code && $0 ~ "^" fence "[`~]*[ \t]*$" {
         want_notes = 1
     next
 }
-in_code && is_exercise { body = body (body == "" ? "" : "\n") $0; next }
+in_code && is_exercise { body = (body_lines++ ? body "\n" : "") $0; next }
 in_code { next }
 
 /^(```|~~~)/ {
@@ -186,6 +189,7 @@ in_code { next }
         key = attribute($0, kind)
         tests = attribute($0, "tests")
         body = ""
+        body_lines = 0 # a first line that is blank is kept
         task = hint = ""
     }
     next
