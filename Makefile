@@ -716,18 +716,19 @@ $(FUZZ_RUNS): fuzz-run-%: build/fuzz/%_fuzz
 	  [ $$status = 0 ] || { echo "fuzz: $* found a problem: see build/fuzz/$*.log"; exit 1; }
 
 # ---------------------------------------------------------------- valgrind
-# make valgrind: every test binary (Check not forking, so that valgrind sees
-# the tests themselves) and every chapter binary on each of its scenes, small.
+# make valgrind: every test binary (its tests in its own process, so that
+# valgrind sees them, but for those that need one of their own: runner.c)
+# and every chapter binary on each of its scenes, small.
 VALGRIND := valgrind --error-exitcode=1 --leak-check=full --errors-for-leak-kinds=all -q
 
 .PHONY: valgrind
 valgrind: all $(B)/test/tangle $(foreach n,$(NUMS),$(B)/test/ch$(n))
 	@mkdir -p build/valgrind
-	CK_FORK=no TANGLE=$(TANGLE) $(VALGRIND) $(B)/test/tangle
+	RUNNER_FORKLESS=1 TANGLE=$(TANGLE) $(VALGRIND) $(B)/test/tangle
 	$(VALGRIND) $(TANGLE) --line --strict -o build/valgrind/tangle $(CHAPTERS)
 	@for n in $(NUMS); do \
 	  echo "== valgrind: suites 01..$$n and bin/ch$$n"; \
-	  CK_FORK=no CHAPTER_BIN=$(BIN)/ch$$n $(VALGRIND) $(B)/test/ch$$n || exit 1; \
+	  RUNNER_FORKLESS=1 CHAPTER_BIN=$(BIN)/ch$$n $(VALGRIND) $(B)/test/ch$$n || exit 1; \
 	  $(VALGRIND) $(BIN)/ch$$n --size 64x48 -o build/valgrind/ch$$n.png || exit 1; \
 	  for scene in build/tangle/ch$$n/scenes/ch$$n-*.scene; do \
 	    [ -f $$scene ] || continue; \
@@ -787,7 +788,7 @@ $(B)/test/tangle: tests/runner.c tests/tangle_test.c | deps
 
 test-tangle: $(B)/test/tangle $(TANGLE)
 	@echo "== the tangler's suite"
-	TANGLE=$(TANGLE) CK_DEFAULT_TIMEOUT=60 $(B)/test/tangle
+	TANGLE=$(TANGLE) CK_DEFAULT_TIMEOUT=60 $(RUNNER_ENV) sh tools/run_shards.sh $(B)/test/tangle
 
 # A syntax error typed into chapter 01 must be reported at its Markdown line.
 check-lines: $(TANGLE) | deps

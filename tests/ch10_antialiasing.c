@@ -497,6 +497,39 @@ START_TEST(test_a_budget_passed_is_an_error)
 }
 END_TEST
 
+/* A file over the budget (as above) is drawn when the command line asks
+ * for less: the budget is checked on the size and settings of the picture
+ * that will be drawn, not on those that --size and --pixel replace. */
+START_TEST(test_the_budget_follows_size_and_pixel)
+{
+    const char *text = "image 16384 1024\n"
+                       "pixel samples 256 pattern jittered\n"
+                       "sphere center 0 0 5 radius 1\n";
+    struct {
+        const char *pixel;
+        int width, height;
+    } asks[] = {{NULL, 8, 6}, {"pattern center", 0, 0}};
+    for (int k = 0; k < 2; k++) {
+        scene s;
+        scene_error err;
+        scene_init(&s);
+        s.pixel_option = asks[k].pixel;
+        s.width_option = asks[k].width, s.height_option = asks[k].height;
+        ck_assert_msg(scene_parse(&s, text, strlen(text), "t", &err),
+                      "%d: %d:%d: %s", k, err.line, err.col, err.message);
+        scene_free(&s);
+    }
+    char scene_path[192], out[192];
+    snprintf(scene_path, sizeof scene_path, "%s",
+             write_file("big.scene", text));
+    snprintf(out, sizeof out, "%s", tmp_path("small.png"));
+    const char *args[] = {scene_path, "--size", "8x6", "-o", out, NULL};
+    char errors[4096];
+    ck_assert_msg(run_bin(args, errors, sizeof errors) == 0, "%s", errors);
+    ck_assert(file_exists(out));
+}
+END_TEST
+
 /* The binary with args fails, says `says` on stderr, and writes nothing. */
 static void expect_usage_error(const char *const *args, const char *says)
 {
@@ -605,6 +638,7 @@ Suite *ch10_antialiasing_suite(void)
     tcase_add_checked_fixture(bad, make_tmpdir, remove_tmpdir);
     tcase_add_test(bad, test_bad_pixel_statements_are_located);
     tcase_add_test(bad, test_a_budget_passed_is_an_error);
+    tcase_add_test(bad, test_the_budget_follows_size_and_pixel);
     tcase_add_test(bad, test_bad_pixel_options_are_usage_errors);
     suite_add_tcase(s, bad);
     return s;

@@ -11,8 +11,6 @@
 #include "render.h"
 #include "report.h"
 #include "scene_file.h"
-/* <<main includes>> ch10 */
-#include "pixel_statement.h"
 
 /* The scene rendered when no scene file is given. */
 static const char DEFAULT_SCENE[] =
@@ -62,6 +60,9 @@ static bool load_scene(const options *opt, scene *s)
     /* <<what the command line tells the scene>> ch09 */
     s->accelerator_option = (mesh_accelerator)opt->accelerator;
     s->bvh_settings.threads = opt->threads; /* the build's too */
+    /* <<what the command line tells the scene>> += ch10 */
+    s->pixel_option = opt->pixel;
+    s->width_option = opt->width, s->height_option = opt->height;
     bool ok = opt->scene_path != NULL
                   ? scene_load(s, opt->scene_path, &err)
                   : scene_parse(s, DEFAULT_SCENE, sizeof DEFAULT_SCENE - 1,
@@ -95,22 +96,6 @@ static void warn_of_empty_meshes(const scene *s)
     snprintf(text, sizeof text, "no face in this OBJ file: it shows "
                                 "nothing%s", more);
     message_print_warning(s->meshes[first].source.path, text);
-}
-/* <<loading the scene>> += ch10 */
-
-/* --pixel over the scene's settings, and the budget at the image's
- * final size; false after printing why. */
-static bool prepare_pixels(const options *opt, scene *s)
-{
-    scene_error err;
-    const char *name = opt->pixel ? "--pixel" : "--size";
-    if ((opt->pixel != NULL &&
-         !pixel_settings_parse(s, opt->pixel, "--pixel", &err)) ||
-        !pixel_check_budget(s, name, 0, &err)) {
-        message_print_error(err.file, err.line, err.col, err.message);
-        return false;
-    }
-    return true;
 }
 
 /* <<the output may not be an input>> ch01 */
@@ -158,9 +143,6 @@ int main(int argc, char **argv)
     how.threads = opt.threads;
     if (opt.stats)
         report_bvhs(&s);
-    /* <<once the scene is loaded>> += ch10 */
-    if (!prepare_pixels(&opt, &s))
-        goto done;
     const char *input =
         output_is(opt.output, opt.scene_path) ? opt.scene_path : NULL;
     /* <<other files the scene read>> ch04 */

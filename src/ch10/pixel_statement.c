@@ -161,16 +161,22 @@ bool pixel_settings_parse(scene *s, const char *text, const char *name,
     return parse_lines(text, strlen(text), name, err, pixel_option_line, s);
 }
 
-bool pixel_check_budget(const scene *s, const char *name, int line,
-                        parse_error *err)
+bool pixel_settings_final(scene *s, const char *name, parse_error *err)
 {
-    long long worst =
-        pixel_worst_rays(&s->pixels, s->cam.width, s->cam.height);
+    if (s->pixel_option != NULL &&
+        !pixel_settings_parse(s, s->pixel_option, "--pixel", err))
+        return false;
+    bool sized = s->width_option > 0;
+    int width = sized ? s->width_option : s->cam.width;
+    int height = sized ? s->height_option : s->cam.height;
+    long long worst = pixel_worst_rays(&s->pixels, width, height);
     if (worst <= PIXEL_RAY_BUDGET)
         return true;
-    return parse_fail_on_line(err, name, line, PARSE_OVER_BUDGET,
+    /* the option that set the settings, or the size; else the statement */
+    const char *who = s->pixel_option ? "--pixel" : sized ? "--size" : name;
+    return parse_fail_on_line(err, who, who == name ? s->pixel_line : 0,
+                              PARSE_OVER_BUDGET,
                               "up to %lld primary rays for %dx%d pixels "
                               "would pass the budget of %lld an image",
-                              worst, s->cam.width, s->cam.height,
-                              PIXEL_RAY_BUDGET);
+                              worst, width, height, PIXEL_RAY_BUDGET);
 }

@@ -14,10 +14,10 @@ bool pixel_statement_parse(parser *p, scene *s);
 bool pixel_settings_parse(scene *s, const char *text, const char *name,
                           parse_error *err);
 
-/* Is the worst case of s's settings on s's image within
- * PIXEL_RAY_BUDGET? If not, false with err filled, about line `line` of
- * name (0: name as a whole). */
-bool pixel_check_budget(const scene *s, const char *name, int line,
-                        parse_error *err);
+/* --pixel's settings in place of the scene's, then the worst case of the
+ * settings on the image, at the size --size gives or the scene's, checked
+ * against PIXEL_RAY_BUDGET; false with err filled, about the option that
+ * asks for the most or the pixel statement of the file called name. */
+bool pixel_settings_final(scene *s, const char *name, parse_error *err);
 
 #endif

@@ -102,6 +102,8 @@ typedef struct {
     /* <<scene members>> += ch10 */
     pixel_sampling pixels; /* the pixel statement's */
     int pixel_line;        /* its line; 0: the file has none */
+    const char *pixel_option;        /* --pixel's settings, which win; NULL */
+    int width_option, height_option; /* --size's, which win; 0: none */
 } scene;
 
 void scene_init(scene *s);

@@ -571,7 +571,7 @@ bool scene_parse(scene *s, const char *text, size_t length, const char *name,
             "nodes, and %s gives the meshes BVHs",
             s->accelerator_option ? "--accelerator bvh" : "this statement");
     /* <<finish the scene>> += ch10 */
-    if (!pixel_check_budget(s, name, s->pixel_line, err))
+    if (!pixel_settings_final(s, name, err))
         return false;
     return true;
 }
