@@ -7,6 +7,7 @@
 # (ID, state, workbook file, first and last line of its chunk), TESTS.log
 # what the suites printed in Check's verbose mode, one line per test:
 #   FILE:LINE:P|F|E:TCASE:TEST:ITERATION: MESSAGE
+# An exercise names a test, or one iteration K of a loop test as TEST:K.
 # Every suite of the chapters graded ran against the reader's program. An
 # exercise is done when every test it names passed and no other test
 # failed; otherwise the first of its tests (in the exercise's order) that
@@ -61,12 +62,26 @@ FILENAME == ARGV[2] { split($0, f, "\t"); st[f[1]] = f[2]; file_of[f[1]] = f[3];
         next
     sub(/^ /, "", line)
     sub(/^\(after this point\) /, "", line)
-    if (!(part[5] in result))
-        ran[++ran_count] = part[5]
-    if (!(part[5] in result) || result[part[5]] == "P") {
-        result[part[5]] = part[3]
-        message[part[5]] = readable(line)
-        where[part[5]] = part[1] ":" part[2]
+    # a loop test's iteration K is also "TEST:K", which an exercise may name
+    # alone (chapter 2's forms: one iteration an exercise); the test's own
+    # name stands for its worst iteration
+    full = part[5] ":" part[6]
+    if (!(full in result)) {
+        ran[++ran_count] = full
+        shown[full] = part[6] == "0" ? part[5] : full
+        bare[full] = part[5]
+    }
+    record(full, line)
+    record(part[5], line)
+}
+
+# The result of test key k (a test or one iteration of it): its first
+# result that did not pass, or its pass.
+function record(k, text) {
+    if (!(k in result) || result[k] == "P") {
+        result[k] = part[3]
+        message[k] = readable(text)
+        where[k] = part[1] ":" part[2]
     }
 }
 
@@ -82,7 +97,8 @@ function broken_elsewhere(    i, j, n, names, count_broken) {
     }
     count_broken = 0
     for (i = 1; i <= ran_count; i++)
-        if (result[ran[i]] != "P" && !(ran[i] in named))
+        if (result[ran[i]] != "P" && !(ran[i] in named) &&
+            !(bare[ran[i]] in named))
             broken[++count_broken] = ran[i]
     return count_broken
 }
@@ -120,7 +136,7 @@ END {
         print "Failing, and named by no exercise you started (your code," \
               " elsewhere: each passes with the book's code):"
         for (i = 1; i <= elsewhere; i++)
-            printf "  %s (%s): %s\n", broken[i], where[broken[i]],
+            printf "  %s (%s): %s\n", shown[broken[i]], where[broken[i]],
                    message[broken[i]]
         failed++
     }
