@@ -32,6 +32,15 @@ static const struct {
 };
 #define N_METHODS (int)(sizeof methods / sizeof methods[0])
 
+/* The tests that every method must pass run once a method, as Check's loop
+ * tests: iteration _i is the method of exercise 4.(_i + 1) (the watertight
+ * one's shear is 4.4), methods[_i] in double and methods[_i +
+ * METHODS_OF_EXERCISES] in float, so that each exercise's tests call its
+ * own code only. */
+#define METHODS_OF_EXERCISES 3
+#define EACH_BUILD_OF_THIS_METHOD(m)                                           \
+    for (int m = _i; m < N_METHODS; m += METHODS_OF_EXERCISES)
+
 /* The triangle (0,0,2), (2,0,2), (0,2,2) in the plane z = 2, facing the eye. */
 static const vec3 A = {0, 0, 2}, B = {2, 0, 2}, C = {0, 2, 2};
 
@@ -47,7 +56,8 @@ START_TEST(test_barycentric_coordinates_rebuild_the_hit_point)
 {
     /* Aimed at 0.2 A + 0.3 B + 0.5 C = (0.6, 1.0, 2). */
     vec3 target = {0.6, 1.0, 2};
-    for (int m = 0; m < N_METHODS; m++) {
+    EACH_BUILD_OF_THIS_METHOD(m)
+    {
         triangle_hit th;
         ck_assert_msg(
             methods[m].test(A, B, C, toward(target), 0, INFINITY, &th), "%s",
@@ -70,20 +80,21 @@ START_TEST(test_hits_on_an_edge_and_a_vertex)
     /* Along the z axis through (x, y): exact, so the edge case is exact. */
     const vec3 points[] = {
         {1, 0, 2}, {0, 1, 2}, {1, 1, 2}, {0, 0, 2}, {2, 0, 2}};
-    for (int m = 0; m < N_METHODS; m++)
-        for (int k = 0; k < 5; k++) {
-            ray r = {{points[k].x, points[k].y, 0}, {0, 0, 1}};
-            triangle_hit th;
-            ck_assert_msg(methods[m].test(A, B, C, r, 0, INFINITY, &th),
-                          "%s misses point %d", methods[m].name, k);
-            ck_assert(th.t == 2);
-        }
+    EACH_BUILD_OF_THIS_METHOD(m)
+    for (int k = 0; k < 5; k++) {
+        ray r = {{points[k].x, points[k].y, 0}, {0, 0, 1}};
+        triangle_hit th;
+        ck_assert_msg(methods[m].test(A, B, C, r, 0, INFINITY, &th),
+                      "%s misses point %d", methods[m].name, k);
+        ck_assert(th.t == 2);
+    }
 }
 END_TEST
 
 START_TEST(test_ray_parallel_to_the_plane_misses)
 {
-    for (int m = 0; m < N_METHODS; m++) {
+    EACH_BUILD_OF_THIS_METHOD(m)
+    {
         triangle_hit th;
         ray in_plane = {{-1, 0.5, 2}, {1, 0, 0}},
             beside = {{-1, 0.5, 1}, {1, 0, 0}};
@@ -97,7 +108,8 @@ START_TEST(test_degenerate_triangle_is_never_hit)
 {
     const vec3 same = {0.5, 0.5, 2},
                on_line[3] = {{0, 0, 2}, {1, 1, 2}, {2, 2, 2}};
-    for (int m = 0; m < N_METHODS; m++) {
+    EACH_BUILD_OF_THIS_METHOD(m)
+    {
         triangle_hit th;
         ray r = {{0.5, 0.5, 0}, {0, 0, 1}}, r2 = {{1, 1, 0}, {0, 0, 1}};
         ck_assert_msg(!methods[m].test(same, same, same, r, 0, INFINITY, &th),
@@ -112,7 +124,8 @@ END_TEST
 START_TEST(test_t_outside_the_interval_is_rejected)
 {
     ray r = {{0.5, 0.5, 0}, {0, 0, 1}}; /* hits at t = 2 */
-    for (int m = 0; m < N_METHODS; m++) {
+    EACH_BUILD_OF_THIS_METHOD(m)
+    {
         triangle_hit th;
         ck_assert(!methods[m].test(A, B, C, r, 0, 2, &th));
         ck_assert(!methods[m].test(A, B, C, r, 2, INFINITY, &th));
@@ -420,7 +433,6 @@ END_TEST
 
 /* ------------------------------------------------------------ statements */
 
-
 START_TEST(test_triangle_and_mesh_statements)
 {
     write_file("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
@@ -439,7 +451,7 @@ START_TEST(test_triangle_and_mesh_statements)
     ck_assert(s.objects[1].kind == SHAPE_MESH && s.objects[1].color.y == 1);
     const mesh *m = &s.meshes[s.objects[1].mesh];
     ck_assert(m->vertices[1].x == 3 && m->vertices[1].z == 10); /* 2 * 1 + 1 */
-    ck_assert(m->normal_count == 3);                             /* smooth */
+    ck_assert(m->normal_count == 3);                            /* smooth */
     ck_assert(m->bounds.lo.x == 1 && m->bounds.hi.y == 3);
     render_stats stats = {0};
     hit h;
@@ -766,8 +778,9 @@ Suite *ch04_triangles_suite(void)
 {
     Suite *s = suite_create("ch04 triangles");
     TCase *formulas = tcase_create("formulas");
-    tcase_add_test(formulas,
-                   test_barycentric_coordinates_rebuild_the_hit_point);
+    tcase_add_loop_test(formulas,
+                        test_barycentric_coordinates_rebuild_the_hit_point, 0,
+                        METHODS_OF_EXERCISES);
     tcase_add_test(formulas, test_winding_decides_the_normal);
     tcase_add_test(formulas, test_the_method_table_names_each_method);
     tcase_add_test(formulas,
@@ -775,10 +788,14 @@ Suite *ch04_triangles_suite(void)
     suite_add_tcase(s, formulas);
 
     TCase *edges = tcase_create("edge cases");
-    tcase_add_test(edges, test_hits_on_an_edge_and_a_vertex);
-    tcase_add_test(edges, test_ray_parallel_to_the_plane_misses);
-    tcase_add_test(edges, test_degenerate_triangle_is_never_hit);
-    tcase_add_test(edges, test_t_outside_the_interval_is_rejected);
+    tcase_add_loop_test(edges, test_hits_on_an_edge_and_a_vertex, 0,
+                        METHODS_OF_EXERCISES);
+    tcase_add_loop_test(edges, test_ray_parallel_to_the_plane_misses, 0,
+                        METHODS_OF_EXERCISES);
+    tcase_add_loop_test(edges, test_degenerate_triangle_is_never_hit, 0,
+                        METHODS_OF_EXERCISES);
+    tcase_add_loop_test(edges, test_t_outside_the_interval_is_rejected, 0,
+                        METHODS_OF_EXERCISES);
     tcase_add_test(edges, test_watertight_leaks_no_ray_where_others_do);
     tcase_add_test(edges, test_bounding_box_never_culls_a_grazing_ray);
     tcase_add_test(edges, test_fuzz_collinear_triangle_is_not_hit);
