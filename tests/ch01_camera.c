@@ -145,6 +145,26 @@ START_TEST(test_pixel_directions_are_unit_length)
 }
 END_TEST
 
+/* The ray through a point of the image: at a pixel's centre it is that
+ * pixel's ray, and at the top left corner it points at (left, top, 1). */
+START_TEST(test_a_ray_at_any_point_of_the_image)
+{
+    camera cam = make_camera(90, 4, 2);
+    camera_view view = camera_view_of(&cam);
+    for (int j = 0; j < 2; j++)
+        for (int i = 0; i < 4; i++) {
+            vec3 at = camera_view_ray_at(&view, i + 0.5, j + 0.5).dir,
+                 pixel = camera_view_ray(&view, i, j).dir;
+            ck_assert(at.x == pixel.x && at.y == pixel.y && at.z == pixel.z);
+        }
+    /* fov 90 over 4 pixels: s = 0.5, left = -1, top = 0.5 */
+    vec3 corner = camera_view_ray_at(&view, 0, 0).dir,
+         want = vec3_normalize((vec3){-1, 0.5, 1});
+    ck_assert_msg(vec3_length(vec3_sub(corner, want)) <= 2 * DBL_EPSILON,
+                  "(%g, %g, %g)", corner.x, corner.y, corner.z);
+}
+END_TEST
+
 START_TEST(test_pixels_are_square)
 {
     camera cam = make_camera(75, 33, 17);
@@ -592,6 +612,7 @@ Suite *ch01_camera_suite(void)
     tcase_add_test(rays, test_sheet_pixel_size_does_not_span_the_field_of_view);
     tcase_add_test(rays, test_pixel_directions_are_unit_length);
     tcase_add_test(rays, test_pixels_are_square);
+    tcase_add_test(rays, test_a_ray_at_any_point_of_the_image);
     tcase_add_test(rays, test_even_image_is_symmetric_about_the_axis);
     suite_add_tcase(s, rays);
 

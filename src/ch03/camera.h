@@ -29,7 +29,11 @@ vec3 camera_image_point(const camera *cam, double u, double v);
 
 camera_view camera_view_of(const camera *cam);
 
-/* The primary ray through the centre of pixel (i, j), with a unit direction. */
+/* The primary ray through the point (u, v) of the image, in pixel units as
+ * above, with a unit direction. */
+ray camera_view_ray_at(const camera_view *view, double u, double v);
+
+/* The primary ray through the centre of pixel (i, j): (i + 1/2, j + 1/2). */
 ray camera_view_ray(const camera_view *view, int i, int j);
 
 /* The same for a single ray: makes the view, then the ray. */

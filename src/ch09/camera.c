@@ -26,17 +26,21 @@ vec3 camera_image_point(const camera *cam, double u, double v)
     return (vec3){view.left + u * s, view.top - v * s, 1.0};
 }
 
-ray camera_view_ray(const camera_view *view, int i, int j)
+ray camera_view_ray_at(const camera_view *view, double u, double v)
 {
     double s = view->pixel_size;
-    vec3 on_plane = {view->left + (i + 0.5) * s, view->top - (j + 0.5) * s,
-                     1.0};
+    vec3 on_plane = {view->left + u * s, view->top - v * s, 1.0};
     ray r = {{0.0, 0.0, 0.0}, vec3_normalize(on_plane)};
     /* <<place the primary ray>> ch05 */
     if (view->is_placed) /* a rotation: renormalised against rounding only */
         r = (ray){mat4_mul_point(view->to_world, r.origin),
                   vec3_normalize(mat4_mul_dir(view->to_world, r.dir))};
     return r;
+}
+
+ray camera_view_ray(const camera_view *view, int i, int j)
+{
+    return camera_view_ray_at(view, i + 0.5, j + 0.5);
 }
 
 ray camera_ray(const camera *cam, int i, int j)
