@@ -565,6 +565,7 @@ int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
     packet_ray pr = {0};
     bool made = false; /* pr: made at the first leaf, if any */
     bvh_walk_start(&w, &m->bvh, &r);
+    w.sorted = out != NULL; /* any hit will do: no order to keep */
     while (bvh_walk_next(&w, t_max, &leaf)) {
         if (!made)
             pr = packet_ray_of(&mr->shear), made = true;
