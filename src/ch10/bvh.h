@@ -313,7 +313,7 @@ typedef struct {
 
 typedef struct {
     const bvh *t;
-    bvh_ray r;
+    const bvh_ray *r; /* the caller's: read, not copied */
     bvh_todo stack[BVH_STACK];
     int pending;
     long long visited; /* nodes whose children were tested, for --stats */
@@ -327,13 +327,14 @@ typedef struct {
     int first, count;
 } bvh_leaf;
 
-/* Starts a walk of the ray r through the non-empty tree t. */
+/* Starts a walk of the ray r, which must outlive the walk, through the
+ * non-empty tree t. */
 static inline void bvh_walk_start(bvh_walk *w, const bvh *t,
                                   const bvh_ray *r)
 {
     const bvh_node *root = t->width == 2 ? &t->nodes[0] : NULL;
     bool leaf = root != NULL && root->count > 0; /* a tree of one leaf */
-    w->t = t, w->r = *r, w->pending = 1, w->visited = 0, w->sorted = true;
+    w->t = t, w->r = r, w->pending = 1, w->visited = 0, w->sorted = true;
     w->best = NAN, w->t_max = r->t_max; /* no bound yet: made at first */
     w->stack[0] = (bvh_todo){leaf ? root->index : 0, leaf ? root->count : 0,
                              r->t_min};
@@ -380,7 +381,7 @@ static inline bool bvh_visit2(bvh_walk *w, uint32_t k, float t_max,
         const bvh_node *kid = &n[id[side]];
         child[side] = kid->count ? kid->index : id[side];
         count[side] = kid->count;
-        mask |= bvh_lanes_test_scalar(kid->box, 1, 1, &w->r, t_max,
+        mask |= bvh_lanes_test_scalar(kid->box, 1, 1, w->r, t_max,
                                       &t_near[side]) << side;
     }
     return bvh_take(w, mask, child, count, t_near, next);
@@ -397,11 +398,11 @@ static inline bool bvh_visit(bvh_walk *w, bvh_todo now, float t_max,
         return bvh_visit2(w, now.child, t_max, next);
     if (w->t->width == 4) {
         const bvh_node4 *n = &w->t->nodes4[now.child];
-        unsigned mask = bvh_node4_test(n, &w->r, t_max, t_near);
+        unsigned mask = bvh_node4_test(n, w->r, t_max, t_near);
         return bvh_take(w, mask, n->child, n->count, t_near, next);
     }
     const bvh_node8 *n = &w->t->nodes8[now.child];
-    unsigned mask = bvh_node8_test(n, &w->r, t_max, t_near);
+    unsigned mask = bvh_node8_test(n, w->r, t_max, t_near);
     return bvh_take(w, mask, n->child, n->count, t_near, next);
 }
 
@@ -411,7 +412,7 @@ static inline float bvh_walk_bound(bvh_walk *w, double best)
 {
     if (!(best == w->best)) {
         float t_max = bvh_float_up(best * (1 + BVH_SLACK));
-        w->t_max = t_max < w->r.t_max ? t_max : w->r.t_max;
+        w->t_max = t_max < w->r->t_max ? t_max : w->r->t_max;
         w->best = best;
     }
     return w->t_max;
