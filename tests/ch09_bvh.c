@@ -319,6 +319,37 @@ START_TEST(test_a_ray_in_a_face_plane_meets_the_box)
 }
 END_TEST
 
+/* A node's children as the walk takes them: the nearest in hand, the
+ * others on the stack farthest at the bottom; for any hit, in the order
+ * of their lanes; none, nothing pushed. */
+START_TEST(test_the_walk_takes_the_nearest_child_and_stacks_the_rest)
+{
+    const uint32_t child[4] = {10, 11, 12, 13}, count[4] = {0, 1, 0, 2};
+    const float t_near[4] = {3, 1, 4, 2};
+    static bvh_walk w; /* its stack is large: not on the test's stack */
+    bvh_todo next;
+    w.pending = 0, w.sorted = true;
+    ck_assert(!bvh_take(&w, 0, child, count, t_near, &next));
+    ck_assert_int_eq(w.pending, 0);
+    ck_assert(bvh_take(&w, 1u << 2, child, count, t_near, &next));
+    ck_assert_int_eq(w.pending, 0); /* one child: straight to it */
+    ck_assert_uint_eq(next.child, 12);
+    ck_assert(bvh_take(&w, 0xf, child, count, t_near, &next));
+    ck_assert_uint_eq(next.child, 11);
+    ck_assert_uint_eq(next.count, 1);
+    ck_assert(next.t_near == 1);
+    ck_assert_int_eq(w.pending, 3);
+    const uint32_t sorted[3] = {12, 10, 13}; /* t_near 4, 3, 2 */
+    for (int k = 0; k < 3; k++)
+        ck_assert_uint_eq(w.stack[k].child, sorted[k]);
+    w.pending = 0, w.sorted = false;
+    ck_assert(bvh_take(&w, 0xf, child, count, t_near, &next));
+    ck_assert_uint_eq(next.child, 10);
+    for (int k = 0; k < 3; k++)
+        ck_assert_uint_eq(w.stack[k].child, child[k + 1]);
+}
+END_TEST
+
 /* ------------------------------------------------------------ the build */
 
 /* count random boxes around centre, sizes up to size (some zero). */
@@ -727,6 +758,8 @@ Suite *ch09_bvh_suite(void)
     tcase_set_timeout(nodes, 120);
     tcase_add_test(nodes, test_vector_and_scalar_node_tests_agree);
     tcase_add_test(nodes, test_a_ray_in_a_face_plane_meets_the_box);
+    tcase_add_test(nodes,
+                   test_the_walk_takes_the_nearest_child_and_stacks_the_rest);
     tcase_add_test(nodes, test_float_boxes_hold_their_items);
     tcase_add_test(nodes, test_wide_nodes_hold_their_leaves_items);
     tcase_add_test(nodes, test_thread_counts_build_the_same_tree);

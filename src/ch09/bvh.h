@@ -313,12 +313,13 @@ typedef struct {
 
 typedef struct {
     const bvh *t;
-    bvh_ray r;
+    const bvh_ray *r; /* the caller's: read, not copied */
     bvh_todo stack[BVH_STACK];
     int pending;
     long long visited; /* nodes whose children were tested, for --stats */
     double best;       /* the last nearest hit given to bvh_walk_next */
     float t_max;       /* and its bound in float */
+    bool sorted;       /* nearest child first; false: any order (any hit) */
 } bvh_walk;
 
 /* A leaf: its items are items[first .. first + count). */
@@ -326,38 +327,51 @@ typedef struct {
     int first, count;
 } bvh_leaf;
 
-/* Starts a walk of the ray r through the non-empty tree t. */
+/* Starts a walk of the ray r, which must outlive the walk, through the
+ * non-empty tree t. */
 static inline void bvh_walk_start(bvh_walk *w, const bvh *t,
                                   const bvh_ray *r)
 {
     const bvh_node *root = t->width == 2 ? &t->nodes[0] : NULL;
     bool leaf = root != NULL && root->count > 0; /* a tree of one leaf */
-    w->t = t, w->r = *r, w->pending = 1, w->visited = 0;
+    w->t = t, w->r = r, w->pending = 1, w->visited = 0, w->sorted = true;
     w->best = NAN, w->t_max = r->t_max; /* no bound yet: made at first */
     w->stack[0] = (bvh_todo){leaf ? root->index : 0, leaf ? root->count : 0,
                              r->t_min};
 }
 
-/* Pushes the children in mask onto w's stack, farthest on the bottom. */
-static inline void bvh_push(bvh_walk *w, unsigned mask, const uint32_t *child,
-                            const uint32_t *count, const float *t_near)
+/* The children in mask: the nearest into *next, the others pushed onto
+ * w's stack, farthest on the bottom (unsorted: in the order of their
+ * lanes); false when mask is empty. */
+static inline bool bvh_take(bvh_walk *w, unsigned mask, const uint32_t *child,
+                            const uint32_t *count, const float *t_near,
+                            bvh_todo *next)
 {
-    int first = w->pending;
     /* An unused child is never in mask: its empty box (lo +inf, hi -inf)
      * gives every ray t_near = +inf and t_far = -inf, whatever the sign
      * of 1 / d, for the finite origins bvh_ray_of accepts. */
-    for (; mask != 0; mask &= mask - 1) { /* the lowest bit left, each */
-        int c = __builtin_ctz(mask);
-        bvh_todo todo = {child[c], count[c], t_near[c]};
+    if (mask == 0)
+        return false;
+    int c = __builtin_ctz(mask), first = w->pending;
+    bvh_todo near = {child[c], count[c], t_near[c]};
+    for (mask &= mask - 1; mask != 0; mask &= mask - 1) { /* lowest bit */
+        c = __builtin_ctz(mask);
+        bvh_todo todo = {child[c], count[c], t_near[c]}, swap = near;
+        if (w->sorted && todo.t_near < near.t_near)
+            near = todo, todo = swap; /* the nearest stays in hand */
         int k = w->pending++;
-        for (; k > first && w->stack[k - 1].t_near < todo.t_near; k--)
+        for (; w->sorted && k > first && w->stack[k - 1].t_near < todo.t_near;
+             k--)
             w->stack[k] = w->stack[k - 1];
         w->stack[k] = todo;
     }
+    *next = near;
+    return true;
 }
 
-/* The two children of binary node k, tested; pushed. */
-static inline void bvh_visit2(bvh_walk *w, uint32_t k, float t_max)
+/* The two children of binary node k, tested; taken. */
+static inline bool bvh_visit2(bvh_walk *w, uint32_t k, float t_max,
+                              bvh_todo *next)
 {
     const bvh_node *n = w->t->nodes;
     uint32_t id[2] = {k + 1, n[k].index}, child[2], count[2];
@@ -367,31 +381,29 @@ static inline void bvh_visit2(bvh_walk *w, uint32_t k, float t_max)
         const bvh_node *kid = &n[id[side]];
         child[side] = kid->count ? kid->index : id[side];
         count[side] = kid->count;
-        mask |= bvh_lanes_test_scalar(kid->box, 1, 1, &w->r, t_max,
+        mask |= bvh_lanes_test_scalar(kid->box, 1, 1, w->r, t_max,
                                       &t_near[side]) << side;
     }
-    bvh_push(w, mask, child, count, t_near);
+    return bvh_take(w, mask, child, count, t_near, next);
 }
 
-/* The children of node now that the ray meets before t_max: pushed,
- * farthest on the bottom; the number found. */
-static inline int bvh_visit(bvh_walk *w, bvh_todo now, float t_max)
+/* The children of node now that the ray meets before t_max, taken: the
+ * nearest into *next, the others pushed; false when it meets none. */
+static inline bool bvh_visit(bvh_walk *w, bvh_todo now, float t_max,
+                             bvh_todo *next)
 {
     float t_near[8];
-    int before = w->pending;
     w->visited++;
-    if (w->t->width == 2) {
-        bvh_visit2(w, now.child, t_max);
-    } else if (w->t->width == 4) {
+    if (w->t->width == 2)
+        return bvh_visit2(w, now.child, t_max, next);
+    if (w->t->width == 4) {
         const bvh_node4 *n = &w->t->nodes4[now.child];
-        unsigned mask = bvh_node4_test(n, &w->r, t_max, t_near);
-        bvh_push(w, mask, n->child, n->count, t_near);
-    } else {
-        const bvh_node8 *n = &w->t->nodes8[now.child];
-        unsigned mask = bvh_node8_test(n, &w->r, t_max, t_near);
-        bvh_push(w, mask, n->child, n->count, t_near);
+        unsigned mask = bvh_node4_test(n, w->r, t_max, t_near);
+        return bvh_take(w, mask, n->child, n->count, t_near, next);
     }
-    return w->pending - before;
+    const bvh_node8 *n = &w->t->nodes8[now.child];
+    unsigned mask = bvh_node8_test(n, w->r, t_max, t_near);
+    return bvh_take(w, mask, n->child, n->count, t_near, next);
 }
 
 /* best widened by BVH_SLACK, in float, within the ray's own bound; made
@@ -400,7 +412,7 @@ static inline float bvh_walk_bound(bvh_walk *w, double best)
 {
     if (!(best == w->best)) {
         float t_max = bvh_float_up(best * (1 + BVH_SLACK));
-        w->t_max = t_max < w->r.t_max ? t_max : w->r.t_max;
+        w->t_max = t_max < w->r->t_max ? t_max : w->r->t_max;
         w->best = best;
     }
     return w->t_max;
@@ -408,8 +420,8 @@ static inline float bvh_walk_bound(bvh_walk *w, double best)
 
 /* The next leaf whose box the ray meets before best (the nearest hit so
  * far, widened by BVH_SLACK: a hit at best itself may still win a tie);
- * false when none is left. Children just pushed are in range: the
- * nearest is taken at once. */
+ * false when none is left. A child just found is in range: the nearest
+ * is taken at once. */
 static inline bool bvh_walk_next(bvh_walk *w, double best, bvh_leaf *leaf)
 {
     float t_max = bvh_walk_bound(w, best);
@@ -417,8 +429,8 @@ static inline bool bvh_walk_next(bvh_walk *w, double best, bvh_leaf *leaf)
         bvh_todo now = w->stack[--w->pending];
         if (now.t_near > t_max)
             continue; /* the box starts beyond the nearest hit */
-        while (now.count == 0 && bvh_visit(w, now, t_max) > 0)
-            now = w->stack[--w->pending]; /* the nearest child */
+        while (now.count == 0 && bvh_visit(w, now, t_max, &now))
+            ; /* down to the nearest child, the others on the stack */
         if (now.count > 0) {
             *leaf = (bvh_leaf){(int)now.child, (int)now.count};
             return true;

@@ -562,9 +562,13 @@ int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
     bvh_leaf leaf;
     int found = -1;
     long long decided = 0;
-    packet_ray pr = packet_ray_of(&mr->shear);
+    packet_ray pr = {0};
+    bool made = false; /* pr: made at the first leaf, if any */
     bvh_walk_start(&w, &m->bvh, &r);
+    w.sorted = out != NULL; /* any hit will do: no order to keep */
     while (bvh_walk_next(&w, t_max, &leaf)) {
+        if (!made)
+            pr = packet_ray_of(&mr->shear), made = true;
         stats->triangle_tests += leaf.count;
         int k = bvh_leaf_test(m, &pr, leaf, t_min, t_max, found, out,
                               &decided);

@@ -234,8 +234,7 @@ int triangle_nearest_corners(const watertight_ray *w,
 
 /* <<the tests of a leaf's triangles>> ch09 */
 /* <<a sheared triangle read from its corners>> ch09 */
-_Static_assert(sizeof(triangle_corners) == 9 * sizeof(double),
-               "a triangle's corners are nine doubles, a's, b's, c's");
+_Static_assert(sizeof(vec3) == 3 * sizeof(double), "x, y, z in a row");
 _Static_assert(sizeof(rvec) == 3 * sizeof(double), "x, y, z in a row");
 
 /* The ray's origin along its axes kx, ky, kz: once per leaf. */
@@ -245,21 +244,22 @@ static inline void origin_on_axes(const sheared_ray *s, double o[3])
     o[0] = origin[s->kx], o[1] = origin[s->ky], o[2] = origin[s->kz];
 }
 
-/* hit_sheared for a leaf's triangle t, the same operations in the same
- * order; o is origin_on_axes. */
+/* hit_sheared for the triangle (pa, pb, pc), the same operations in the
+ * same order; o is origin_on_axes. */
 static inline bool hit_corners(const sheared_ray *s, const double o[3],
-                               const triangle_corners *tri, double t_min,
-                               double t_max, triangle_hit *out)
+                               const vec3 *pa, const vec3 *pb,
+                               const vec3 *pc, double t_min, double t_max,
+                               triangle_hit *out)
 {
-    const double *q = &tri->p[0].x; /* a's x, y, z, then b's, then c's */
+    const double *a = &pa->x, *b = &pb->x, *c = &pc->x; /* x, y, z each */
     int kx = s->kx, ky = s->ky, kz = s->kz;
-    double az = q[kz] - o[2], bz = q[3 + kz] - o[2], cz = q[6 + kz] - o[2];
-    double ax = (q[kx] - o[0]) - s->sx * az;
-    double ay = (q[ky] - o[1]) - s->sy * az;
-    double bx = (q[3 + kx] - o[0]) - s->sx * bz;
-    double by = (q[3 + ky] - o[1]) - s->sy * bz;
-    double cx = (q[6 + kx] - o[0]) - s->sx * cz;
-    double cy = (q[6 + ky] - o[1]) - s->sy * cz;
+    double az = a[kz] - o[2], bz = b[kz] - o[2], cz = c[kz] - o[2];
+    double ax = (a[kx] - o[0]) - s->sx * az;
+    double ay = (a[ky] - o[1]) - s->sy * az;
+    double bx = (b[kx] - o[0]) - s->sx * bz;
+    double by = (b[ky] - o[1]) - s->sy * bz;
+    double cx = (c[kx] - o[0]) - s->sx * cz;
+    double cy = (c[ky] - o[1]) - s->sy * cz;
     /* <<the three edge functions, tightened>> ch09 */
     double u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
     if ((u == 0) | (v == 0) | (w == 0)) { /* on an edge: decide more precisely */
@@ -274,9 +274,9 @@ static inline bool hit_corners(const sheared_ray *s, const double o[3],
     double t = (u * s->sz * az + v * s->sz * bz + w * s->sz * cz) / det;
     if (!(t > t_min && t < t_max) || det == 0)
         return false; /* outside the interval; or parallel, or degenerate */
-    rvec pa = rvec_sub(rvec_from(tri->p[0]), s->origin);
-    rvec pb = rvec_sub(rvec_from(tri->p[1]), s->origin);
-    if (is_degenerate(pa, pb, rvec_sub(rvec_from(tri->p[2]), s->origin)))
+    rvec da = rvec_sub(rvec_from(*pa), s->origin);
+    rvec db = rvec_sub(rvec_from(*pb), s->origin);
+    if (is_degenerate(da, db, rvec_sub(rvec_from(*pc), s->origin)))
         return false;
     out->t = t; /* the barycentric coordinates: */
     out->b[0] = u / det, out->b[1] = v / det, out->b[2] = w / det;
@@ -296,7 +296,8 @@ int triangle_nearest_of_leaf(const watertight_ray *w,
     double reach = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
     for (int k = 0; k < count; k++) {
         triangle_hit th;
-        if (hit_corners(&s, o, &triangles[k], t_min, reach, &th) &&
+        const vec3 *p = triangles[k].p;
+        if (hit_corners(&s, o, &p[0], &p[1], &p[2], t_min, reach, &th) &&
             (th.t < t_max || items[k] < best)) { /* a tie: the lower index */
             *out = th, t_max = th.t, best = items[k], nearest = k;
             reach = nextafter(t_max, INFINITY);
@@ -314,8 +315,20 @@ bool triangle_any_corners(const watertight_ray *w,
     double o[3];
     origin_on_axes(&s, o);
     triangle_hit unused;
-    for (int k = 0; k < count; k++)
-        if (hit_corners(&s, o, &triangles[k], t_min, t_max, &unused))
+    for (int k = 0; k < count; k++) {
+        const vec3 *p = triangles[k].p;
+        if (hit_corners(&s, o, &p[0], &p[1], &p[2], t_min, t_max, &unused))
             return true;
+    }
     return false;
+}
+
+bool triangle_hit_tightened(const watertight_ray *w, const vec3 *a,
+                            const vec3 *b, const vec3 *c, double t_min,
+                            double t_max, triangle_hit *out)
+{
+    sheared_ray s = sheared_from(w);
+    double o[3];
+    origin_on_axes(&s, o);
+    return hit_corners(&s, o, a, b, c, t_min, t_max, out);
 }

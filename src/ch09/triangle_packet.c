@@ -285,12 +285,12 @@ unsigned triangle_packet_candidates_scalar(const triangle_packet *p,
 }
 
 /* <<deciding the kept lanes>> ch09 */
-/* Chapter 4's test of the triangle c. */
+/* Chapter 4's test of the triangle c, tightened. */
 static bool hit_in_double(const packet_ray *r, const triangle_corners *c,
                           double t_min, double t_max, triangle_hit *out)
 {
-    return triangle_hit_prepared(r->exact, c->p[0], c->p[1], c->p[2], t_min,
-                                 t_max, out);
+    return triangle_hit_tightened(r->exact, &c->p[0], &c->p[1], &c->p[2],
+                                  t_min, t_max, out);
 }
 
 int triangle_packets_nearest(const packet_ray *r,
@@ -338,14 +338,14 @@ bool triangle_packets_any(const packet_ray *r, const triangle_packet *packets,
 }
 
 /* <<deciding the kept lanes on the mesh's corners>> ch09 */
-/* Chapter 4's test of the mesh's triangle i. */
+/* Chapter 4's test of the mesh's triangle i, tightened. */
 static bool hit_in_mesh(const packet_ray *r, const vec3 *vertices,
                         const mesh_triangle *triangles, int i, double t_min,
                         double t_max, triangle_hit *out)
 {
     const int *v = triangles[i].v;
-    return triangle_hit_prepared(r->exact, vertices[v[0]], vertices[v[1]],
-                                 vertices[v[2]], t_min, t_max, out);
+    return triangle_hit_tightened(r->exact, &vertices[v[0]], &vertices[v[1]],
+                                  &vertices[v[2]], t_min, t_max, out);
 }
 
 int triangle_packets_nearest_in_mesh(const packet_ray *r,
