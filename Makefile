@@ -107,9 +107,12 @@ reuse_from = $(if $(call previous,$(1)),$(REUSE) $(B)/obj/ch$(call previous,$(1)
 # (hundreds of recipes, and a shell is not free).
 dir_of_target = $(if $(wildcard $(@D)/.),,$(shell mkdir -p $(@D)))
 
-# Sanitized builds live apart so that they never mix with normal objects.
-B       := build/$(if $(SAN),san,rel)$(if $(SCALAR),-scalar)$(if $(NATIVE),-native)$(if $(LTO_FLAGS),-lto)
-BIN     := $(if $(SAN)$(SCALAR)$(NATIVE)$(LTO_FLAGS),$(B)/bin,bin)
+# Sanitized builds live apart so that they never mix with normal objects,
+# and so do another compiler's (make CC=clang): objects are remade when
+# their sources change, not when the compiler does.
+CC_TAG  := $(if $(filter cc gcc,$(notdir $(firstword $(CC)))),,-$(notdir $(firstword $(CC))))
+B       := build/$(if $(SAN),san,rel)$(CC_TAG)$(if $(SCALAR),-scalar)$(if $(NATIVE),-native)$(if $(LTO_FLAGS),-lto)
+BIN     := $(if $(SAN)$(SCALAR)$(NATIVE)$(LTO_FLAGS)$(CC_TAG),$(B)/bin,bin)
 TANGLE  := $(B)/tools/tangle
 REUSE   := $(B)/tools/reuse_object
 
