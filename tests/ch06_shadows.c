@@ -369,16 +369,87 @@ static void expect_one_sample_a_cell(int pattern, int n, sample_stream *g)
                           v >= y0 - slack && v < y0 + h + slack,
                       "%s, n = %d: sample %d at (%g, %g) is outside its "
                       "cell [%g, %g) x [%g, %g): each of the n cells must "
-                      "hold one sample", pattern == SAMPLE_GRID ? "grid"
-                      : "stratified", n, k, u, v, x0, x0 + w, y0, y0 + h);
+                      "hold one sample",
+                      pattern == SAMPLE_GRID ? "grid" : "stratified", n, k, u,
+                      v, x0, x0 + w, y0, y0 + h);
     }
 }
 
+/* The stream of one pair of points repeats, another pair's differs, and
+ * its numbers lie in [0, 1) with the mean of a uniform variable, 1/2, to
+ * within 5 standard errors, 1 / sqrt(12 n). */
+START_TEST(test_the_sample_stream_repeats_and_spreads)
+{
+    vec3 a = {1, 2, 3}, b = {4, 5, 6};
+    sample_stream g = sample_stream_at(a, b), same = sample_stream_at(a, b),
+                  other = sample_stream_at(b, a);
+    const int n = 100000;
+    double sum = 0;
+    int differ = 0;
+    for (int k = 0; k < n; k++) {
+        double x = sample_next(&g);
+        ck_assert_msg(x >= 0 && x < 1, "%.17g is not in [0, 1)", x);
+        ck_assert_msg(x == sample_next(&same),
+                      "number %d differs from the same points' stream", k);
+        differ += x != sample_next(&other);
+        sum += x;
+    }
+    ck_assert_msg(differ > n / 2, "the points swapped give the same stream");
+    ck_assert_msg(fabs(sum / n - 0.5) <= 5 / sqrt(12.0 * n), "mean %g, not 1/2",
+                  sum / n);
+}
+END_TEST
+
+/* Stratified and grid: exactly one sample in each of n cells of area 1/n;
+ * uniform: anywhere in the square. */
+START_TEST(test_square_samples_fall_one_a_cell)
+{
+    sample_stream g = sample_stream_at((vec3){0, 0, 0}, (vec3){0, 0, 0});
+    const int counts[] = {1, 2, 3, 8, 37, 64};
+    for (int c = 0; c < 6; c++)
+        for (int pattern = SAMPLE_STRATIFIED; pattern <= SAMPLE_GRID; pattern++)
+            expect_one_sample_a_cell(pattern, counts[c], &g);
+    for (int k = 0; k < 1000; k++) {
+        double u, v;
+        sample_square(SAMPLE_UNIFORM, k, 1000, &g, &u, &v);
+        ck_assert_msg(u >= 0 && u < 1 && v >= 0 && v < 1,
+                      "uniform sample at (%g, %g)", u, v);
+    }
+}
+END_TEST
+
+/* A point of the disc lies in its plane, within its radius, at the radius
+ * that leaves the share u of the disc's area inside it (R sqrt(u)), and
+ * at the angle 2 pi v, on the far side for v + 1/2. */
+START_TEST(test_disc_points_cover_the_disc_area_for_area)
+{
+    const vec3 axes[] = {{0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {1, 2, 3}};
+    const vec3 c = {1, 2, 3};
+    const double R = 2, tolerance = 16 * DBL_EPSILON * R;
+    for (int k = 0; k < 4; k++) {
+        vec3 axis = vec3_normalize(axes[k]);
+        for (int j = 0; j < 8; j++) {
+            double u = j / 8.0, v = j / 16.0;
+            vec3 d = vec3_sub(disc_point(c, axis, R, u, v), c),
+                 far = vec3_sub(disc_point(c, axis, R, u, v + 0.5), c);
+            ck_assert_msg(fabs(vec3_dot(d, axis)) <= tolerance,
+                          "axis %d: %g out of the disc's plane", k,
+                          vec3_dot(d, axis));
+            ck_assert_msg(fabs(vec3_length(d) - R * sqrt(u)) <= tolerance,
+                          "axis %d, u = %g: radius %g, not R sqrt(u) = %g", k,
+                          u, vec3_length(d), R * sqrt(u));
+            ck_assert_msg(vec3_length(vec3_add(d, far)) <= 2 * tolerance,
+                          "axis %d: v and v + 1/2 not opposite", k);
+        }
+    }
+}
+END_TEST
+
 START_TEST(test_area_light_samples_cover_the_disc_evenly)
 {
-    /* Stratified and grid: exactly one sample in each of n cells of area
-     * 1/n; every pattern: every sample on the disc. The mean of many
-     * uniform samples' squared radius is R^2 / 2 (area for area). */
+    /* Every pattern: every sample on the disc, carrying 1/n of the light.
+     * The mean of many uniform samples' squared radius is R^2 / 2 (area
+     * for area). */
     const int n = 37;
     light L = {.kind = LIGHT_AREA,
                .position = {1, 2, 3},
@@ -398,10 +469,6 @@ START_TEST(test_area_light_samples_cover_the_disc_evenly)
         }
     }
     sample_stream g = sample_stream_at((vec3){0, 0, 0}, (vec3){0, 0, 0});
-    const int counts[] = {1, 2, 3, 8, 37, 64};
-    for (int c = 0; c < 6; c++)
-        for (int pattern = SAMPLE_STRATIFIED; pattern <= SAMPLE_GRID; pattern++)
-            expect_one_sample_a_cell(pattern, counts[c], &g);
     double sum = 0;
     L.pattern = SAMPLE_UNIFORM;
     for (int k = 0; k < 100000; k++) {
@@ -606,6 +673,9 @@ Suite *ch06_shadows_suite(void)
     tcase_add_test(acne, test_offset_origin_is_on_the_side_the_ray_leaves_by);
     suite_add_tcase(s, acne);
     TCase *formulas = tcase_create("formulas");
+    tcase_add_test(formulas, test_the_sample_stream_repeats_and_spreads);
+    tcase_add_test(formulas, test_square_samples_fall_one_a_cell);
+    tcase_add_test(formulas, test_disc_points_cover_the_disc_area_for_area);
     tcase_add_test(formulas, test_area_light_samples_cover_the_disc_evenly);
     tcase_add_test(formulas,
                    test_area_light_gives_a_penumbra_and_is_reproducible);
