@@ -217,7 +217,8 @@ $(B)/test/ch$(1): $$(O$(1))/tests/runner.o $$(patsubst tests/%.c,$$(O$(1))/tests
 # a suite may compare the program with the previous chapter's (ties, ch08)
 test-ch$(1): deps $(B)/test/ch$(1) $(BIN)/ch$(1) $(if $(call previous,$(1)),$(BIN)/ch$(call previous,$(1)))
 	@echo "== suites 01..$(1) against the program of chapter $(1)"
-	CHAPTER_BIN=$(BIN)/ch$(1) CK_DEFAULT_TIMEOUT=60 $(RUNNER_ENV) sh tools/run_shards.sh $(B)/test/ch$(1)
+	CHAPTER_BIN=$(BIN)/ch$(1) CK_DEFAULT_TIMEOUT=60 RUN_LOG=$(B)/test/ch$(1).log \
+	  $(RUNNER_ENV) sh tools/run_shards.sh $(B)/test/ch$(1)
 
 run-ch$(1): $(BIN)/ch$(1)
 	@mkdir -p build
@@ -462,7 +463,7 @@ grade: grade-ch$(LAST)
 
 $(foreach n,$(NUMS),grade-ch$(n)): grade-ch%: $(TANGLE)
 	+@TANGLE=$(TANGLE) WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) MAKE="$(MAKE)" \
-	  sh tools/grade.sh $* $(call chapters_upto,$*)
+	  BOOK_BUILD=$(B) BOOK_BIN=$(BIN) sh tools/grade.sh $* $(call chapters_upto,$*)
 
 hint:
 	@if [ -z "$(EX)" ]; then \
@@ -614,9 +615,12 @@ check-stubs: $(TANGLE)
 # Its grades run side by side, each a make of its own that takes the book's
 # objects of the chapters it grades (and of the chapters before them): this
 # make builds those first, so that no two makes write one object at once.
+# The book's code, typed in, builds the book's programs byte for byte: the
+# last chapter's suites, run first, give that grade its results.
 WB_CHECK_CHAPTERS := $(LAST) $(call previous,$(LAST)) 06 05
 .PHONY: check-workbook
-check-workbook: $(TANGLE) $(foreach n,$(filter $(NUMS),$(WB_CHECK_CHAPTERS)),$(B)/test/ch$(n) $(BIN)/ch$(n))
+check-workbook: $(TANGLE) $(foreach n,$(filter $(NUMS),$(WB_CHECK_CHAPTERS)),$(B)/test/ch$(n) $(BIN)/ch$(n)) \
+                test-ch$(LAST)
 	+@MAKE="$(MAKE)" sh tools/check_workbook.sh
 
 # The workbook's program and suites of chapter NN, built from the tangle

@@ -12,7 +12,8 @@
 #      task holds TeX ($...$);
 #   2. with every stub started, no exercise passes (each stub fails one of
 #      its tests), and the exit status is not 0;
-#   3. a SOLVED=1 workbook grades "Progress: N of N", exit 0;
+#   3. a SOLVED=1 workbook grades "Progress: N of N", exit 0, and builds
+#      the book's programs byte for byte (their logged results stand);
 #   4. the course sheet's forms typed in as answers fail with a message
 #      naming the correction (sphere, half vector, tone map, Snell),
 #      a loop is "timed out" and a null pointer "crashed (signal 11)"; in
@@ -130,6 +131,9 @@ check_solved() {
     grade ""
     [ "$status" = 0 ] || fail "a SOLVED=1 workbook should grade with status 0"
     grep -qx "Progress: $n of $n exercises" "$t/out" || fail "expected Progress: $n of $n"
+    # typed in, the book's code builds the book's programs, byte for byte
+    grep -q "^(the programs are the book's own" "$t/out" ||
+        fail "the book's code, typed in, should build the book's programs"
 }
 
 # ---- 4. the sheet's forms, a loop and a crash; in the same grade, a syntax

@@ -3,14 +3,24 @@
 # processes at once, each with RUNNER_SHARD=K/N (its share of the tests),
 # then prints their output in order, shard by shard; exits 0 only when
 # every shard passed. N is $SHARDS, or the number of cores.
+# With RUN_LOG=FILE, every test's result line (Check's log, one line a
+# test, passes too) is kept in FILE when all passed, and FILE is removed
+# when one did not (make grade reads it: tools/grade.sh).
 set -u
 runner=$1
 n=${SHARDS:-$(nproc 2>/dev/null || sysctl -n hw.ncpu 2>/dev/null || echo 2)}
+log=${RUN_LOG:-}
 dir=$(mktemp -d) || exit 1
 trap 'rm -rf "$dir"' EXIT
+[ -z "$log" ] || rm -f "$log"
 k=0
 while [ "$k" -lt "$n" ]; do
-  RUNNER_SHARD="$k/$n" "$runner" > "$dir/$k.out" 2>&1 &
+  if [ -n "$log" ]; then
+    RUNNER_SHARD="$k/$n" CK_LOG_FILE_NAME="$dir/$k.log" "$runner" \
+      > "$dir/$k.out" 2>&1 &
+  else
+    RUNNER_SHARD="$k/$n" "$runner" > "$dir/$k.out" 2>&1 &
+  fi
   echo $! > "$dir/$k.pid"
   k=$((k + 1))
 done
@@ -21,4 +31,7 @@ while [ "$k" -lt "$n" ]; do
   cat "$dir/$k.out"
   k=$((k + 1))
 done
+if [ -n "$log" ] && [ "$status" = 0 ]; then
+  cat "$dir"/*.log > "$log.tmp" && mv "$log.tmp" "$log"
+fi
 exit $status
