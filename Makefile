@@ -708,23 +708,17 @@ build/fuzz/%_fuzz: fuzz/%_fuzz.c $(FUZZ_LIB) | fuzz-deps
 
 fuzz-build: $(foreach t,$(FUZZ_TARGETS),build/fuzz/$(t)_fuzz)
 
-# The targets run side by side, one a job (make runs a job a core), each
-# from an empty scratch folder of its own, so that a scene's mesh paths find
-# nothing; FUZZ_SECONDS is each one's time on the clock.
+# The targets run side by side, all at once whatever the jobs (so that
+# FUZZ_SECONDS is the whole run's time on the clock), by tools/fuzz.sh;
+# make fuzz-run-NAME runs one alone.
 FUZZ_RUNS := $(addprefix fuzz-run-,$(FUZZ_TARGETS))
 .PHONY: $(FUZZ_RUNS)
-fuzz: $(FUZZ_RUNS)
+fuzz: fuzz-build
+	@sh tools/fuzz.sh $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 	@echo "make fuzz: $(FUZZ_TARGETS) ran $(FUZZ_SECONDS) s each and found nothing"
 
 $(FUZZ_RUNS): fuzz-run-%: build/fuzz/%_fuzz
-	@mkdir -p build/fuzz/corpus/$* build/fuzz/scratch-$*
-	@echo "== fuzzing $* for $(FUZZ_SECONDS) s"
-	@(cd build/fuzz/scratch-$* && ../$*_fuzz ../corpus/$* ../../../fuzz/corpus/$* \
-	    -dict=../../../fuzz/$*.dict -max_total_time=$(FUZZ_SECONDS) -timeout=10 \
-	    -rss_limit_mb=2048 -print_final_stats=1 -close_fd_mask=3 \
-	    -artifact_prefix=../$*- > ../$*.log 2>&1); status=$$?; \
-	  grep -E '^(#[0-9]+.*DONE|stat::|==[0-9]+==ERROR|SUMMARY)' build/fuzz/$*.log | sed 's/^/$*: /'; \
-	  [ $$status = 0 ] || { echo "fuzz: $* found a problem: see build/fuzz/$*.log"; exit 1; }
+	@sh tools/fuzz.sh $(FUZZ_SECONDS) $*
 
 # ---------------------------------------------------------------- valgrind
 # make valgrind: every test binary (its tests in its own process, so that
