@@ -318,9 +318,11 @@ check-failures: $(patsubst figures/%,$(B)/fig/%,$(FAILURE_FIGS)) $(B)/tools/pngd
 	@echo "check-failures: $(words $(FAILURE_FIGS)) failure figures up to date"
 
 # figures/ holds the committed copies of the renders in $(B)/fig: a copy is
-# rewritten only when its bytes change.
+# rewritten only when its bytes change, and left untouched otherwise, so
+# that a render of the same picture (make test draws every figure again)
+# does not weave the book, its editions and the handout again.
 figures/%.png: $(B)/fig/%.png
-	@cmp -s $< $@ || cp $< $@; touch $@
+	@cmp -s $< $@ || cp $< $@
 
 # Chapter 09 compares chapter 08's kd-tree with Intel Embree 3 where it is installed
 # (Debian: libembree-dev); without it that benchmark is not built, and
