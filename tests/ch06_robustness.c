@@ -3,8 +3,10 @@
  *
  * Every light and every sample count below is within its own limit; the
  * budget of shadow rays for one shaded point, over all lights (4,096, as
- * many as a scene may have lights), bounds them together. */
+ * many as a scene may have lights), bounds them together, and the budget
+ * of rays of one primary ray's tree counts them too. */
 #include <check.h>
+#include <math.h>
 #include <string.h>
 
 #include "render.h"
@@ -86,6 +88,37 @@ START_TEST(test_stats_count_the_samples_the_budget_took)
 }
 END_TEST
 
+START_TEST(test_a_tree_counts_its_shadow_rays_in_the_ray_budget)
+{
+    /* The eye inside a mirror ball: without a cutoff each ray reflects
+     * until the depth limit, 100, and each of the 101 hits casts 1,024
+     * shadow rays: 103,524 rays, more than the tree's budget of 65,536
+     * (chapter 6). Counted, the primary ray's hit takes its 1,024 first,
+     * and each reflection costs 1 + 1,024: 62 of them fit, and the tree
+     * is cut. */
+    scene s;
+    scene_error err;
+    ck_assert_msg(parse_text(&s,
+                             "recursion depth 100 cutoff 0\n"
+                             "material m reflect 1\n"
+                             "sphere center 0 0 0 radius 10 material m\n"
+                             "light area position 0 5 0 radius 0.5 "
+                             "samples 1024\n",
+                             &err),
+                  "%s", err.message);
+    render_stats st = {0};
+    vec3 seen = trace(
+        &s, (ray){{0, 0, 0}, vec3_normalize((vec3){0.1, 0.05, 1})}, 0, &st);
+    long long rays = st.reflection_rays + st.shadow_rays +
+                     st.shadow_skipped_alone + st.shadow_skipped_dark;
+    ck_assert_int_eq(st.reflection_rays, (65536 - 1024) / (1 + 1024));
+    ck_assert_msg(rays <= 65536, "%lld rays", rays);
+    ck_assert_int_eq(st.ray_trees_cut, 1);
+    ck_assert(isfinite(seen.x) && isfinite(seen.y) && isfinite(seen.z));
+    scene_free(&s);
+}
+END_TEST
+
 Suite *ch06_robustness_suite(void)
 {
     Suite *s = suite_create("ch06 robustness");
@@ -93,6 +126,8 @@ Suite *ch06_robustness_suite(void)
     tcase_add_checked_fixture(lights, make_tmpdir, remove_tmpdir);
     tcase_add_test(lights, test_the_lights_of_a_point_fit_the_shadow_budget);
     tcase_add_test(lights, test_stats_count_the_samples_the_budget_took);
+    tcase_add_test(lights,
+                   test_a_tree_counts_its_shadow_rays_in_the_ray_budget);
     suite_add_tcase(s, lights);
     return s;
 }

@@ -9,23 +9,35 @@
 #include "offset.h"
 
 /* <<trace helpers>> ch06 */
-/* 2^16 secondary rays for one primary ray: ten times the 6,400 that the
- * default depth and cutoff allow, so it bounds only what they cannot. */
+/* 2^16 rays for one primary ray, shadow rays counted: ten times the 6,400
+ * secondary rays that the default depth and cutoff allow, so it bounds
+ * only what they cannot. */
 #define TRACE_RAY_BUDGET 65536
+
+/* The shadow rays one shaded point may cast: one a light, an area light's
+ * samples (at most the scene's budget of them). */
+static long shadow_rays_per_point(const scene *s)
+{
+    long rays = 0;
+    for (int k = 0; k < s->light_count; k++)
+        rays += s->lights[k].kind == LIGHT_AREA ? s->lights[k].samples : 1;
+    return rays;
+}
 
 /* The rays one primary ray may still spawn, and where they are counted. */
 typedef struct {
     long rays_left;
-    bool cut; /* the budget ran out */
+    long ray_cost; /* a secondary ray and the shadow rays of its hit */
+    bool cut;      /* the budget ran out */
     render_stats *stats;
 } ray_tree;
 
-/* Takes a ray from the tree's budget; false when none is left (counted
- * once for the tree). */
+/* Takes a secondary ray, with its shadow rays, from the tree's budget;
+ * false when they do not fit (counted once for the tree). */
 static bool ray_tree_take(ray_tree *tree)
 {
-    if (tree->rays_left > 0) {
-        tree->rays_left--;
+    if (tree->rays_left >= tree->ray_cost) {
+        tree->rays_left -= tree->ray_cost;
         return true;
     }
     tree->stats->ray_trees_cut += !tree->cut;
@@ -114,6 +126,8 @@ vec3 background_color(const background *bg, vec3 dir)
 vec3 trace(const scene *s, ray r, int depth, render_stats *stats)
 {
     /* <<trace a ray>> ch06 */
-    ray_tree tree = {.rays_left = TRACE_RAY_BUDGET, .stats = stats};
+    long shadows = shadow_rays_per_point(s);
+    ray_tree tree = {.rays_left = TRACE_RAY_BUDGET - shadows, /* its own hit's */
+                     .ray_cost = 1 + shadows, .stats = stats};
     return trace_path(s, r, depth, 1.0, &tree);
 }
