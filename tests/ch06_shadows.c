@@ -613,6 +613,9 @@ START_TEST(test_bad_reflectivity_samples_radius_and_recursion)
     expect_parse_error("light area samples -3\n", 1, 20, "from 1 to 1024");
     expect_parse_error("light area samples 2.5\n", 1, 20, "whole number");
     expect_parse_error("light area samples 1025\n", 1, 20, "from 1 to 1024");
+    /* a whole number too large for its type is out of range all the same */
+    expect_parse_error("light area samples 18446744073709551632\n", 1, 20,
+                       "from 1 to 1024");
     expect_parse_error("light area radius 0\n", 1, 19, "greater than 0");
     expect_parse_error("light area radius -1\n", 1, 19, "greater than 0");
     expect_parse_error("light area radius inf\n", 1, 19, "finite");
@@ -625,6 +628,7 @@ START_TEST(test_bad_reflectivity_samples_radius_and_recursion)
     expect_parse_error("recursion depth -1\n", 1, 17, "from 0 to 100");
     expect_parse_error("recursion depth 101\n", 1, 17, "from 0 to 100");
     expect_parse_error("recursion depth 3.5\n", 1, 17, "whole number");
+    expect_parse_error("recursion depth 1e300\n", 1, 17, "from 0 to 100");
     expect_parse_error("recursion cutoff 2\n", 1, 18, "from 0 to 1");
     expect_parse_error("recursion cutoff -0.5\n", 1, 18, "from 0 to 1");
     expect_parse_error("recursion\n", 1, 10, "'depth' or 'cutoff'");

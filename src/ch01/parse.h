@@ -71,10 +71,9 @@ bool parse_next_token(parser *p);
 /* Is the token just read exactly word? */
 bool parse_token_is(const parser *p, const char *word);
 
-/* The next token as a finite number, a whole number, or a colour (three
- * numbers from 0 to PARSE_MAX_INTENSITY). */
+/* The next token as a finite number, or a colour (three numbers from 0 to
+ * PARSE_MAX_INTENSITY). */
 bool parse_number(parser *p, const char *what, double *out);
-bool parse_int(parser *p, const char *what, long *out);
 bool parse_color(parser *p, const char *what, vec3 *out);
 
 /* Light adds up and is multiplied; keeping every colour and intensity at

@@ -150,18 +150,6 @@ bool parse_number(parser *p, const char *what, double *out)
     return true;
 }
 
-bool parse_int(parser *p, const char *what, long *out)
-{
-    double value;
-    if (!parse_number(p, what, &value))
-        return false;
-    /* 1e15: every whole number up to it is exact in a double */
-    if (value != floor(value) || fabs(value) > 1e15)
-        return parse_expected(p, "expected %s (a whole number)", what);
-    *out = (long)value;
-    return true;
-}
-
 bool parse_color(parser *p, const char *what, vec3 *out)
 {
     double c[3];

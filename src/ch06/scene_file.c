@@ -335,11 +335,9 @@ static bool parse_recursion(parser *p, scene *s)
     do {
         if (parse_token_is(p, "depth")) {
             long depth;
-            if (!parse_int(p, "a recursion depth", &depth))
+            if (!parse_int_in(p, "a recursion depth", 0, SCENE_MAX_DEPTH,
+                              &depth))
                 return false;
-            if (depth < 0 || depth > SCENE_MAX_DEPTH)
-                return parse_expected(p, "expected a recursion depth from "
-                                         "0 to %d", SCENE_MAX_DEPTH);
             s->max_depth = (int)depth;
         } else if (parse_token_is(p, "cutoff")) {
             if (!parse_coefficient(p, "a contribution cutoff", &s->cutoff))

@@ -34,11 +34,9 @@ static bool read_area_setting(parser *p, light *L)
     }
     if (parse_token_is(p, "samples")) {
         long n;
-        if (!parse_int(p, "a number of samples", &n))
+        if (!parse_int_in(p, "a number of samples", 1, AREA_LIGHT_MAX_SAMPLES,
+                          &n))
             return false;
-        if (n < 1 || n > AREA_LIGHT_MAX_SAMPLES)
-            return parse_expected(p, "expected a number of samples from 1 "
-                                     "to %d", AREA_LIGHT_MAX_SAMPLES);
         L->samples = (int)n;
         return true;
     }
