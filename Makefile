@@ -532,7 +532,8 @@ $(foreach n,$(YOURS_NUMS),$(eval $(call yours_chart_rule,$(n))))
 # students: every exercise's code replaced by its stub, in the chapters and
 # the woven book, with the workbook, tests, tools, meshes and figures; a
 # student can make grade there. check-handout (in make test) builds it
-# without the book and finds no solution line in it (but does in src/).
+# without the book and finds no solution line in it, compared without
+# blanks and comments (but does in src/).
 # The folder is made again only when what it is made from has changed
 # (its book.html stands for it), and then without the editions of the
 # old one; the tarball holds the folder with the editions made so far.
