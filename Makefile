@@ -440,8 +440,12 @@ check-charts: | deps
 #   make hint EX=2.1         that exercise's hint
 #   make watch               grade again whenever a workbook file changes
 # WB_DIR and WB_BUILD name another workbook and build folder (the tests).
+# Another compiler or its flags build apart (build/workbook-rel-clang for
+# make CC=clang), as the book's own build does: the objects follow only
+# the text, and one compiler's would be taken as up to date for another's.
 WB_DIR   ?= workbook
-WB_BUILD ?= build/workbook
+WB_TAG   := $(if $(filter build/rel,$(B)),,-$(notdir $(B)))
+WB_BUILD ?= build/workbook$(WB_TAG)
 $(WB_BUILD)/obj/%/tests/ch09_packets.o: TEST_OPT := -O1
 WB_FILES := $(patsubst chapters/%,$(WB_DIR)/%,$(CHAPTERS))
 # The reader's code is graded, not linted: a stub leaves parameters unused.
@@ -614,7 +618,8 @@ check-pdf: $(if $(HAVE_PDF_TOOLS),build/book.pdf)
 check-stubs: $(TANGLE)
 	+@MAKE="$(MAKE)" sh tools/check_stubs.sh
 
-# The workbook's own tests (tools/check_workbook.sh), in build/wbcheck.
+# The workbook's own tests (tools/check_workbook.sh), in build/wbcheck
+# (another compiler's, as make grade's, in a folder of its own).
 # Its grades run side by side, each a make of its own that takes the book's
 # objects of the chapters it grades (and of the chapters before them): this
 # make builds those first, so that no two makes write one object at once.
@@ -624,7 +629,7 @@ WB_CHECK_CHAPTERS := $(LAST) $(call previous,$(LAST)) 06 05
 .PHONY: check-workbook
 check-workbook: $(TANGLE) $(foreach n,$(filter $(NUMS),$(WB_CHECK_CHAPTERS)),$(B)/test/ch$(n) $(BIN)/ch$(n)) \
                 test-ch$(LAST)
-	+@MAKE="$(MAKE)" sh tools/check_workbook.sh
+	+@MAKE="$(MAKE)" WB_CHECK_DIR=build/wbcheck$(WB_TAG) sh tools/check_workbook.sh
 
 # The workbook's program and suites of chapter NN, built from the tangle
 # that tools/grade.sh writes to $(WB_BUILD)/tangle/chNN.

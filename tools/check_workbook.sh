@@ -1,8 +1,8 @@
 #!/bin/sh
 # check_workbook.sh -- the workbook's own tests (make check-workbook, in make test).
 #
-# Usage: MAKE=make tools/check_workbook.sh
-# Works in build/wbcheck/: each check below has a folder of its own there
+# Usage: MAKE=make [WB_CHECK_DIR=DIR] tools/check_workbook.sh
+# Works in DIR (default build/wbcheck/): each check below has a folder of its own there
 # (NAME/wb, the workbook; NAME/build, where make grade builds it,
 # incrementally from one run to the next), and checks 2, 3 and 5 run side
 # by side, check 4 after 3 in its folder (the wrong answers recompile only
@@ -32,7 +32,7 @@
 set -u
 MAKE=${MAKE:-make}
 export SHARDS=1  # the checks run side by side already: one runner each
-top=build/wbcheck
+top=${WB_CHECK_DIR:-build/wbcheck}
 data=tests/data/workbook
 mkdir -p "$top"
 
