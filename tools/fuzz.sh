@@ -20,23 +20,16 @@ run() {
             -close_fd_mask=3 -artifact_prefix="../$1-" \
             > "../$1.log" 2>&1)
 }
-pids=""
 for t in "$@"; do
     echo "== fuzzing $t for $seconds s"
-    run "$t" &
-    pids="$pids $!"
+    (run "$t"; echo $? > "build/fuzz/$t.status") &
 done
+wait
 status=0
 for t in "$@"; do
-    set -- $pids
-    pid=$1
-    shift
-    pids="$*"
-    wait "$pid"
-    found=$?
     grep -E '^(#[0-9]+.*DONE|stat::|==[0-9]+==ERROR|SUMMARY)' \
         "build/fuzz/$t.log" | sed "s/^/$t: /"
-    if [ "$found" != 0 ]; then
+    if [ "$(cat "build/fuzz/$t.status")" != 0 ]; then
         echo "fuzz: $t found a problem: see build/fuzz/$t.log"
         status=1
     fi
