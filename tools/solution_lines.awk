@@ -8,7 +8,10 @@
 # <<chunk>> reference (the book names those in its tasks): the lines a
 # handout must not hold (tools/check_handout.sh). With -v others=1 it
 # prints instead every line of the other code blocks, trimmed: lines such
-# as "return false;" that are no one exercise's secret.
+# as "return false;" that are no one exercise's secret. With -v runs=1 it
+# prints every line that the stub leaves out, whatever its length, and a
+# line "<<>>" where the stub keeps lines and where an exercise ends: the
+# solutions' runs of lines (tools/code_runs.awk).
 
 function emit(    n, i, stub_lines, body_lines, kept, line) {
     n = split(stub_of(body), stub_lines, "\n")
@@ -17,8 +20,17 @@ function emit(    n, i, stub_lines, body_lines, kept, line) {
     n = split(body, body_lines, "\n")
     for (i = 1; i <= n; i++) {
         line = body_lines[i]
-        if (line in kept)
+        if (runs && line ~ /^[ \t]*$/)
             continue
+        if (line in kept) {
+            if (runs)
+                print "<<>>"
+            continue
+        }
+        if (runs) {
+            print line
+            continue
+        }
         gsub(/^[ \t]+|[ \t]+$/, "", line)
         if (length(line) >= 20 && line !~ /^<<.*>>$/)
             print line
@@ -28,6 +40,8 @@ function emit(    n, i, stub_lines, body_lines, kept, line) {
 in_code && $0 ~ "^" fence "[`~]*[ \t]*$" {
     if (is_exercise && !others)
         emit()
+    if (is_exercise && runs)
+        print "<<>>"
     in_code = 0
     next
 }

@@ -244,34 +244,33 @@ static inline void origin_on_axes(const sheared_ray *s, double o[3])
     o[0] = origin[s->kx], o[1] = origin[s->ky], o[2] = origin[s->kz];
 }
 
-/* hit_sheared for the triangle (pa, pb, pc), the same operations in the
- * same order; o is origin_on_axes. */
-static inline bool hit_corners(const sheared_ray *s, const double o[3],
-                               const vec3 *pa, const vec3 *pb,
-                               const vec3 *pc, double t_min, double t_max,
-                               triangle_hit *out)
+/* A triangle's corners in the ray's frame: chapter 4's shear. */
+typedef struct {
+    double ax, ay, az, bx, by, bz, cx, cy, cz;
+} sheared_corners;
+
+/* <<the tightened test of a sheared triangle>> ch09 */
+/* Chapter 4's test of the sheared triangle q, tightened; pa, pb, pc are
+ * its corners as they were, for the check of a zero area. */
+static inline bool hit_sheared_corners(const sheared_ray *s,
+                                       const sheared_corners *q,
+                                       const vec3 *pa, const vec3 *pb,
+                                       const vec3 *pc, double t_min,
+                                       double t_max, triangle_hit *out)
 {
-    const double *a = &pa->x, *b = &pb->x, *c = &pc->x; /* x, y, z each */
-    int kx = s->kx, ky = s->ky, kz = s->kz;
-    double az = a[kz] - o[2], bz = b[kz] - o[2], cz = c[kz] - o[2];
-    double ax = (a[kx] - o[0]) - s->sx * az;
-    double ay = (a[ky] - o[1]) - s->sy * az;
-    double bx = (b[kx] - o[0]) - s->sx * bz;
-    double by = (b[ky] - o[1]) - s->sy * bz;
-    double cx = (c[kx] - o[0]) - s->sx * cz;
-    double cy = (c[ky] - o[1]) - s->sy * cz;
-    /* <<the three edge functions, tightened>> ch09 */
+    double ax = q->ax, ay = q->ay, bx = q->bx, by = q->by;
+    double cx = q->cx, cy = q->cy;
     double u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
-    if ((u == 0) | (v == 0) | (w == 0)) { /* on an edge: decide more precisely */
+    if ((u == 0) | (v == 0) | (w == 0)) { /* on an edge: more precisely */
         u = (double)((wider)cx * by - (wider)cy * bx);
         v = (double)((wider)ax * cy - (wider)ay * cx);
         w = (double)((wider)bx * ay - (wider)by * ax);
     }
     if (((u < 0) | (v < 0) | (w < 0)) & ((u > 0) | (v > 0) | (w > 0)))
         return false; /* signs differ: the ray passes outside an edge */
-    /* <<a tightened hit's t and its checks>> ch09 */
     double det = u + v + w;
-    double t = (u * s->sz * az + v * s->sz * bz + w * s->sz * cz) / det;
+    double t = (u * s->sz * q->az + v * s->sz * q->bz + w * s->sz * q->cz) /
+               det;
     if (!(t > t_min && t < t_max) || det == 0)
         return false; /* outside the interval; or parallel, or degenerate */
     rvec da = rvec_sub(rvec_from(*pa), s->origin);
@@ -281,6 +280,26 @@ static inline bool hit_corners(const sheared_ray *s, const double o[3],
     out->t = t; /* the barycentric coordinates: */
     out->b[0] = u / det, out->b[1] = v / det, out->b[2] = w / det;
     return true;
+}
+
+/* hit_sheared for the triangle (pa, pb, pc), the same operations in the
+ * same order; o is origin_on_axes. */
+static inline bool hit_corners(const sheared_ray *s, const double o[3],
+                               const vec3 *pa, const vec3 *pb,
+                               const vec3 *pc, double t_min, double t_max,
+                               triangle_hit *out)
+{
+    const double *a = &pa->x, *b = &pb->x, *c = &pc->x; /* x, y, z each */
+    int kx = s->kx, ky = s->ky, kz = s->kz;
+    sheared_corners q;
+    q.az = a[kz] - o[2], q.bz = b[kz] - o[2], q.cz = c[kz] - o[2];
+    q.ax = (a[kx] - o[0]) - s->sx * q.az;
+    q.ay = (a[ky] - o[1]) - s->sy * q.az;
+    q.bx = (b[kx] - o[0]) - s->sx * q.bz;
+    q.by = (b[ky] - o[1]) - s->sy * q.bz;
+    q.cx = (c[kx] - o[0]) - s->sx * q.cz;
+    q.cy = (c[ky] - o[1]) - s->sy * q.cz;
+    return hit_sheared_corners(s, &q, pa, pb, pc, t_min, t_max, out);
 }
 
 /* <<the nearest of a leaf's triangles, tightened>> ch09 */

@@ -284,20 +284,38 @@ unsigned triangle_packet_candidates_scalar(const triangle_packet *p,
     return candidates_scalar(p, r, float_interval_of(t_min, t_max));
 }
 
-/* <<deciding the kept lanes>> ch09 */
-/* Chapter 4's test of the triangle c, tightened. */
-static bool hit_in_double(const packet_ray *r, const triangle_corners *c,
-                          double t_min, double t_max, triangle_hit *out)
+/* <<where the kept lanes' corners are read>> ch09 */
+/* Where a kept lane's corners are: a copy beside the packets, in their
+ * order, or (copy NULL) the mesh, through the lane's triangle index. */
+typedef struct {
+    const triangle_corners *copy;
+    const vec3 *vertices;
+    const mesh_triangle *triangles;
+} lane_corners;
+
+/* Chapter 4's test, tightened, of lane k of packet p, triangle i. */
+static bool hit_lane(const packet_ray *r, const lane_corners *from, int p,
+                     int k, int i, double t_min, double t_max,
+                     triangle_hit *out)
 {
-    return triangle_hit_tightened(r->exact, &c->p[0], &c->p[1], &c->p[2],
-                                  t_min, t_max, out);
+    const vec3 *a, *b, *c;
+    if (from->copy != NULL) {
+        const vec3 *corner = from->copy[p * PACKET_W + k].p;
+        a = &corner[0], b = &corner[1], c = &corner[2];
+    } else {
+        const int *v = from->triangles[i].v;
+        a = &from->vertices[v[0]], b = &from->vertices[v[1]];
+        c = &from->vertices[v[2]];
+    }
+    return triangle_hit_tightened(r->exact, a, b, c, t_min, t_max, out);
 }
 
-int triangle_packets_nearest(const packet_ray *r,
-                             const triangle_packet *packets, int count,
-                             const triangle_corners *corners, double t_min,
-                             double t_max, int best, triangle_hit *out,
-                             long long *decided)
+/* <<deciding the kept lanes>> ch09 */
+static int nearest_of_packets(const packet_ray *r,
+                              const triangle_packet *packets, int count,
+                              const lane_corners *from, double t_min,
+                              double t_max, int best, triangle_hit *out,
+                              long long *decided)
 {
     int nearest = -1;
     double reach = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
@@ -306,10 +324,9 @@ int triangle_packets_nearest(const packet_ray *r,
         for (unsigned bits = candidates(&packets[p], r, in); bits != 0;
              bits &= bits - 1) {
             int k = __builtin_ctz(bits), i = packets[p].triangle[k];
-            const triangle_corners *c = &corners[p * PACKET_W + k];
             triangle_hit th;
             ++*decided;
-            if (hit_in_double(r, c, t_min, reach, &th) &&
+            if (hit_lane(r, from, p, k, i, t_min, reach, &th) &&
                 (th.t < t_max || i < best)) { /* a tie: the lower index */
                 *out = th, t_max = th.t, best = i, nearest = i;
                 reach = nextafter(t_max, INFINITY);
@@ -319,33 +336,43 @@ int triangle_packets_nearest(const packet_ray *r,
     return nearest;
 }
 
-bool triangle_packets_any(const packet_ray *r, const triangle_packet *packets,
-                          int count, const triangle_corners *corners,
-                          double t_min, double t_max, long long *decided)
+static bool any_of_packets(const packet_ray *r,
+                           const triangle_packet *packets, int count,
+                           const lane_corners *from, double t_min,
+                           double t_max, long long *decided)
 {
     float_interval in = float_interval_of(t_min, t_max);
     triangle_hit unused;
     for (int p = 0; p < count; p++)
         for (unsigned bits = candidates(&packets[p], r, in); bits != 0;
              bits &= bits - 1) {
-            const triangle_corners *c = &corners[p * PACKET_W +
-                                                 __builtin_ctz(bits)];
+            int k = __builtin_ctz(bits);
             ++*decided;
-            if (hit_in_double(r, c, t_min, t_max, &unused))
+            if (hit_lane(r, from, p, k, packets[p].triangle[k], t_min, t_max,
+                         &unused))
                 return true;
         }
     return false;
 }
 
-/* <<deciding the kept lanes on the mesh's corners>> ch09 */
-/* Chapter 4's test of the mesh's triangle i, tightened. */
-static bool hit_in_mesh(const packet_ray *r, const vec3 *vertices,
-                        const mesh_triangle *triangles, int i, double t_min,
-                        double t_max, triangle_hit *out)
+/* <<deciding the kept lanes of packets and corners>> ch09 */
+int triangle_packets_nearest(const packet_ray *r,
+                             const triangle_packet *packets, int count,
+                             const triangle_corners *corners, double t_min,
+                             double t_max, int best, triangle_hit *out,
+                             long long *decided)
 {
-    const int *v = triangles[i].v;
-    return triangle_hit_tightened(r->exact, &vertices[v[0]], &vertices[v[1]],
-                                  &vertices[v[2]], t_min, t_max, out);
+    lane_corners from = {corners, NULL, NULL};
+    return nearest_of_packets(r, packets, count, &from, t_min, t_max, best,
+                              out, decided);
+}
+
+bool triangle_packets_any(const packet_ray *r, const triangle_packet *packets,
+                          int count, const triangle_corners *corners,
+                          double t_min, double t_max, long long *decided)
+{
+    lane_corners from = {corners, NULL, NULL};
+    return any_of_packets(r, packets, count, &from, t_min, t_max, decided);
 }
 
 int triangle_packets_nearest_in_mesh(const packet_ray *r,
@@ -355,23 +382,9 @@ int triangle_packets_nearest_in_mesh(const packet_ray *r,
                                      double t_min, double t_max, int best,
                                      triangle_hit *out, long long *decided)
 {
-    int nearest = -1;
-    double reach = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
-    float_interval in = float_interval_of(t_min, reach);
-    for (int p = 0; p < count; p++)
-        for (unsigned bits = candidates(&packets[p], r, in); bits != 0;
-             bits &= bits - 1) {
-            int lane = __builtin_ctz(bits), i = packets[p].triangle[lane];
-            triangle_hit th;
-            ++*decided;
-            if (hit_in_mesh(r, vertices, triangles, i, t_min, reach, &th) &&
-                (th.t < t_max || i < best)) { /* a tie: the lower index */
-                *out = th, t_max = th.t, best = i, nearest = i;
-                reach = nextafter(t_max, INFINITY);
-                in = float_interval_of(t_min, reach);
-            }
-        }
-    return nearest;
+    lane_corners from = {NULL, vertices, triangles};
+    return nearest_of_packets(r, packets, count, &from, t_min, t_max, best,
+                              out, decided);
 }
 
 bool triangle_packets_any_in_mesh(const packet_ray *r,
@@ -381,16 +394,6 @@ bool triangle_packets_any_in_mesh(const packet_ray *r,
                                   double t_min, double t_max,
                                   long long *decided)
 {
-    float_interval in = float_interval_of(t_min, t_max);
-    triangle_hit unused;
-    for (int p = 0; p < count; p++)
-        for (unsigned bits = candidates(&packets[p], r, in); bits != 0;
-             bits &= bits - 1) {
-            ++*decided;
-            int lane = __builtin_ctz(bits);
-            if (hit_in_mesh(r, vertices, triangles, packets[p].triangle[lane],
-                            t_min, t_max, &unused))
-                return true;
-        }
-    return false;
+    lane_corners from = {NULL, vertices, triangles};
+    return any_of_packets(r, packets, count, &from, t_min, t_max, decided);
 }
