@@ -15,6 +15,11 @@
  * share of pixels with a channel more than one code away. Time: a whole
  * render (render, one thread, the adaptive pattern's corners prepared
  * each time) per pixel, the methods of a scene taking turns in 5 rounds.
+ * The reference's own error is measured too, as its distance from 1,024
+ * jittered rays a pixel (row SCENE-reference,256, no time); and the tent
+ * against its own converged picture, 256 jittered rays through the tent
+ * (row SCENE-tent-own,16, no time), since against the box's it loses by
+ * construction.
  * Rows, for each scene-method and param (samples, or the threshold):
  *   SCENE-METHOD,PARAM,ns_per_pixel,rays_per_pixel,rays_per_pixel
  *   SCENE-METHOD,PARAM,ns_per_pixel,RMS,rms_codes
@@ -151,15 +156,50 @@ static void code_errors(const image *a, const image *ref, double *rms,
     *share = (double)off / n;
 }
 
+/* The errors of img against ref, as untimed rows METHOD,PARAM. */
+static void untimed_rows(const char *method, const char *param,
+                         const image *img, const image *ref)
+{
+    bench_timing none = {0};
+    double rms, share;
+    code_errors(img, ref, &rms, &share);
+    bench_row(method, param, &none, "%.3f", rms, "rms_codes");
+    bench_row(method, param, &none, "%.4f", share, "share_off");
+}
+
+/* A converged picture of s: side x side jittered rays, through filter. */
+static void converged(scene *s, int side, pixel_filter filter, image *img)
+{
+    if (!image_init(img, s->cam.width, s->cam.height))
+        abort();
+    render_way(s,
+               (pixel_sampling){.pattern = PIXEL_JITTERED, .side = side,
+                                .filter = filter},
+               img);
+}
+
+/* How far the reference is from a finer one, and the tent from its own
+ * converged picture. */
+static void reference_rows(scene *s, const char *name, const image *ref)
+{
+    char method[48];
+    image finer, tent_ref, tent;
+    converged(s, 32, FILTER_BOX, &finer);
+    snprintf(method, sizeof method, "%s-reference", name);
+    untimed_rows(method, "256", ref, &finer);
+    converged(s, 16, FILTER_TENT, &tent_ref);
+    converged(s, 4, FILTER_TENT, &tent);
+    snprintf(method, sizeof method, "%s-tent-own", name);
+    untimed_rows(method, "16", &tent, &tent_ref);
+    image_free(&finer), image_free(&tent_ref), image_free(&tent);
+}
+
 static void bench_scene(const char *name, const char *text)
 {
     scene s;
     bench_load_scene(&s, text, strlen(text), name);
     image ref, img[WAYS_N];
-    if (!image_init(&ref, s.cam.width, s.cam.height))
-        abort();
-    render_way(&s, (pixel_sampling){.pattern = PIXEL_JITTERED, .side = 16},
-               &ref);
+    converged(&s, 16, FILTER_BOX, &ref);
     long pixels = (long)s.cam.width * s.cam.height;
     way_case ctx[WAYS_N];
     bench_case cases[WAYS_N];
@@ -187,6 +227,7 @@ static void bench_scene(const char *name, const char *text)
                   "share_off");
         image_free(&img[k]);
     }
+    reference_rows(&s, name, &ref);
     fflush(stdout);
     image_free(&ref);
     scene_free(&s);

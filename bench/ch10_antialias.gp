@@ -3,7 +3,8 @@
 # stem.svg: for each way of sampling a pixel, its rays per pixel (left) and
 # its time per pixel (right) against the rms error of its 8-bit codes from
 # 256 jittered rays a pixel; the twenty spheres above, the checkered floor
-# below. One series per pattern; the adaptive points labelled by threshold.
+# below. One series per pattern; the adaptive points labelled by threshold;
+# a dashed line at the reference's own error.
 load "bench/chart.gp"
 set terminal svg size 980,820 font "Helvetica,12" background "white"
 set output stem.'.svg'
@@ -31,6 +32,10 @@ do for [sc in "spheres checker"] {
       x = 3
     }
     if (sc eq "spheres" && panel eq "rays") { eval machine_label } else { unset label 100 }
+    # the own error of the reference (its distance from 1,024 rays): a floor
+    floor = real(system(sprintf("awk -F, '$1 == \"%s-reference\" && $5 == \"rms_codes\" {print $4}' %s", sc, csv)))
+    set arrow 1 from graph 0, first floor to graph 1, first floor nohead dt 2 lc rgb "#666666"
+    set label 1 "own error of the reference" at graph 0.02, first floor offset 0,0.6 font ",9" tc rgb "#666666"
     plot rows(sc, "center") using x:2 with points pt 13 ps 1.6 lc rgb "#000000" title "centre (one ray)", \
          rows(sc, "grid") using x:2 with linespoints pt 9 ps 1.2 lw 2 lc rgb "#7570b3" title "grid", \
          rows(sc, "jittered") using x:2 with linespoints pt 7 ps 1.0 lw 2 lc rgb "#1b9e77" title "jittered", \
