@@ -22,8 +22,12 @@
  *   bvh4-double-mesh  the same, the corners read from the mesh through
  *                the triangles' indices instead of a copy;
  *   bvh2|4|8     the BVH, binary, 4 and 8 wide, with leaves of packets;
- *   embree       rtcIntersect1 (Embree's BVH, RTC_BUILD_QUALITY_HIGH, a
- *                device with threads=1);
+ *   embree       rtcIntersect1 (Embree's BVH, RTC_BUILD_QUALITY_HIGH, its
+ *                spatial-split builder, a device with threads=1; the
+ *                scene without RTC_SCENE_FLAG_ROBUST, as Embree's
+ *                default: its faster, not watertight, traversal);
+ *   embree-medium  the same at RTC_BUILD_QUALITY_MEDIUM, Embree's default
+ *                build (binned SAH, no spatial splits);
  * and by any hit (shadow rays, to infinity): kdtree-any, bvh-any (the
  * default width) and embree-any (rtcOccluded1). Times come from the
  * harness (bench/timing.h): one operation is one ray, every batch whole
@@ -56,10 +60,11 @@ enum { SIDE = 1024, FAILURE_SIDE = 256 };
 
 /* ---------------------------------------------------------------- Embree */
 
-static RTCScene embree_scene(RTCDevice device, const mesh *m)
+static RTCScene embree_scene(RTCDevice device, const mesh *m,
+                             enum RTCBuildQuality quality)
 {
     RTCScene scene = rtcNewScene(device);
-    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
+    rtcSetSceneBuildQuality(scene, quality);
     RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
     float *v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                        3 * sizeof(float), (size_t)m->vertex_count);
@@ -73,7 +78,7 @@ static RTCScene embree_scene(RTCDevice device, const mesh *m)
     for (int k = 0; k < m->triangle_count; k++)
         for (int c = 0; c < 3; c++)
             ix[3 * k + c] = (unsigned)m->triangles[k].v[c];
-    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
+    rtcSetGeometryBuildQuality(g, quality);
     rtcCommitGeometry(g);
     rtcAttachGeometry(scene, g);
     rtcReleaseGeometry(g);
@@ -89,16 +94,22 @@ typedef struct {
     kind kind;
     int width; /* of a BVH */
     bool any;  /* shadow rays: any hit */
+    bool medium; /* Embree: its default build, MEDIUM, not HIGH */
 } method;
 
 static const method METHODS[] = {
-    {"kdtree-ch08", KDTREE_CH08, 0, false}, {"kdtree", KDTREE, 0, false},
-    {"bvh4-double", BVH_DOUBLE, 4, false},  {"bvh4-double-mesh", BVH_DOUBLE_MESH, 4, false},
-    {"bvh2", BVH, 2, false},
-    {"bvh4", BVH, 4, false},
-    {"bvh8", BVH, 8, false},                {"embree", EMBREE, 0, false},
-    {"kdtree-any", KDTREE, 0, true},        {"bvh-any", BVH, BVH_WIDTH, true},
-    {"embree-any", EMBREE, 0, true},
+    {"kdtree-ch08", KDTREE_CH08, 0, false, false},
+    {"kdtree", KDTREE, 0, false, false},
+    {"bvh4-double", BVH_DOUBLE, 4, false, false},
+    {"bvh4-double-mesh", BVH_DOUBLE_MESH, 4, false, false},
+    {"bvh2", BVH, 2, false, false},
+    {"bvh4", BVH, 4, false, false},
+    {"bvh8", BVH, 8, false, false},
+    {"embree", EMBREE, 0, false, false},
+    {"embree-medium", EMBREE, 0, false, true},
+    {"kdtree-any", KDTREE, 0, true, false},
+    {"bvh-any", BVH, BVH_WIDTH, true, false},
+    {"embree-any", EMBREE, 0, true, false},
 };
 enum { N_METHODS = sizeof METHODS / sizeof METHODS[0] };
 
@@ -111,7 +122,7 @@ typedef struct {
     mesh bvh_double;      /* 4 wide, leaves of doubles: see double_leaves */
     triangle_corners *corners; /* bvh_double's, lane by lane */
     int *lane_items;           /* the triangle of each lane */
-    RTCScene scene;
+    RTCScene scene, scene_medium; /* HIGH, MEDIUM */
     bool few_methods; /* the failure meshes: kdtree, bvh4, embree */
 } subject;
 
@@ -217,17 +228,18 @@ static double double_leaves_ray(const subject *s, const mesh_ray *mr, bool from_
 static double embree_ray(const trace_ctx *c, long k, struct RTCIntersectContext *context)
 {
     const float_ray *f = &c->rays[k];
+    RTCScene scene = c->how->medium ? c->s->scene_medium : c->s->scene;
     struct RTCRayHit rh;
     rh.ray.org_x = f->o[0], rh.ray.org_y = f->o[1], rh.ray.org_z = f->o[2];
     rh.ray.dir_x = f->d[0], rh.ray.dir_y = f->d[1], rh.ray.dir_z = f->d[2];
     rh.ray.tnear = 0, rh.ray.tfar = INFINITY;
     rh.ray.mask = 0xffffffffu, rh.ray.flags = 0, rh.ray.time = 0;
     if (c->how->any) {
-        rtcOccluded1(c->s->scene, context, &rh.ray);
+        rtcOccluded1(scene, context, &rh.ray);
         return rh.ray.tfar < 0 ? 0 : INFINITY; /* -inf marks a hit */
     }
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(c->s->scene, context, &rh);
+    rtcIntersect1(scene, context, &rh);
     return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : INFINITY;
 }
 
@@ -266,6 +278,7 @@ typedef struct {
     const mesh *m;
     RTCDevice device;
     kind kind;
+    enum RTCBuildQuality quality; /* Embree's */
 } build_ctx;
 
 static void run_build(void *ctx, long reps)
@@ -273,7 +286,7 @@ static void run_build(void *ctx, long reps)
     const build_ctx *c = ctx;
     for (long r = 0; r < reps; r++) {
         if (c->kind == EMBREE) {
-            RTCScene scene = embree_scene(c->device, c->m);
+            RTCScene scene = embree_scene(c->device, c->m, c->quality);
             rtcCommitScene(scene);
             rtcReleaseScene(scene);
             continue;
@@ -292,21 +305,25 @@ static void run_build(void *ctx, long reps)
 
 static void time_builds(const subject *s, RTCDevice device)
 {
-    const char *names[3] = {"kdtree-build", "bvh-build", "embree-build"};
-    const kind kinds[3] = {KDTREE, BVH, EMBREE};
-    build_ctx ctx[3];
-    bench_case c[3];
-    bench_timing t[3];
-    for (int k = 0; k < 3; k++) {
-        ctx[k] = (build_ctx){&s->m, device, kinds[k]};
+    enum { N = 4, YARDSTICK = 2 };
+    const char *names[N] = {"kdtree-build", "bvh-build", "embree-build",
+                            "embree-medium-build"};
+    const kind kinds[N] = {KDTREE, BVH, EMBREE, EMBREE};
+    build_ctx ctx[N];
+    bench_case c[N];
+    bench_timing t[N];
+    for (int k = 0; k < N; k++) {
+        ctx[k] = (build_ctx){&s->m, device, kinds[k],
+                             k == 3 ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_HIGH};
         c[k] = (bench_case){names[k], s->name, run_build, &ctx[k], 1};
     }
-    bench_time_cases(c, 3, t);
-    for (int k = 0; k < 3; k++)
+    bench_time_cases(c, N, t);
+    for (int k = 0; k < N; k++)
         bench_row(c[k].method, s->name, &t[k], "%.3f", t[k].median / 1e6, "build_ms");
-    for (int k = 0; k < 2; k++)
-        printf("ratio,%s@%s,0,%.4f,build_over_embree\n", names[k], s->name,
-               t[k].median / t[2].median);
+    for (int k = 0; k < N; k++)
+        if (k != YARDSTICK)
+            printf("ratio,%s@%s,0,%.4f,build_over_embree\n", names[k], s->name,
+                   t[k].median / t[YARDSTICK].median);
     fflush(stdout);
 }
 
@@ -350,7 +367,7 @@ static void print_agreement(const trace_ctx *c, int n, const char *param)
         printf("hits,%s,0,%ld,%s_disagrees_with_kdtree\n", param, differ, c[j].how->name);
     }
     for (int j = 0; j < n; j++)
-        if (c[j].how->kind == EMBREE && !c[j].how->any) {
+        if (c[j].how->kind == EMBREE && !c[j].how->any && !c[j].how->medium) {
             long differ = 0;
             for (long k = 0; k < n_rays; k++) {
                 float a = t[ours][k], b = t[j][k];
@@ -369,9 +386,9 @@ static void print_rays(const trace_ctx *c, const bench_case *cases, const bench_
         bench_row(cases[j].method, cases[j].param, &t[j], "%.4f", 1e3 / t[j].median,
                   "mrays_per_s");
     for (int j = 0; j < n; j++) {
-        if (c[j].how->kind == EMBREE)
-            continue;
         const char *yardstick = c[j].how->any ? "embree-any" : "embree";
+        if (strcmp(c[j].how->name, yardstick) == 0)
+            continue;
         for (int e = 0; e < n; e++)
             if (strcmp(c[e].how->name, yardstick) == 0)
                 printf("ratio,%s@%s,0,%.4f,over_embree\n", c[j].how->name, cases[j].param,
@@ -444,8 +461,10 @@ static void prepare(subject *s, RTCDevice device)
             exit(1);
     }
     double_leaves(s);
-    s->scene = embree_scene(device, &s->m);
+    s->scene = embree_scene(device, &s->m, RTC_BUILD_QUALITY_HIGH);
     rtcCommitScene(s->scene);
+    s->scene_medium = embree_scene(device, &s->m, RTC_BUILD_QUALITY_MEDIUM);
+    rtcCommitScene(s->scene_medium);
 }
 
 static void release(subject *s)
@@ -454,7 +473,7 @@ static void release(subject *s)
         mesh_free_tree(&s->bvh_of_width[w]);
     mesh_free_tree(&s->bvh_double);
     free(s->corners), free(s->lane_items);
-    rtcReleaseScene(s->scene);
+    rtcReleaseScene(s->scene), rtcReleaseScene(s->scene_medium);
     mesh_free(&s->m);
 }
 

@@ -32,8 +32,8 @@ typedef struct {
                                  lanes): the costs count groups; 0: 1 */
 } bvh_params;
 
-/* Four: no slower than eight on the bunny in a build without AVX (the
- * one measured below; with AVX, unmeasured), and half the node. */
+/* Four: eight is a few per cent faster on the bunny in a build without
+ * AVX (measured below; with AVX, unmeasured), and four is half the node. */
 #define BVH_WIDTH 4
 #define BVH_MAX_BINS 64
 /* The build cuts in the middle below this depth: the walk's stack has
