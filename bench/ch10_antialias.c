@@ -9,7 +9,11 @@
  * For each: one ray through each centre; the regular grid of 2 x 2, 4 x 4
  * and 8 x 8 rays; jittered rays, 2 x 2 to 8 x 8; jittered 4 x 4 with the
  * tent filter; and the adaptive pattern at depth 3 with thresholds from
- * 0.2 to 0.01 (and 0.02 at depth 4). The reference is 16 x 16 jittered
+ * 0.2 to 0.01 (and 0.02 at depth 4); and the adaptive pattern at its
+ * defaults (threshold 0.05, depth 3) with the two remedies for corners
+ * that alias: a minimum depth (adaptive-min, PARAM the minimum depth, 1
+ * or 2) and jittered corners (adaptive-jittered, PARAM the minimum depth,
+ * 0 or 1). The reference is 16 x 16 jittered
  * rays a pixel, box filter. Errors: the rms difference of the 8-bit sRGB
  * codes from the reference's, over every channel of every pixel; and the
  * share of pixels with a channel more than one code away. Time: a whole
@@ -20,7 +24,8 @@
  * against its own converged picture, 256 jittered rays through the tent
  * (row SCENE-tent-own,16, no time), since against the box's it loses by
  * construction.
- * Rows, for each scene-method and param (samples, or the threshold):
+ * Rows, for each scene-method and param (samples, the threshold, or the
+ * minimum depth):
  *   SCENE-METHOD,PARAM,ns_per_pixel,rays_per_pixel,rays_per_pixel
  *   SCENE-METHOD,PARAM,ns_per_pixel,RMS,rms_codes
  *   SCENE-METHOD,PARAM,ns_per_pixel,SHARE,share_off
@@ -84,12 +89,17 @@ typedef struct {
     pixel_sampling ps;
 } way;
 
-#define GRID(n) {PIXEL_GRID, n, FILTER_BOX, 0, 0, 0, false, 0}
-#define JITTER(n) {PIXEL_JITTERED, n, FILTER_BOX, 0, 0, 0, false, 0}
-#define ADAPTIVE(t, d) {PIXEL_ADAPTIVE, 1, FILTER_BOX, t, d, 0, false, 0}
+#define GRID(n) {.pattern = PIXEL_GRID, .side = n}
+#define JITTER(n) {.pattern = PIXEL_JITTERED, .side = n}
+#define ADAPTIVE(t, d) {.pattern = PIXEL_ADAPTIVE, .threshold = t, .depth = d}
+/* The default adaptive pattern with a minimum depth m, its points on the
+ * grid or jittered. */
+#define ADAPTIVE_MIN(m, jitter)                                        \
+    {.pattern = PIXEL_ADAPTIVE, .threshold = 0.05, .depth = 3,          \
+     .min_depth = m, .jittered_corners = jitter}
 
 static const way WAYS[] = {
-    {"center", "1", {PIXEL_CENTER, 1, FILTER_BOX, 0, 0, 0, false, 0}},
+    {"center", "1", {.pattern = PIXEL_CENTER, .side = 1}},
     {"grid", "4", GRID(2)},
     {"grid", "16", GRID(4)},
     {"grid", "64", GRID(8)},
@@ -100,13 +110,18 @@ static const way WAYS[] = {
     {"jittered", "36", JITTER(6)},
     {"jittered", "49", JITTER(7)},
     {"jittered", "64", JITTER(8)},
-    {"tent", "16", {PIXEL_JITTERED, 4, FILTER_TENT, 0, 0, 0, false, 0}},
+    {"tent", "16", {.pattern = PIXEL_JITTERED, .side = 4,
+                    .filter = FILTER_TENT}},
     {"adaptive", "0.2", ADAPTIVE(0.2, 3)},
     {"adaptive", "0.1", ADAPTIVE(0.1, 3)},
     {"adaptive", "0.05", ADAPTIVE(0.05, 3)},
     {"adaptive", "0.02", ADAPTIVE(0.02, 3)},
     {"adaptive", "0.01", ADAPTIVE(0.01, 3)},
     {"adaptive-d4", "0.02", ADAPTIVE(0.02, 4)},
+    {"adaptive-min", "1", ADAPTIVE_MIN(1, false)},
+    {"adaptive-min", "2", ADAPTIVE_MIN(2, false)},
+    {"adaptive-jittered", "0", ADAPTIVE_MIN(0, true)},
+    {"adaptive-jittered", "1", ADAPTIVE_MIN(1, true)},
 };
 enum { WAYS_N = sizeof WAYS / sizeof WAYS[0] };
 

@@ -401,6 +401,107 @@ START_TEST(test_a_sphere_between_corners_is_missed_without_a_minimum_depth)
 }
 END_TEST
 
+/* The spacing, in pixels, of the coarsest division of a pixel (into
+ * 2^d x 2^d squares, d = 0 to depth) that has point (a, b) of the finest,
+ * 2^depth steps a side, for a corner. */
+static double spacing_of(int a, int b, int depth)
+{
+    int n = 1 << depth;
+    for (int d = 0; d < depth; d++) {
+        int step = n >> d; /* finest steps in a square of depth d */
+        if (a % step == 0 && b % step == 0)
+            return 1.0 / (1 << d);
+    }
+    return 1.0 / n;
+}
+
+START_TEST(test_jittered_points_are_shared_and_stay_near_their_place)
+{
+    pixel_sampling grid = {.pattern = PIXEL_ADAPTIVE, .depth = 3};
+    pixel_sampling jittered = grid;
+    jittered.jittered_corners = true;
+    double widest = 0; /* the largest move, in halves of the spacing */
+    for (int i = 0; i < 6; i++)
+        for (int j = 0; j < 6; j++)
+            for (int a = 0; a <= 8; a++)
+                for (int b = 0; b <= 8; b++) {
+                    double u, v, u0, v0, un, vn;
+                    pixel_point_at(&grid, i, j, a, b, &u0, &v0);
+                    ck_assert(u0 == i + a / 8.0 && v0 == j + b / 8.0);
+                    pixel_point_at(&jittered, i, j, a, b, &u, &v);
+                    double half = spacing_of(a, b, 3) / 2;
+                    ck_assert_msg(fabs(u - u0) < half && fabs(v - v0) < half,
+                                  "(%d, %d) of (%d, %d) moved too far", a, b,
+                                  i, j);
+                    widest = fmax(widest, fmax(fabs(u - u0), fabs(v - v0)) /
+                                              half);
+                    if (a == 8) { /* the right neighbour's left side */
+                        pixel_point_at(&jittered, i + 1, j, 0, b, &un, &vn);
+                        ck_assert(un == u && vn == v);
+                    }
+                    if (b == 8) { /* the lower neighbour's top */
+                        pixel_point_at(&jittered, i, j + 1, a, 0, &un, &vn);
+                        ck_assert(un == u && vn == v);
+                    }
+                }
+    ck_assert_msg(widest > 0.9, "the points keep to %.2f of their room",
+                  widest);
+}
+END_TEST
+
+/* A sphere of 0.4 pixel across at the centre of every pixel of a 20 x 15
+ * image: a pattern with the period of the corners, all of which miss it;
+ * the adaptive pattern's corners on the grid or jittered. */
+static void spheres_at_every_centre(scene *s, bool jittered)
+{
+    scene probe;
+    scene_init(&probe);
+    probe.cam.width = 20, probe.cam.height = 15;
+    double across = 10 * camera_pixel_size(&probe.cam); /* a pixel at 10 */
+    size_t size = 20 * 15 * 160 + 256, used = 0;
+    char *text = malloc(size);
+    ck_assert(text != NULL);
+    used += (size_t)snprintf(text, size,
+                             "image 20 15\nbackground 0.1 0.1 0.1\n"
+                             "pixel pattern adaptive corners %s\n",
+                             jittered ? "jittered" : "grid");
+    for (int j = 0; j < 15; j++)
+        for (int i = 0; i < 20; i++) {
+            vec3 c = vec3_scale(camera_ray(&probe.cam, i, j).dir, 10);
+            used += (size_t)snprintf(text + used, size - used,
+                                     "sphere center %.17g %.17g %.17g "
+                                     "radius %.17g color 1 1 1\n",
+                                     c.x, c.y, c.z, 0.2 * across);
+            ck_assert(used < size);
+        }
+    scene_free(&probe);
+    parse_ok(s, text);
+    free(text);
+}
+
+START_TEST(test_jittered_corners_see_a_pattern_the_grid_corners_alias_away)
+{
+    for (int jittered = 0; jittered <= 1; jittered++) {
+        scene s;
+        image img;
+        spheres_at_every_centre(&s, jittered);
+        render_scene(&s, &img, 1);
+        int seen = 0; /* pixels where some sphere shows */
+        for (int k = 0; k < 20 * 15; k++)
+            seen += img.pixels[k].x != 0.1;
+        /* on the grid, no corner meets a sphere, and no pixel is divided;
+         * a corner jittered by up to half a pixel meets one an eighth of
+         * the time, and then its four pixels are divided */
+        if (jittered)
+            ck_assert_msg(seen > 20 * 15 / 4, "%d pixels of 300", seen);
+        else
+            ck_assert_int_eq(seen, 0);
+        image_free(&img);
+        scene_free(&s);
+    }
+}
+END_TEST
+
 /* The sRGB encoding, written out here from its definition. */
 static double srgb(double x)
 {
@@ -455,6 +556,8 @@ static const bad_case BAD[] = {
     {"pixel pattern adaptive filter tent", "filter", "grid and jittered"},
     {"pixel pattern grid filter gauss", "gauss", "expected a filter"},
     {"pixel heatmap 0", "0", "number of rays"},
+    {"pixel pattern adaptive corners random", "random", "expected corners"},
+    {"pixel pattern jittered corners jittered", "corners", "adaptive"},
     {"pixel pattern grid\npixel pattern jittered", "pixel",
      "second pixel statement"},
 };
@@ -633,6 +736,11 @@ Suite *ch10_antialiasing_suite(void)
         test_a_sphere_between_corners_is_missed_without_a_minimum_depth);
     tcase_add_test(failures,
                    test_dark_edges_differ_in_srgb_not_in_linear_light);
+    tcase_add_test(failures,
+                   test_jittered_points_are_shared_and_stay_near_their_place);
+    tcase_add_test(
+        failures,
+        test_jittered_corners_see_a_pattern_the_grid_corners_alias_away);
     suite_add_tcase(s, failures);
     TCase *bad = tcase_create("bad input");
     tcase_add_checked_fixture(bad, make_tmpdir, remove_tmpdir);

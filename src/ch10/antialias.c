@@ -42,6 +42,31 @@ void pixel_sample_at(const pixel_sampling *ps, int i, int j, int k,
     *u = i + x, *v = j + y;
 }
 
+/* <<point positions>> ch10 */
+
+/* The spacing, in steps of the finest division of n steps a side, of
+ * the coarsest division that has point (a, b) for a corner. */
+static int point_spacing(int a, int b, int n)
+{
+    int h = n;
+    while (a % h != 0 || b % h != 0)
+        h /= 2;
+    return h;
+}
+
+void pixel_point_at(const pixel_sampling *ps, int i, int j, int a, int b,
+                    double *u, double *v)
+{
+    int n = 1 << ps->depth;
+    *u = i + (double)a / n, *v = j + (double)b / n;
+    if (!ps->jittered_corners)
+        return;
+    int gi = i * n + a, gj = j * n + b; /* the same from every side */
+    double h = (double)point_spacing(a, b, n) / n;
+    *u += (pixel_random(gi, gj, PIXEL_MAX_RAYS, 0) - 0.5) * h;
+    *v += (pixel_random(gi, gj, PIXEL_MAX_RAYS, 1) - 0.5) * h;
+}
+
 /* <<the tent warp>> ch10 */
 double tent_warp(double x)
 {

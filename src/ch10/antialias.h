@@ -23,6 +23,14 @@ int pixel_sample_count(const pixel_sampling *ps);
 void pixel_sample_at(const pixel_sampling *ps, int i, int j, int k,
                      double *u, double *v);
 
+/* Where the adaptive pattern traces point (a, b) of pixel (i, j), the
+ * point (i + a/2^depth, j + b/2^depth) of its finest division: there, or
+ * with ps->jittered_corners moved at random by less than half the
+ * spacing of the coarsest division it belongs to; the same place for
+ * every pixel that shares it. */
+void pixel_point_at(const pixel_sampling *ps, int i, int j, int a, int b,
+                    double *u, double *v);
+
 /* x in [0, 1) to an offset in (-1, 1) distributed as the tent 1 - |t|. */
 double tent_warp(double x);
 

@@ -36,6 +36,7 @@ typedef struct {
     double threshold;      /* adaptive: sRGB difference left undivided */
     int depth, min_depth;  /* adaptive: the deepest division, the least */
     bool linear;           /* adaptive: compare linear light instead */
+    bool jittered_corners; /* adaptive: each point moved at random */
     int heatmap;           /* > 0: draw rays per pixel, white at this */
 } pixel_sampling;
 

@@ -8,7 +8,7 @@
 /* Where each setting was given in the statement; NULL: it was not. */
 typedef struct {
     const char *samples, *pattern, *filter, *threshold, *depth, *min_depth,
-        *heatmap;
+        *corners, *heatmap;
 } pixel_words;
 
 /* The token just read names a setting seen already? Else remember it. */
@@ -64,6 +64,7 @@ static bool read_pixel_setting(parser *p, pixel_sampling *ps,
     static const char *const patterns[] = {"center", "grid", "jittered",
                                            "adaptive"};
     static const char *const filters[] = {"box", "tent"};
+    static const char *const corners[] = {"grid", "jittered"};
     int k = 0; /* read_name sets it before use; the compiler cannot see so */
     if (parse_token_is(p, "samples"))
         return once(p, &w->samples) && read_samples(p, &ps->side);
@@ -87,13 +88,17 @@ static bool read_pixel_setting(parser *p, pixel_sampling *ps,
         return once(p, &w->min_depth) &&
                read_int_setting(p, "a minimum depth", 0, PIXEL_MAX_DEPTH,
                                 &ps->min_depth);
+    if (parse_token_is(p, "corners"))
+        return once(p, &w->corners) &&
+               read_name(p, corners, 2, "corners (grid, jittered)", &k) &&
+               (ps->jittered_corners = k == 1, true);
     if (parse_token_is(p, "heatmap"))
         return once(p, &w->heatmap) &&
                read_int_setting(p, "a number of rays", 1, PIXEL_MAX_RAYS,
                                 &ps->heatmap);
     return parse_expected(p, "expected a pixel setting (samples, pattern, "
                              "filter, threshold, depth, min_depth, "
-                             "heatmap)");
+                             "corners, heatmap)");
 }
 
 /* <<checking the pixel settings>> ch10 */
@@ -105,6 +110,7 @@ static bool check_pixel_settings(parser *p, const pixel_sampling *ps,
     bool adaptive = ps->pattern == PIXEL_ADAPTIVE;
     const char *only_adaptive = w->threshold ? w->threshold
                                 : w->depth   ? w->depth
+                                : w->corners ? w->corners
                                              : w->min_depth;
     if (w->samples && !sampled)
         return parse_fail_at(p, w->samples, "samples are for the grid and "
@@ -113,9 +119,9 @@ static bool check_pixel_settings(parser *p, const pixel_sampling *ps,
         return parse_fail_at(p, w->filter, "a filter is for the grid and "
                                            "jittered patterns");
     if (only_adaptive && !adaptive)
-        return parse_fail_at(p, only_adaptive, "threshold, depth and "
-                                               "min_depth are for the "
-                                               "adaptive pattern");
+        return parse_fail_at(p, only_adaptive, "threshold, depth, "
+                                               "min_depth and corners are "
+                                               "for the adaptive pattern");
     if (ps->min_depth > ps->depth)
         return parse_fail_at(p, w->min_depth, "expected a minimum depth "
                                               "no deeper than the depth, "

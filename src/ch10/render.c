@@ -81,8 +81,11 @@ enum { STRIP = 256 }; /* columns of corners a band keeps at a time */
 static void corner_row(const scene *s, const camera_view *view, int i0,
                        int i1, int j, vec3 *row, render_stats *stats)
 {
-    for (int i = i0; i <= i1; i++)
-        row[i - i0] = color_at(s, view, i, j, stats);
+    for (int i = i0; i <= i1; i++) {
+        double u, v;
+        pixel_point_at(&s->pixels, i, j, 0, 0, &u, &v);
+        row[i - i0] = color_at(s, view, u, v, stats);
+    }
 }
 /* <<the points of a pixel>> ch10 */
 
@@ -102,8 +105,9 @@ typedef struct {
 static vec3 point_color(pixel_points *p, int a, int b)
 {
     if (!p->traced[b][a]) {
-        p->color[b][a] = color_at(p->s, p->view, p->i + (double)a / p->cells,
-                                  p->j + (double)b / p->cells, p->stats);
+        double u, v;
+        pixel_point_at(&p->s->pixels, p->i, p->j, a, b, &u, &v);
+        p->color[b][a] = color_at(p->s, p->view, u, v, p->stats);
         p->traced[b][a] = true;
         p->rays++;
     }
