@@ -771,7 +771,8 @@ Suite *ch01_robustness_suite(void)
     tcase_add_test(where, test_a_replaced_file_keeps_its_mode);
     tcase_add_test(where, test_a_read_only_file_is_not_replaced);
     tcase_add_test(where, test_a_signal_leaves_no_temporary_file);
-    tcase_add_test(where, test_a_long_render_shows_progress_lines_in_a_log);
+    tcase_add_slow_test(where,
+                        test_a_long_render_shows_progress_lines_in_a_log);
     suite_add_tcase(s, where);
 
     TCase *input = tcase_create("hostile input files");

@@ -808,7 +808,7 @@ Suite *ch04_triangles_suite(void)
     tcase_add_test(bad, test_obj_rejects_bad_indices);
     tcase_add_test(bad, test_obj_rejects_short_faces_and_bad_numbers);
     tcase_add_test(bad, test_obj_reports_a_missing_file);
-    tcase_add_test(bad, test_obj_rejects_more_vertices_than_the_limit);
+    tcase_add_slow_test(bad, test_obj_rejects_more_vertices_than_the_limit);
     tcase_add_test(bad, test_triangle_and_mesh_statements);
     tcase_add_test(bad, test_triangle_and_mesh_statements_reject_bad_input);
     tcase_add_test(bad, test_cli_reports_obj_errors_and_writes_nothing);

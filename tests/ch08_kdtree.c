@@ -1331,8 +1331,8 @@ Suite *ch08_kdtree_suite(void)
     tcase_set_timeout(agree, 120);
     tcase_add_test(agree, test_trees_over_zero_one_and_two_triangles);
     tcase_add_test(agree, test_sweep_and_sorting_builds_make_the_same_tree);
-    tcase_add_test(agree, test_tree_agrees_with_brute_force_on_the_teapot);
-    tcase_add_test(agree, test_tree_agrees_with_brute_force_on_the_bunny);
+    tcase_add_slow_test(agree, test_tree_agrees_with_brute_force_on_the_teapot);
+    tcase_add_slow_test(agree, test_tree_agrees_with_brute_force_on_the_bunny);
     tcase_add_test(agree, test_tree_agrees_with_brute_force_on_a_plane);
     tcase_add_test(agree,
                    test_tree_agrees_with_brute_force_on_rays_in_split_planes);
@@ -1352,7 +1352,8 @@ Suite *ch08_kdtree_suite(void)
     tcase_add_test(edges,
                    test_a_hit_on_a_split_plane_is_not_lost_between_two_leaves);
     tcase_add_test(edges, test_a_flat_cell_is_not_skipped);
-    tcase_add_test(edges, test_degenerate_input_keeps_depth_and_memory_bounded);
+    tcase_add_slow_test(edges,
+                        test_degenerate_input_keeps_depth_and_memory_bounded);
     tcase_add_test(edges,
                    test_a_ray_through_a_shared_vertex_tests_every_triangle);
     suite_add_tcase(s, edges);
@@ -1366,7 +1367,7 @@ Suite *ch08_kdtree_suite(void)
     tcase_add_checked_fixture(bad, make_tmpdir, remove_tmpdir);
     tcase_set_timeout(bad, 120);
     tcase_add_test(bad, test_chapters_7_and_8_draw_ties_alike);
-    tcase_add_test(bad, test_stats_hint_an_over_fine_mesh);
+    tcase_add_slow_test(bad, test_stats_hint_an_over_fine_mesh);
     tcase_add_test(bad, test_kdtree_statement_sets_the_parameters);
     tcase_add_test(bad, test_kdtree_statement_rejects_bad_settings);
     tcase_add_test(bad, test_the_trees_count_against_the_geometry_budget);

@@ -747,7 +747,7 @@ Suite *ch09_bvh_suite(void)
     tcase_set_timeout(agree, 120);
     tcase_add_test(agree,
                    test_bvh_agrees_with_brute_force_and_kdtree_on_the_teapot);
-    tcase_add_test(agree,
+    tcase_add_slow_test(agree,
                    test_bvh_agrees_with_brute_force_and_kdtree_on_the_bunny);
     tcase_add_test(agree, test_bvh_agrees_on_coincident_triangles_near_and_far);
     tcase_add_test(agree, test_bvh_agrees_on_fans_through_one_vertex);

@@ -633,7 +633,7 @@ Suite *ch09_packets_suite(void)
     suite_add_tcase(s, leaves);
     TCase *packets = tcase_create("packets");
     tcase_set_timeout(packets, 120);
-    tcase_add_test(packets,
+    tcase_add_slow_test(packets,
                    test_the_float_filter_keeps_every_triangle_double_hits);
     tcase_add_test(packets, test_packets_find_what_the_double_leaf_test_finds);
     tcase_add_test(packets, test_packets_leak_no_edge_aimed_ray);

@@ -727,7 +727,7 @@ Suite *ch10_antialiasing_suite(void)
     tcase_add_test(renders, test_the_default_is_chapter_9s_picture);
     tcase_add_test(renders, test_thread_counts_give_the_same_image);
     tcase_add_test(renders, test_stats_report_rays_per_pixel_and_depths);
-    tcase_add_test(renders, test_the_progress_line_gives_a_rate_of_pixels);
+    tcase_add_slow_test(renders, test_the_progress_line_gives_a_rate_of_pixels);
     tcase_add_test(renders, test_a_scene_is_left_as_it_was_by_its_renders);
     suite_add_tcase(s, renders);
     TCase *failures = tcase_create("where it fails");

@@ -25,10 +25,10 @@
 enum adding { EVERY_TEST, TESTS_NEEDING_A_PROCESS, THE_OTHER_TESTS };
 
 static enum adding adding = EVERY_TEST;
-static int next_test; /* counted from 0 again for each pass */
+static int next_test, next_slow_test; /* counted from 0 for each pass */
 
-/* Whether the next test belongs to this runner's shard. */
-static int in_shard(void)
+/* Whether test number `number` belongs to this runner's shard. */
+static int in_shard(int number)
 {
     static int k = -1, n = 1;
     if (k < 0) { /* the first test: read the shard, or keep every test */
@@ -37,22 +37,29 @@ static int in_shard(void)
             k < 0 || k >= n)
             k = 0, n = 1;
     }
-    return next_test++ % n == k;
+    return number % n == k;
 }
 
 static int next_needs_a_process; /* said by the suite for one test */
+static int next_is_slow;         /* likewise */
 
 void runner_next_test_needs_a_process(void)
 {
     next_needs_a_process = 1;
 }
 
+void runner_next_test_is_slow(void)
+{
+    next_is_slow = 1;
+}
+
 int runner_keeps_next_test(int expected_signal, int expected_exit)
 {
     int needs_a_process =
         next_needs_a_process || expected_signal != 0 || expected_exit != 0;
-    next_needs_a_process = 0;
-    if (!in_shard())
+    int slow = next_is_slow;
+    next_needs_a_process = next_is_slow = 0;
+    if (!in_shard(slow ? next_slow_test++ : next_test++))
         return 0;
     return adding == EVERY_TEST ||
            needs_a_process == (adding == TESTS_NEEDING_A_PROCESS);
@@ -66,7 +73,7 @@ SUITE_LIST
 static int run_pass(enum adding what, enum fork_status fork)
 {
     adding = what;
-    next_test = 0;
+    next_test = next_slow_test = 0;
     SRunner *runner = srunner_create(NULL);
 #define X(name) srunner_add_suite(runner, name##_suite());
     SUITE_LIST
