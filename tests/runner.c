@@ -9,6 +9,9 @@
  * every suite in the list's order, leaves K when divided by N (tests/
  * shard.h): N runners, one a shard, run the tests on N cores at once.
  *
+ * RUNNER_ONLY=NAME runs the test of that name alone (tools/grade.sh, to
+ * grade one exercise apart from the others that name the same test).
+ *
  * RUNNER_FORKLESS=1 runs in a process of its own (forked, Check's way)
  * only the tests that expect a signal or an exit status or that say they
  * need one (tcase_add_test_in_a_process, shard.h), first, and every other
@@ -20,6 +23,7 @@
 #include <check.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 /* Which of the tests a pass over the suites adds. */
 enum adding { EVERY_TEST, TESTS_NEEDING_A_PROCESS, THE_OTHER_TESTS };
@@ -53,12 +57,16 @@ void runner_next_test_is_slow(void)
     next_is_slow = 1;
 }
 
-int runner_keeps_next_test(int expected_signal, int expected_exit)
+int runner_keeps_next_test(const char *name, int expected_signal,
+                           int expected_exit)
 {
     int needs_a_process =
         next_needs_a_process || expected_signal != 0 || expected_exit != 0;
     int slow = next_is_slow;
     next_needs_a_process = next_is_slow = 0;
+    const char *only = getenv("RUNNER_ONLY");
+    if (only != NULL && only[0] != '\0' && strcmp(only, name) != 0)
+        return 0;
     if (!in_shard(slow ? next_slow_test++ : next_test++))
         return 0;
     return adding == EVERY_TEST ||

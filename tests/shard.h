@@ -15,8 +15,10 @@
 
 #include <check.h>
 
-/* Whether the next test added belongs to this runner's share. */
-int runner_keeps_next_test(int expected_signal, int expected_exit);
+/* Whether the next test added, named name, belongs to this runner's
+ * share (with RUNNER_ONLY=NAME, only the test of that name does). */
+int runner_keeps_next_test(const char *name, int expected_signal,
+                           int expected_exit);
 
 /* Says that the next test added needs a process of its own all the same. */
 void runner_next_test_needs_a_process(void);
@@ -36,7 +38,7 @@ void runner_next_test_is_slow(void);
     (runner_next_test_needs_a_process(), tcase_add_test(tc, tf))
 
 #define _tcase_add_test(tc, tt, sig, exit_value, start, end)                 \
-    (runner_keeps_next_test((sig), (exit_value))                             \
+    (runner_keeps_next_test((tt)->name, (sig), (exit_value))                 \
          ? _tcase_add_test(tc, tt, sig, exit_value, start, end)              \
          : (void)0)
 

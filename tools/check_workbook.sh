@@ -181,7 +181,8 @@ check_wrong() {
 # look-at tests fail, no started exercise names them, and the grade says
 # so; 2.4 taking the far root, 6.3 with points that are not stratified and
 # 5.2 moving normals as the sheet does, each caught by a message that
-# names the mistake
+# names the mistake; and 4.3 wrong with 4.4 right, which share tests: only
+# 4.3 is failing
 check_elsewhere() {
     use elsewhere
     fresh SOLVED=1
@@ -193,18 +194,30 @@ check_elsewhere() {
     solution 2.4 02-spheres.md | sed "s/$near/$far/" > "$t/far-root.c"
     grep -q 'roots\[1\] > t_min' "$t/far-root.c" ||
         fail "2.4's code no longer picks its root as the far-root plant expects"
+    # 4.3 keeping only the hits whose edge functions are all positive, and
+    # 4.4 right: the tests they share fail, and 4.3 alone is blamed
+    both='(u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)'
+    solution 4.3 04-triangles.md | sed "s/$both/u < 0 || v < 0 || w < 0/" \
+        > "$t/one-winding.c"
+    grep -q 'if (u < 0 || v < 0 || w < 0)$' "$t/one-winding.c" ||
+        fail "4.3's code no longer tests its signs as the one-winding plant expects"
+    solution 4.4 04-triangles.md > "$t/shear.c"
     fresh
     answer "$wb/01-camera.md" 1.1 "$t/camera.c"
     answer "$wb/02-spheres.md" 2.4 "$t/far-root.c"
     answer "$wb/06-shadows.md" 6.3 "$data/unstratified.c"
     answer "$wb/05-transforms.md" 5.2 "$data/sheet-normal.c"
+    answer "$wb/04-triangles.md" 4.3 "$t/one-winding.c"
+    answer "$wb/04-triangles.md" 4.4 "$t/shear.c"
     grade -ch06
     [ "$status" != 0 ] || fail "a program that breaks chapter 5 should not grade with status 0"
     expect_verdict 1.1 "its tests pass, but"
     expect_verdict 2.4 "test_the_nearer_root_is_the_hit: t = 6: the nearer root is 4"
     expect_verdict 6.3 "is outside its cell"
     expect_verdict 5.2 "a normal moves by (M^-1)^T n, not by M n"
-    grep -A 1000 '^Failing, and named by no exercise you started' "$t/out" |
+    expect_verdict 4.3 "failing: test_"
+    expect_verdict 4.4 "its tests pass, but"
+    grep -A 1000 '^Failing, and the fault of no exercise you started' "$t/out" |
         grep -q '^  test_look_at_keeps_up_up (tests/ch05_transforms.c:' ||
         fail "chapter 5's look-at test should be listed as failing elsewhere"
 }

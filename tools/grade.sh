@@ -7,9 +7,10 @@
 # workbook), WB_BUILD (where it is built, default build/workbook),
 # GRADE_TIMEOUT (seconds a test may take, default 10; a quarter of its own
 # limit for a test that sets one, as the heavy ones do), GRADE_TANGLE_ONLY
-# (1: check and tangle the workbook, build and run nothing), BOOK_BUILD and
-# BOOK_BIN (the book's build and programs: their logged results stand for
-# a workbook that builds the very same programs).
+# (1: check and tangle the workbook, build and run nothing), GRADE_ALONE
+# (the most failing exercises graded alone as below, default 8; 0: none),
+# BOOK_BUILD and BOOK_BIN (the book's build and programs: their logged
+# results stand for a workbook that builds the very same programs).
 #
 # For every chapter its workbook file WB_DIR/NN-name.md (make workbook
 # writes them) is checked alone first: one the tangler rejects (a fence
@@ -22,8 +23,11 @@
 # is left out the same way. The program and the suites of chapters 01..NN,
 # and the program of the chapter before (some suites compare the two), are
 # built under WB_BUILD (make, incrementally) and every suite runs in
-# Check's fork mode with a time limit per test. One line per exercise
-# follows: done, failing (its first failing test, in the order the
+# Check's fork mode with a time limit per test. When a few exercises fail,
+# each is built and its failing tests run again with the book's code in
+# every other exercise, so that a mistake is laid at one exercise's door,
+# where it is, and not at the others' that share its tests. One line per
+# exercise follows: done, failing (its first failing test, in the order the
 # exercise names them, and the test's message), timed out, crashed (signal
 # N), not started, or "its tests pass, but" when other tests fail; then
 # the failing tests that no started exercise names (tools/grade_report.awk)
@@ -202,6 +206,95 @@ run_suites() {
         > "$work/tests.log" 2>&1
 }
 
+# A failing test does not say which exercise is wrong: it may run the
+# code of several, or of one that does not name it. When a few started
+# exercises fail (GRADE_ALONE, default 8, at most), each of them is built
+# again alone under WB_BUILD/alone, the book's code standing in for every
+# other started exercise, and its failing tests are run again; a test
+# that then passes is not the exercise's fault, and it is cleared of it (a
+# line "ID<tab>TEST" in $work/cleared.tsv). A test that fails and that no
+# exercise keeps is the reader's code elsewhere, or of two together
+# (tools/grade_report.awk).
+cleared=$work/cleared.tsv
+alone=$WB_BUILD/alone
+
+# "ID<tab>TESTS": each started exercise that names a failing test, and
+# those tests.
+failing_exercises() {
+    awk -F '\t' -v state="$state" -v tests_log="$work/tests.log" '
+        BEGIN {
+            while ((getline l < state) > 0) {
+                split(l, f, "\t")
+                if (f[2] == "started") started[f[1]] = 1
+            }
+            while ((getline l < tests_log) > 0) {
+                if (split(l, p, ":") < 6 || p[3] !~ /^[FE]$/) continue
+                failed[p[5]] = 1; failed[p[5] ":" p[6]] = 1
+            }
+        }
+        started[$1] {
+            k = split($6, named, " "); which = ""
+            for (i = 1; i <= k; i++)
+                if (named[i] in failed) which = which " " named[i]
+            if (which != "") print $1 "\t" substr(which, 2)
+        }' "$list"
+}
+
+# Exercise ID built alone: the good workbook files copied to
+# WB_BUILD/alone/wb, a line "// NOT DONE" put in every other started
+# exercise, then tangled and built as build() does. Arguments: ID
+# CHAPTER.md...
+build_alone() {
+    id=$1
+    shift
+    rm -rf "$alone/wb"
+    mkdir -p "$alone/wb"
+    for wb in $(good_files "$@"); do
+        awk -v id="$id" -v state="$state" -v file="$wb" '
+            BEGIN {
+                while ((getline l < state) > 0) {
+                    split(l, f, "\t")
+                    if (f[2] == "started" && f[3] == file && f[1] != id)
+                        others["ex=\"" f[1] "\""] = 1
+                }
+            }
+            { print }
+            /^```/ { for (o in others) if (index($0, o)) print "// NOT DONE" }
+        ' "$wb" > "$alone/wb/$(basename "$wb")" || return 1
+    done
+    (WB_DIR=$alone/wb WB_BUILD=$alone
+     tangle_all "$@" &&
+         $MAKE $jobs --no-print-directory -s WB_DIR="$WB_DIR" \
+             WB_BUILD="$WB_BUILD" WB_REUSE="$target" \
+             "$WB_BUILD/test/ch$target" "$WB_BUILD/bin/ch$target" \
+             ${previous:+"$WB_BUILD/bin/ch$previous"}) \
+        > "$work/alone.log" 2>&1
+}
+
+# Does the program built alone pass test NAME (TEST or TEST:ITERATION)?
+passes_alone() {
+    RUNNER_ONLY=${1%%:*} CK_FORK=yes CK_VERBOSITY=verbose \
+        CK_TIMEOUT_MULTIPLIER=0.25 CK_DEFAULT_TIMEOUT=$((GRADE_TIMEOUT * 4)) \
+        CHAPTER_BIN=$alone/bin/ch$target \
+        timeout 900 "$alone/test/ch$target" > "$work/alone-run.log" 2>&1
+    awk -F ':' -v t="$1" '$3 ~ /^[PFE]$/ && ($5 == t || $5 ":" $6 == t) {
+            seen = 1; if ($3 != "P") bad = 1 }
+        END { exit !(seen && !bad) }' "$work/alone-run.log"
+}
+
+isolate_failures() {
+    failing_exercises > "$work/failing.tsv"
+    count=$(wc -l < "$work/failing.tsv")
+    [ "$count" -gt 0 ] && [ "$count" -le "${GRADE_ALONE:-8}" ] || return 0
+    while IFS='	' read -r id names; do
+        build_alone "$id" "$@" < /dev/null || continue
+        for name in $names; do
+            passes_alone "$name" < /dev/null &&
+                printf '%s\t%s\n' "$id" "$name"
+        done
+    done < "$work/failing.tsv" >> "$cleared"
+}
+
 for chapter in "$@"; do
     check_file "$chapter" "$@"
 done
@@ -214,14 +307,24 @@ if [ "${GRADE_TANGLE_ONLY:-}" = 1 ]; then
 fi
 
 : > "$work/tests.log"
+: > "$cleared"
+# The tests of the chapters after NN: an exercise may name one (its code
+# is tested again there), and a grade of chapter NN does not run it.
+later=$work/later-tests
+for f in tests/ch[0-9][0-9]_*.c; do
+    [ "$(basename "$f" | cut -c3-4)" -gt "$target" ] &&
+        sed -n 's/^START_TEST(\([a-z0-9_]*\)).*/\1/p' "$f"
+done > "$later"
 started=$(awk -F '\t' '$2 == "started"' "$state" | wc -l)
 built=no
 if [ "$started" -gt 0 ]; then
     if build "$@"; then
         built=yes
         run_suites
+        isolate_failures "$@"
     fi
 fi
 
-awk -v built="$built" -v bad_files="$bad_files" \
+awk -v built="$built" -v bad_files="$bad_files" -v cleared="$cleared" \
+    -v later="$later" \
     -f "$tools_dir/grade_report.awk" "$list" "$state" "$work/tests.log"

@@ -1,6 +1,7 @@
 # grade_report.awk -- the grader's verdict, one line per exercise.
 #
-#   awk -v built=yes|no -v bad_files=FILE -f tools/grade_report.awk \
+#   awk -v built=yes|no -v bad_files=FILE [-v cleared=FILE -v later=FILE] \
+#       -f tools/grade_report.awk \
 #       EXERCISES.tsv STATE.tsv TESTS.log
 #
 # EXERCISES.tsv is tools/exercises.awk's listing, STATE.tsv tools/grade.sh's
@@ -12,16 +13,27 @@
 # exercise is done when every test it names passed and no other test
 # failed; otherwise the first of its tests (in the exercise's order) that
 # did not pass says why: failing with the test's message, timed out, or
-# crashed (signal N). A failing test that no started exercise names is
-# listed after the exercises, as the reader's code breaking something
-# elsewhere: every test passes with the book's code alone. Prints
+# crashed (signal N). A failing test that the exercise passes alone, the
+# book's code in every other exercise (-v cleared=FILE: lines "ID<tab>
+# TEST", tools/grade.sh), does not count against it, nor does a test of a
+# later chapter's suites, which did not run (-v later=FILE: one name a
+# line). A failing test that no started exercise names, or none that
+# fails it alone, is listed after the exercises, as the reader's code
+# breaking something elsewhere: every test passes with the book's code
+# alone. Prints
 # "Progress: D of N exercises" last, and exits 1 unless every started
 # exercise is done, no other test failed and no workbook file was left out.
 
-function verdict(id,    names, n, i, t, r) {
+function verdict(id,    names, n, i, t, r, graded) {
     n = split(tests[id], names, " ")
+    graded = 0
     for (i = 1; i <= n; i++) {
         t = names[i]
+        if ((id SUBSEP t) in clear)
+            continue
+        if (!(t in result) && bare_name(t) in later_test)
+            continue
+        graded++
         if (!(t in result))
             return "failing: " t " did not run (did an earlier test stop the suites?)"
         r = result[t]
@@ -33,7 +45,13 @@ function verdict(id,    names, n, i, t, r) {
             return "crashed (signal " substr(message[t], RSTART + 16, RLENGTH - 16) "): " t
         return "failing: " t ": " message[t]
     }
-    return "done"
+    return graded > 0 ? "done" : "not graded: its tests are a later chapter's"
+}
+
+# A test's name without the iteration an exercise may give it (TEST:K).
+function bare_name(t) {
+    sub(/:[0-9]+$/, "", t)
+    return t
 }
 
 # A message as the test's source spells it: the C library's macros were
@@ -43,6 +61,15 @@ function readable(text) {
     gsub(/\(__builtin_nanf ?\(""\)\)/, "NAN", text)
     gsub(/\(\(double\)2\.22044604925031308084726333618164062e-16L\)/, "DBL_EPSILON", text)
     return text
+}
+
+BEGIN {
+    while (cleared != "" && (getline line < cleared) > 0) {
+        split(line, f, "\t")
+        clear[f[1], f[2]] = 1
+    }
+    while (later != "" && (getline line < later) > 0)
+        later_test[line] = 1
 }
 
 FILENAME == ARGV[1] { split($0, f, "\t"); order[++count] = f[1]; key[f[1]] = f[5]
@@ -85,15 +112,17 @@ function record(k, text) {
     }
 }
 
-# The failing tests that no started exercise names, in the order they ran,
-# into broken[1..]; returns how many.
+# The failing tests that no started exercise names (or none that was not
+# cleared of it, passing it alone), in the order they ran, into
+# broken[1..]; returns how many.
 function broken_elsewhere(    i, j, n, names, count_broken) {
     for (i = 1; i <= count; i++) {
         if (st[order[i]] != "started")
             continue
         n = split(tests[order[i]], names, " ")
         for (j = 1; j <= n; j++)
-            named[names[j]] = 1
+            if (!((order[i] SUBSEP names[j]) in clear))
+                named[names[j]] = 1
     }
     count_broken = 0
     for (i = 1; i <= ran_count; i++)
@@ -133,8 +162,9 @@ END {
         printf "  %-5s %-38s %s\n", id, key[id], v
     }
     if (elsewhere > 0) {
-        print "Failing, and named by no exercise you started (your code," \
-              " elsewhere: each passes with the book's code):"
+        print "Failing, and the fault of no exercise you started alone" \
+              " (your code elsewhere, or two exercises together; each" \
+              " passes with the book's code):"
         for (i = 1; i <= elsewhere; i++)
             printf "  %s (%s): %s\n", shown[broken[i]], where[broken[i]],
                    message[broken[i]]
