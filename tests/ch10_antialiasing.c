@@ -600,6 +600,61 @@ START_TEST(test_a_budget_passed_is_an_error)
 }
 END_TEST
 
+START_TEST(test_an_image_shares_its_ray_budget_among_its_trees)
+{
+    scene s;
+    parse_ok(&s, "image 64 48\nsphere center 0 0 5 radius 1\n");
+    ck_assert_int_eq(s.ray_budget, (1LL << 36) / (64 * 48) - 1);
+    ck_assert(s.ray_budget > 65536); /* chapter 6's is the less */
+    scene_free(&s);
+    parse_ok(&s, "image 2048 2048\npixel pattern adaptive\n"
+                 "sphere center 0 0 5 radius 1\n");
+    long long worst = pixel_worst_rays(&s.pixels, 2048, 2048);
+    long long share = (1LL << 36) / worst - 1; /* rays besides the primary */
+    ck_assert(share < 65536);
+    ck_assert_int_eq(s.ray_budget, share);
+    scene_free(&s);
+    /* a billion primary rays leave 63 rays each: fewer than the 100
+     * shadow rays of their own hits */
+    const char *text = "image 4096 4096\n"
+                       "pixel samples 64 pattern grid\n"
+                       "light area position 0 5 0 direction 0 -1 0 "
+                       "radius 1 samples 100\n"
+                       "sphere center 0 0 5 radius 1\n";
+    scene_error err;
+    ck_assert(!parse_named(&s, text, strlen(text), "t", &err));
+    ck_assert_msg(err.line == 2 && strstr(err.message, "rays an image"),
+                  "%d: %s", err.line, err.message);
+    scene_free(&s);
+}
+END_TEST
+
+/* Glass spheres around the eye with no cutoff: every tree would run to
+ * chapter 6's budget; with a share of 40 rays, the image casts at most 41
+ * rays a primary ray, shadow rays counted. */
+START_TEST(test_a_tree_keeps_to_its_share_of_the_image)
+{
+    scene s;
+    image img;
+    parse_ok(&s, "image 4 3\nrecursion depth 100 cutoff 0\n"
+                 "material g ambient 0 diffuse 0.5 specular 0 "
+                 "transparency 1 ior 1.5\n"
+                 "light area position 0 0 0 direction 0 0 1 radius 1 "
+                 "samples 4\n"
+                 "sphere center 0 0 0 radius 10 material g\n"
+                 "sphere center 0 0 0 radius 20 material g\n");
+    s.ray_budget = 40; /* lowered for the test */
+    render_stats st = render_scene(&s, &img, 1);
+    long long rays = st.primary_rays + st.shadow_rays + st.reflection_rays +
+                     st.refraction_rays;
+    ck_assert_msg(rays <= st.primary_rays * 41, "%lld rays for %lld", rays,
+                  st.primary_rays);
+    ck_assert_int_gt(st.ray_trees_cut, 0); /* the share did bind */
+    image_free(&img);
+    scene_free(&s);
+}
+END_TEST
+
 /* A file over the budget (as above) is drawn when the command line asks
  * for less: the budget is checked on the size and settings of the picture
  * that will be drawn, not on those that --size and --pixel replace. */
@@ -746,6 +801,8 @@ Suite *ch10_antialiasing_suite(void)
     tcase_add_checked_fixture(bad, make_tmpdir, remove_tmpdir);
     tcase_add_test(bad, test_bad_pixel_statements_are_located);
     tcase_add_test(bad, test_a_budget_passed_is_an_error);
+    tcase_add_test(bad, test_an_image_shares_its_ray_budget_among_its_trees);
+    tcase_add_test(bad, test_a_tree_keeps_to_its_share_of_the_image);
     tcase_add_test(bad, test_the_budget_follows_size_and_pixel);
     tcase_add_test(bad, test_bad_pixel_options_are_usage_errors);
     suite_add_tcase(s, bad);

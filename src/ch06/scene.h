@@ -140,4 +140,8 @@ void scene_count_triangles(const scene *s, long long *stored,
  * lone triangle, which cannot shadow themselves. */
 bool scene_can_shadow(const scene *s, const hit *h);
 
+/* The shadow rays one shaded point may cast: one a light, an area light's
+ * samples. */
+long scene_shadow_rays(const scene *s);
+
 #endif

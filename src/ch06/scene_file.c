@@ -400,9 +400,7 @@ static bool parse_statement(parser *p, void *target)
  * for no more than SCENE_SHADOW_RAY_BUDGET shadow rays. */
 static void fit_shadow_budget(scene *s)
 {
-    long long lights = s->light_count, asked = 0;
-    for (int k = 0; k < s->light_count; k++)
-        asked += s->lights[k].kind == LIGHT_AREA ? s->lights[k].samples : 1;
+    long long lights = s->light_count, asked = scene_shadow_rays(s);
     if (asked <= SCENE_SHADOW_RAY_BUDGET)
         return;
     long long spare = SCENE_SHADOW_RAY_BUDGET - lights; /* beyond one each */

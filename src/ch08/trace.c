@@ -14,16 +14,6 @@
  * only what they cannot. */
 #define TRACE_RAY_BUDGET 65536
 
-/* The shadow rays one shaded point may cast: one a light, an area light's
- * samples (at most the scene's budget of them). */
-static long shadow_rays_per_point(const scene *s)
-{
-    long rays = 0;
-    for (int k = 0; k < s->light_count; k++)
-        rays += s->lights[k].kind == LIGHT_AREA ? s->lights[k].samples : 1;
-    return rays;
-}
-
 /* The rays one primary ray may still spawn, and where they are counted. */
 typedef struct {
     long rays_left;
@@ -200,7 +190,7 @@ vec3 background_color(const background *bg, vec3 dir)
 vec3 trace(const scene *s, ray r, int depth, render_stats *stats)
 {
     /* <<trace a ray>> ch06 */
-    long shadows = shadow_rays_per_point(s);
+    long shadows = scene_shadow_rays(s); /* at most the scene's budget */
     ray_tree tree = {.rays_left = TRACE_RAY_BUDGET - shadows, /* its own hit's */
                      .ray_cost = 1 + shadows, .stats = stats};
     return trace_path(s, r, depth, 1.0, &tree);

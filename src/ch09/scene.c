@@ -162,3 +162,11 @@ bool scene_can_shadow(const scene *s, const hit *h)
     shape_kind kind = s->objects[0].kind;
     return kind == SHAPE_MESH || (kind == SHAPE_SPHERE && h->inside);
 }
+
+long scene_shadow_rays(const scene *s)
+{
+    long rays = 0;
+    for (int k = 0; k < s->light_count; k++)
+        rays += s->lights[k].kind == LIGHT_AREA ? s->lights[k].samples : 1;
+    return rays;
+}

@@ -26,6 +26,9 @@ typedef enum { FILTER_BOX, FILTER_TENT } pixel_filter;
  * largest image (2^24 pixels); a setting that asks for more is a mistake,
  * not a wish. */
 #define PIXEL_RAY_BUDGET (1LL << 31)
+/* Rays of one image, all kinds counted, at the worst: 2^36, hours of one
+ * core; each primary ray's tree gets its share. */
+#define IMAGE_RAY_BUDGET (1LL << 36)
 /* Read off this chapter's chart: see "Speed against accuracy". */
 #define PIXEL_DEFAULT_THRESHOLD 0.05
 

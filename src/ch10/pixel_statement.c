@@ -176,10 +176,18 @@ bool pixel_settings_final(scene *s, const char *name, parse_error *err)
     int width = sized ? s->width_option : s->cam.width;
     int height = sized ? s->height_option : s->cam.height;
     long long worst = pixel_worst_rays(&s->pixels, width, height);
-    if (worst <= PIXEL_RAY_BUDGET)
+    if (worst <= PIXEL_RAY_BUDGET) /* the rays besides each primary ray */
+        s->ray_budget = IMAGE_RAY_BUDGET / worst - 1;
+    if (worst <= PIXEL_RAY_BUDGET && s->ray_budget >= scene_shadow_rays(s))
         return true;
     /* the option that set the settings, or the size; else the statement */
     const char *who = s->pixel_option ? "--pixel" : sized ? "--size" : name;
+    if (worst <= PIXEL_RAY_BUDGET) /* the rays fit, their shadow rays not */
+        return parse_fail_on_line(
+            err, who, who == name ? s->pixel_line : 0, PARSE_OVER_BUDGET,
+            "up to %lld primary rays for %dx%d pixels, each with the "
+            "shadow rays of its hit, would pass the budget of %lld rays "
+            "an image", worst, width, height, IMAGE_RAY_BUDGET);
     return parse_fail_on_line(err, who, who == name ? s->pixel_line : 0,
                               PARSE_OVER_BUDGET,
                               "up to %lld primary rays for %dx%d pixels "

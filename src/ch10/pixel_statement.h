@@ -16,8 +16,10 @@ bool pixel_settings_parse(scene *s, const char *text, const char *name,
 
 /* --pixel's settings in place of the scene's, then the worst case of the
  * settings on the image, at the size --size gives or the scene's, checked
- * against PIXEL_RAY_BUDGET; false with err filled, about the option that
- * asks for the most or the pixel statement of the file called name. */
+ * against PIXEL_RAY_BUDGET, and each primary ray's share of
+ * IMAGE_RAY_BUDGET into s->ray_budget; false with err filled, about the
+ * option that asks for the most or the pixel statement of the file
+ * called name. */
 bool pixel_settings_final(scene *s, const char *name, parse_error *err);
 
 #endif

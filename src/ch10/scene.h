@@ -104,6 +104,7 @@ typedef struct {
     int pixel_line;        /* its line; 0: the file has none */
     const char *pixel_option;        /* --pixel's settings, which win; NULL */
     int width_option, height_option; /* --size's, which win; 0: none */
+    long long ray_budget; /* each primary ray's share of the image's rays */
 } scene;
 
 void scene_init(scene *s);
@@ -161,5 +162,9 @@ void scene_count_triangles(const scene *s, long long *stored,
  * above its surface? False only for a lone sphere hit from outside and a
  * lone triangle, which cannot shadow themselves. */
 bool scene_can_shadow(const scene *s, const hit *h);
+
+/* The shadow rays one shaded point may cast: one a light, an area light's
+ * samples. */
+long scene_shadow_rays(const scene *s);
 
 #endif
