@@ -737,18 +737,12 @@ static bool stderr_has_a_line(void)
     return line;
 }
 
-START_TEST(test_the_progress_line_gives_a_rate_of_pixels)
+/* Waits for the line of progress of the program pid, writing into the
+ * test's stderr.txt, for as long as its threads (one a core) may use four
+ * CPU seconds each, or until it ends; then stops it and returns its
+ * standard error in errors. The first line is due after one second. */
+static void first_progress_line(pid_t pid, char *errors, size_t size)
 {
-    /* 16 rays a pixel, into a log: the rate the line gives is of the rows
-     * done, pixels, and must say so (a rate of rays would be 16 times it). */
-    const char *args[] = {"-o",        tmp_path("big.png"),
-                          "--size",    "4096x4096",
-                          "--pixel",   "pattern grid samples 16",
-                          NULL};
-    pid_t pid = start_bin(args, (run_limits){.alarm_seconds = 120});
-    /* The first line comes after one second, in which the program's
-     * threads, one a core, use at most a CPU second each: given four each,
-     * a program that writes no line is not waited for longer. */
     double most = 4.0 * (double)sysconf(_SC_NPROCESSORS_ONLN);
     struct timespec ms = {0, 1000000};
     for (int waited = 0; !stderr_has_a_line() && waited < 100000 &&
@@ -756,11 +750,90 @@ START_TEST(test_the_progress_line_gives_a_rate_of_pixels)
          waited++)
         nanosleep(&ms, NULL);
     kill(pid, SIGTERM);
-    char errors[4096];
-    int status = finish_bin(pid, errors, sizeof errors);
+    int status = finish_bin(pid, errors, size);
     ck_assert_msg(status == 128 + SIGTERM, "status %d: %s", status, errors);
-    ck_assert_msg(strstr(errors, " Mpixels/s ") != NULL, "%s", errors);
-    ck_assert_msg(strstr(errors, "rays/s") == NULL, "%s", errors);
+}
+
+START_TEST(test_the_progress_line_gives_a_rate_of_rays)
+{
+    const char *args[] = {"-o",        tmp_path("big.png"),
+                          "--size",    "4096x4096",
+                          "--pixel",   "pattern grid samples 16",
+                          NULL};
+    char errors[4096];
+    first_progress_line(start_bin(args, (run_limits){.alarm_seconds = 120}),
+                        errors, sizeof errors);
+    ck_assert_msg(strstr(errors, " Mrays/s ") != NULL, "%s", errors);
+}
+END_TEST
+
+/* One band of 8 x 6 pixels that takes minutes: 256 rays a pixel through
+ * nested glass with no cutoff, under four area lights. No band ends for
+ * minutes, and the line must come all the same, a second in. */
+START_TEST(test_a_slow_band_still_shows_its_progress)
+{
+    const char *text =
+        "image 8 6\npixel samples 256 pattern grid\n"
+        "recursion depth 100 cutoff 0\n"
+        "material g ambient 0 diffuse 0.5 specular 0 transparency 1 "
+        "ior 1.5\n"
+        "light area position 0 0 0 direction 0 0 1 radius 1 samples 1024\n"
+        "light area position 0 0 0 direction 0 0 -1 radius 1 samples 1024\n"
+        "light area position 0 0 0 direction 0 1 0 radius 1 samples 1024\n"
+        "light area position 0 0 0 direction 0 -1 0 radius 1 samples 1024\n"
+        "sphere center 0 0 0 radius 10 material g\n"
+        "sphere center 0 0 0 radius 20 material g\n";
+    char scene_path[192];
+    snprintf(scene_path, sizeof scene_path, "%s",
+             write_file("slow.scene", text));
+    const char *args[] = {scene_path, "-o", tmp_path("slow.png"), NULL};
+    char errors[4096];
+    first_progress_line(start_bin(args, (run_limits){.alarm_seconds = 120}),
+                        errors, sizeof errors);
+    ck_assert_msg(strstr(errors, "time left not known yet") != NULL, "%s",
+                  errors);
+}
+END_TEST
+
+/* What a render tells its progress, last. */
+typedef struct {
+    int rows_done, rows;
+    long long rays_done;
+} progress_seen;
+
+static void remember_progress(void *context, int rows_done, int rows,
+                              long long rays_done)
+{
+    *(progress_seen *)context = (progress_seen){rows_done, rows, rays_done};
+}
+
+START_TEST(test_the_progress_counts_every_ray)
+{
+    scene s;
+    parse_ok(&s, "image 32 24\npixel samples 16 pattern grid\n"
+                 "light point position 0 5 0\n"
+                 "material m reflect 0.5\n"
+                 "sphere center 0 0 5 radius 1 material m\n"
+                 "sphere center 1 0 7 radius 1\n");
+    image img;
+    ck_assert(image_init(&img, 32, 24));
+    progress_seen seen = {0};
+    render_stats st = {0};
+    render_in_bands(&s,
+                    &img,
+                    &(render_settings){.threads = 2,
+                                       .progress = remember_progress,
+                                       .progress_context = &seen},
+                    &st);
+    ck_assert_int_eq(seen.rows_done, 24);
+    ck_assert_int_eq(seen.rows, 24);
+    ck_assert_int_eq(seen.rays_done, st.primary_rays + st.shadow_rays +
+                                         st.reflection_rays +
+                                         st.refraction_rays);
+    ck_assert(st.primary_rays == 16 * 32 * 24 && st.shadow_rays > 0 &&
+              st.reflection_rays > 0);
+    image_free(&img);
+    scene_free(&s);
 }
 END_TEST
 
@@ -782,7 +855,9 @@ Suite *ch10_antialiasing_suite(void)
     tcase_add_test(renders, test_the_default_is_chapter_9s_picture);
     tcase_add_test(renders, test_thread_counts_give_the_same_image);
     tcase_add_test(renders, test_stats_report_rays_per_pixel_and_depths);
-    tcase_add_slow_test(renders, test_the_progress_line_gives_a_rate_of_pixels);
+    tcase_add_slow_test(renders, test_the_progress_line_gives_a_rate_of_rays);
+    tcase_add_slow_test(renders, test_a_slow_band_still_shows_its_progress);
+    tcase_add_test(renders, test_the_progress_counts_every_ray);
     tcase_add_test(renders, test_a_scene_is_left_as_it_was_by_its_renders);
     suite_add_tcase(s, renders);
     TCase *failures = tcase_create("where it fails");

@@ -107,7 +107,7 @@ int main(int argc, char **argv)
         message_print_error(opt.output, 0, 0, why);
         goto done;
     }
-    shown = progress_start(s.cam.width); /* the image is made, then drawn */
+    shown = progress_start(); /* the image is made, then drawn */
     if (!image_init(&img, s.cam.width, s.cam.height)) {
         snprintf(size, sizeof size, "no memory for a %dx%d image",
                  s.cam.width, s.cam.height);

@@ -6,19 +6,20 @@
 #include <unistd.h>
 #include "moment.h"
 
-progress progress_start(int width)
+progress progress_start(void)
 {
-    return (progress){.start = moment_now().wall, .width = width,
-                      .next_line = 1.0};
+    return (progress){.start = moment_now().wall, .next_line = 1.0};
 }
 
 /* <<show the progress>> ch01 */
 /* "rendering: row j of h" once the render has taken 1 s: redrawn on a
  * terminal, elsewhere a line of its own every 10 s at most. */
-void progress_show(void *context, int rows_done, int rows)
+void progress_show(void *context, int rows_done, int rows,
+                   long long rays_done)
 {
     progress *p = context;
     double elapsed = moment_now().wall - p->start;
+    (void)rays_done; /* chapter 9 gives their rate */
     if (elapsed < 1.0)
         return;
     if (isatty(STDERR_FILENO)) {

@@ -47,6 +47,7 @@ void render_in_bands(const scene *s, image *img, const render_settings *how,
                                                    : img->height;
         render_rows(s, img, first, last, stats);
         if (how->progress != NULL)
-            how->progress(how->progress_context, last, img->height);
+            how->progress(how->progress_context, last, img->height,
+                          stats->primary_rays);
     }
 }

@@ -4,15 +4,15 @@
 
 typedef struct {
     double start;     /* when the render began, on the monotonic clock */
-    int width;        /* pixels a row: the rate of pixels follows */
     double next_line; /* not on a terminal: when the next line is due */
 } progress;
 
-/* A render of rows width pixels wide begins now. */
-progress progress_start(int width);
+/* A render begins now. */
+progress progress_start(void);
 
-/* After a band: rows_done of rows are drawn. For render_settings, with
- * context a progress. */
-void progress_show(void *context, int rows_done, int rows);
+/* rows_done of rows are drawn, and rays_done rays traced. For
+ * render_settings, with context a progress. */
+void progress_show(void *context, int rows_done, int rows,
+                   long long rays_done);
 
 #endif

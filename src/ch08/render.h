@@ -15,8 +15,10 @@ void render(const scene *s, image *img, render_stats *stats);
 
 /* How render_in_bands draws; zero means the default. */
 typedef struct {
-    /* called on the calling thread after each band it draws; NULL: none */
-    void (*progress)(void *context, int rows_done, int rows);
+    /* called after bands are drawn, with the rows and the rays done so
+     * far, never by two threads at once; NULL: none */
+    void (*progress)(void *context, int rows_done, int rows,
+                     long long rays_done);
     void *progress_context;
 } render_settings;
 

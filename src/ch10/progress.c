@@ -6,16 +6,16 @@
 #include <unistd.h>
 #include "moment.h"
 
-progress progress_start(int width)
+progress progress_start(void)
 {
-    return (progress){.start = moment_now().wall, .width = width,
-                      .next_line = 1.0};
+    return (progress){.start = moment_now().wall, .next_line = 1.0};
 }
 
 /* <<show the progress>> ch09 */
-/* "[#####     ]  50%  2.31 Mpixels/s  3 s left" on a terminal, once the
+/* "[#####     ]  50%  2.31 Mrays/s  3 s left" on a terminal, once the
  * render has taken a second; elsewhere a line every 10 s at most. */
-void progress_show(void *context, int rows_done, int rows)
+void progress_show(void *context, int rows_done, int rows,
+                   long long rays_done)
 {
     progress *p = context;
     double elapsed = moment_now().wall - p->start;
@@ -25,12 +25,15 @@ void progress_show(void *context, int rows_done, int rows)
         return;
     static const char bar[] = "##############################"; /* 30 */
     int filled = 30 * rows_done / rows;
-    double left = rows_done ? elapsed * (rows - rows_done) / rows_done : 0;
-    fprintf(stderr, "%s[%.*s%*s] %3d%%  %.2f Mpixels/s  %.0f s left%s",
+    fprintf(stderr, "%s[%.*s%*s] %3d%%  %.2f Mrays/s  ",
             terminal ? "\r" : "", filled, bar, 30 - filled, "",
-            100 * rows_done / rows,
-            1e-6 * rows_done * (double)p->width / elapsed, left,
-            terminal ? " " : "\n");
+            100 * rows_done / rows, 1e-6 * (double)rays_done / elapsed);
+    if (rows_done > 0) /* the rows to come, at the pace of those done */
+        fprintf(stderr, "%.0f s left", elapsed * (rows - rows_done) /
+                                           rows_done);
+    else
+        fprintf(stderr, "time left not known yet");
+    fputs(terminal ? " " : "\n", stderr);
     p->next_line = elapsed + 10;
     if (terminal && rows_done == rows)
         fputc('\n', stderr);

@@ -11,6 +11,7 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
+#include <time.h>
 #include <unistd.h>
 #include "memory.h"
 /* <<render includes>> += ch10 */
@@ -240,12 +241,25 @@ void render(const scene *s, image *img, render_stats *stats)
 
 /* <<rendering in bands>> ch09 */
 /* <<the threads' shared work>> ch09 */
-/* What every thread shares: the image, handed out band by band. */
+/* What every thread shares: the image, handed out band by band, and how
+ * far it has come, which the reporter reads. */
 typedef struct {
     const scene *s;
     image *img;
     atomic_int next_band, rows_done;
+    atomic_llong rays_done;
+    const render_settings *how;
+    pthread_mutex_t lock; /* one report at a time; guards finished */
+    pthread_cond_t wake;  /* the reporter's, when the image is done */
+    bool finished;
 } band_queue;
+
+/* Every ray a render has traced: primary, shadow and secondary. */
+static long long rays_of(const render_stats *st)
+{
+    return st->primary_rays + st->shadow_rays + st->reflection_rays +
+           st->refraction_rays;
+}
 
 /* A thread's part: its own counts, on a cache line of their own. */
 typedef struct {
@@ -275,7 +289,9 @@ static bool take_band(band_queue *q, int *first, int *last)
 
 static void render_band(band_worker *w, int first, int last)
 {
+    long long before = rays_of(&w->stats);
     render_rows(w->queue->s, w->queue->img, first, last, &w->stats);
+    atomic_fetch_add(&w->queue->rays_done, rays_of(&w->stats) - before);
     atomic_fetch_add(&w->queue->rows_done, last - first);
 }
 
@@ -286,6 +302,48 @@ static void *band_thread(void *worker)
     while (take_band(w->queue, &first, &last))
         render_band(w, first, last);
     return NULL;
+}
+
+/* <<the reporter>> ch09 */
+/* The progress so far, shown by one thread at a time. */
+static void report(band_queue *q)
+{
+    pthread_mutex_lock(&q->lock);
+    q->how->progress(q->how->progress_context, atomic_load(&q->rows_done),
+                     q->img->height, atomic_load(&q->rays_done));
+    pthread_mutex_unlock(&q->lock);
+}
+
+/* The reporter's life: the progress four times a second, until the image
+ * is finished (the whole image's is the calling thread's to show). */
+static void *report_thread(void *queue)
+{
+    band_queue *q = queue;
+    pthread_mutex_lock(&q->lock);
+    while (!q->finished) {
+        struct timespec until;
+        clock_gettime(CLOCK_REALTIME, &until); /* the condition's clock */
+        until.tv_nsec += 250000000;
+        if (until.tv_nsec >= 1000000000)
+            until.tv_sec++, until.tv_nsec -= 1000000000;
+        pthread_cond_timedwait(&q->wake, &q->lock, &until);
+        if (!q->finished && atomic_load(&q->rows_done) < q->img->height)
+            q->how->progress(q->how->progress_context,
+                             atomic_load(&q->rows_done), q->img->height,
+                             atomic_load(&q->rays_done));
+    }
+    pthread_mutex_unlock(&q->lock);
+    return NULL;
+}
+
+/* Tells the reporter that the image is done, and waits for it. */
+static void stop_reporter(band_queue *q, pthread_t reporter)
+{
+    pthread_mutex_lock(&q->lock);
+    q->finished = true;
+    pthread_cond_signal(&q->wake);
+    pthread_mutex_unlock(&q->lock);
+    pthread_join(reporter, NULL);
 }
 
 /* <<adding up the threads' counts>> ch09 */
@@ -307,8 +365,10 @@ static void add_stats(render_stats *sum, const render_stats *part)
 void render_in_bands(const scene *s, image *img, const render_settings *how,
                      render_stats *stats)
 {
-    band_queue q = {.s = s, .img = img};
+    band_queue q = {.s = s, .img = img, .how = how};
     atomic_init(&q.next_band, 0), atomic_init(&q.rows_done, 0);
+    atomic_init(&q.rays_done, 0);
+    pthread_mutex_init(&q.lock, NULL), pthread_cond_init(&q.wake, NULL);
     band_worker one, *w = NULL;
     int n = how->threads > 0 ? how->threads : cores_online();
     int started = 1, first, last;
@@ -322,16 +382,23 @@ void render_in_bands(const scene *s, image *img, const render_settings *how,
            pthread_create(&w[started].thread, NULL, band_thread,
                           &w[started]) == 0)
         started++; /* a thread that cannot start leaves its share to us */
+    pthread_t reporter; /* none: the progress between our bands only */
+    bool reporting = how->progress != NULL &&
+                     pthread_create(&reporter, NULL, report_thread, &q) == 0;
     while (take_band(&q, &first, &last)) { /* this thread is worker 0 */
         render_band(&w[0], first, last);
-        if (how->progress != NULL)
-            how->progress(how->progress_context, atomic_load(&q.rows_done),
-                          img->height);
+        if (how->progress != NULL && !reporting)
+            report(&q);
     }
     for (int k = 1; k < started; k++)
         pthread_join(w[k].thread, NULL);
+    if (reporting) {
+        stop_reporter(&q, reporter);
+        report(&q); /* the whole image: a terminal's bar ends */
+    }
     for (int k = 0; k < started; k++)
         add_stats(stats, &w[k].stats);
+    pthread_mutex_destroy(&q.lock), pthread_cond_destroy(&q.wake);
     if (w != &one)
         free(w);
 }
