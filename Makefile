@@ -639,11 +639,11 @@ WO$(1) := $(WB_BUILD)/obj/ch$(1)
 WOBJ$(1) := $$(patsubst %.c,$$(WO$(1))/%.o,$$(SRC$(1)))
 WLIB$(1) := $$(filter-out $$(WO$(1))/main.o,$$(WOBJ$(1)))
 
-$$(WO$(1))/%.o: $$(WT$(1))/%.c | deps $(REUSE) $$(O$(1))/%.o
+$$(WO$(1))/%.o: $$(WT$(1))/%.c $$(O$(1))/%.o | deps $(REUSE)
 	@$$(dir_of_target)
 	$$(call wb_reuse_book,$(1),$$*.o) $$(call wb_reuse_from,$(1),$$*.o)$$(CC) $$(WB_CFLAGS) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
 
-$$(WO$(1))/tests/%.o: tests/%.c | deps $(REUSE) $$(O$(1))/tests/%.o
+$$(WO$(1))/tests/%.o: tests/%.c $$(O$(1))/tests/%.o | deps $(REUSE)
 	@$$(dir_of_target)
 	$$(call wb_reuse_book,$(1),tests/$$*.o) $$(call wb_reuse_from,$(1),tests/$$*.o)$$(CC) $$(WB_CFLAGS) $$(TEST_OPT) $$(TEST_DEFS) $$(PNG_CFLAGS) $$(CHECK_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
 
@@ -665,9 +665,10 @@ $(WB_BUILD)/bin/ch$(1): $$(WOBJ$(1))
 endef
 $(foreach n,$(NUMS),$(eval $(call workbook_rules,$(n))))
 
-# wb_reuse_book NN OBJ: the book's own object of chapter NN (made first: an
-# order-only prerequisite) serves when the workbook's tangle of the file
-# and its headers is the book's code, #line directives aside.
+# wb_reuse_book NN OBJ: the book's own object of chapter NN (made first: a
+# prerequisite, so that a book object made again, its lines moved, is
+# copied again) serves when the workbook's tangle of the file and its
+# headers is the book's code, #line directives aside.
 wb_reuse_book = $(REUSE) --code $(B)/obj/ch$(1)/$(2) build/tangle/ch$(1) $(WB_BUILD)/tangle/ch$(1) --
 
 # WB_REUSE=NN (tools/grade.sh sets it): chapter NN's program is built with

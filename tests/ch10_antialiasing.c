@@ -123,15 +123,17 @@ static void flat_scene(scene *s, const char *settings)
 START_TEST(test_a_flat_image_costs_one_ray_per_corner)
 {
     /* threads 0: one call of render, one band: (W + 1)(H + 1) corners;
-     * in bands of BAND_ROWS rows, each band traces its rows of corners,
-     * and the row between two bands is traced by both: (W + 1)(H + b) */
+     * in bands of 3 rows (8 bands at least), each band traces its rows
+     * of corners, and the row between two bands is traced by both:
+     * (W + 1)(H + b) */
     for (int threads = 0; threads <= 3; threads += threads == 0 ? 1 : 2) {
         scene s;
         image img;
         flat_scene(&s, "pattern adaptive threshold 0 depth 4");
         render_stats st = threads == 0 ? render_whole(&s, &img)
                                        : render_scene(&s, &img, threads);
-        int bands = threads == 0 ? 1 : (30 + BAND_ROWS - 1) / BAND_ROWS;
+        int rows = 30 / BAND_ROWS; /* 30 rows: fewer than 8 bands of 8 */
+        int bands = threads == 0 ? 1 : (30 + rows - 1) / rows;
         ck_assert_int_eq(st.primary_rays, 41 * (30 + bands));
         ck_assert_int_eq(st.pixel_depths[0], 40 * 30);
         for (int k = 0; k < 40 * 30; k++) /* four equal corners: exact */
@@ -348,15 +350,16 @@ END_TEST
 
 START_TEST(test_stats_report_rays_per_pixel_and_depths)
 {
-    /* the edge scene, 30 rows in 4 bands of 8, whose 34 rows of corners
-     * are 41 rays each: (41 x 34 + 30 x 31) / 1200 = 1.937 rays a pixel,
+    /* the edge scene, 30 rows in 10 bands of 3 (a small image: 8 bands at
+     * least), whose 40 rows of corners are 41 rays each:
+     * (41 x 40 + 30 x 31) / 1200 = 2.142 rays a pixel,
      * the edge's 31 and a share of the corners the largest; 30 of 1200
      * pixels (2.5%) at depth 3, the rest at 0 */
     char errors[4096], path[192];
     snprintf(path, sizeof path, "%s", write_file("edge.scene", EDGE_SCENE));
     const char *args[] = {path, "--stats", "-o", tmp_path("e.png"), NULL};
     ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
-    ck_assert_msg(strstr(errors, "rays per pixel     1.94 mean, 32 largest"),
+    ck_assert_msg(strstr(errors, "rays per pixel     2.14 mean, 32 largest"),
                   "%s", errors);
     ck_assert_msg(strstr(errors, "pixels by depth    0       1170  97.5%"),
                   "%s", errors);
@@ -597,6 +600,21 @@ START_TEST(test_a_budget_passed_is_an_error)
                       "%d: %s", err.line, err.message);
         scene_free(&s);
     }
+}
+END_TEST
+
+/* 10 x 6 flat pixels on three threads: six bands of one row, not one of
+ * six, each tracing its two rows of corners. */
+START_TEST(test_a_small_image_is_cut_into_short_bands)
+{
+    scene s;
+    image img;
+    parse_ok(&s, "image 10 6\nbackground 0.3 0.5 0.7\n"
+                 "pixel pattern adaptive threshold 0 depth 4\n");
+    render_stats st = render_scene(&s, &img, 3);
+    ck_assert_int_eq(st.primary_rays, 11 * (6 + 6));
+    image_free(&img);
+    scene_free(&s);
 }
 END_TEST
 
@@ -846,6 +864,7 @@ Suite *ch10_antialiasing_suite(void)
                    test_jittered_samples_repeat_and_differ_between_pixels);
     tcase_add_test(patterns, test_tent_samples_fall_as_the_tent_weighs);
     tcase_add_test(patterns, test_a_flat_image_costs_one_ray_per_corner);
+    tcase_add_test(patterns, test_a_small_image_is_cut_into_short_bands);
     tcase_add_test(patterns, test_filter_weights_sum_to_one);
     tcase_add_test(patterns, test_an_edge_is_divided_and_a_flat_region_is_not);
     suite_add_tcase(s, patterns);

@@ -246,6 +246,7 @@ void render(const scene *s, image *img, render_stats *stats)
 typedef struct {
     const scene *s;
     image *img;
+    int band_rows; /* rows_per_band of the image */
     atomic_int next_band, rows_done;
     atomic_llong rays_done;
     const render_settings *how;
@@ -253,6 +254,16 @@ typedef struct {
     pthread_cond_t wake;  /* the reporter's, when the image is done */
     bool finished;
 } band_queue;
+
+/* Rows a band: BAND_ROWS, or fewer in a picture of fewer than BAND_ROWS
+ * bands, so that several threads share even a small one. A function of
+ * the height alone: the bands, and what they count, are the same on any
+ * number of threads. */
+static int rows_per_band(int height)
+{
+    int rows = height / BAND_ROWS; /* for BAND_ROWS bands at least */
+    return rows < 1 ? 1 : rows < BAND_ROWS ? rows : BAND_ROWS;
+}
 
 /* Every ray a render has traced: primary, shadow and secondary. */
 static long long rays_of(const render_stats *st)
@@ -279,11 +290,11 @@ static int cores_online(void)
 static bool take_band(band_queue *q, int *first, int *last)
 {
     int band = atomic_fetch_add(&q->next_band, 1);
-    if (band >= (q->img->height + BAND_ROWS - 1) / BAND_ROWS)
+    if (band >= (q->img->height + q->band_rows - 1) / q->band_rows)
         return false;
-    *first = band * BAND_ROWS;
-    *last = *first + BAND_ROWS < q->img->height ? *first + BAND_ROWS
-                                                : q->img->height;
+    *first = band * q->band_rows;
+    *last = *first + q->band_rows < q->img->height ? *first + q->band_rows
+                                                   : q->img->height;
     return true;
 }
 
@@ -365,7 +376,8 @@ static void add_stats(render_stats *sum, const render_stats *part)
 void render_in_bands(const scene *s, image *img, const render_settings *how,
                      render_stats *stats)
 {
-    band_queue q = {.s = s, .img = img, .how = how};
+    band_queue q = {.s = s, .img = img, .how = how,
+                    .band_rows = rows_per_band(img->height)};
     atomic_init(&q.next_band, 0), atomic_init(&q.rows_done, 0);
     atomic_init(&q.rays_done, 0);
     pthread_mutex_init(&q.lock, NULL), pthread_cond_init(&q.wake, NULL);
