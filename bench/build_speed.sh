@@ -9,7 +9,9 @@
 #   make test-ch04     a fresh clone of its own, one chapter's suites
 #   make grade-ch02    after a graded workbook, exercise 2.1's chunk edited
 #   make grade-ch08    the same, exercise 8.1's chunk edited
-#   make grade-ch10    the same, exercise 10.1's chunk edited
+#   make grade-ch10    the same, exercise 10.1's chunk edited (each grade
+#                      after a grade of its chapter with the edits before,
+#                      so that one chunk is new to it)
 #   .ci/run            a fresh clone of its own, CI=true (with --ci only:
 #                      it takes minutes)
 #
@@ -76,6 +78,9 @@ while [ "$k" -lt "$runs" ]; do
      make -s grade-ch02 grade-ch08 grade-ch10) > "$scratch/grade-setup.log" 2>&1
   for edit in "02 2.1 02-spheres.md" "08 8.1 08-kdtree.md" "10 10.1 10-antialiasing.md"; do
     set -- $edit
+    # graded again first, untimed: the edits of the chapters before are
+    # in its program too, and only this one chunk is new to it
+    (cd "$d" && make -s grade-ch$1) >> "$scratch/grade-setup.log" 2>&1
     (cd "$d" && edit_one_chunk "$2" "$3")
     timed "make grade-ch$1, one chunk edited" "$d" make grade-ch$1
   done
