@@ -378,6 +378,18 @@ check-diagrams: $(DIAGRAM_PROGRAMS)
 $(foreach n,$(NUMS),$(B)/obj/ch$(n)/bench/timing.o): \
   ALL_CFLAGS += '-DBENCH_FLAGS="$(strip $(OPT) $(CFLAGS))"'
 
+# Chapter 9's profile names the functions a ray's time goes to, which
+# link-time optimization would inline into one another: its chart is made
+# from the plain build (bench/ch09_profile.c).
+.PHONY: chart-ch09_profile chart-ch09_profile-plain
+chart-ch09_profile: | deps
+	+@$(MAKE) --no-print-directory LTO= chart-ch09_profile-plain
+chart-ch09_profile-plain: $(B)/bench/ch09_profile | deps
+	$< > figures/ch09-profile.csv.tmp
+	mv figures/ch09-profile.csv.tmp figures/ch09-profile.csv
+	gnuplot -e "csv='figures/ch09-profile.csv'; stem='figures/ch09-profile'" bench/ch09_profile.gp
+	@echo "wrote figures/ch09-profile*.svg"
+
 ifeq ($(LTO_FLAGS)$(SAN),)
 # The charts measure the program built with link-time optimization.
 chart-%: | deps
