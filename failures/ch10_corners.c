@@ -3,8 +3,9 @@
  *
  *   build/rel/failures/ch10_corners figures/ch10-failure-corners.png
  *
- * The far floor of ch10_moire.c, drawn four ways: the adaptive pattern at
- * its defaults (threshold 0.05, depth 3), whose corners, points of a
+ * The far floor of ch10_moire.c (FAR_FLOOR, ch10_render.h), drawn four
+ * ways: the adaptive pattern at its defaults (threshold 0.05, depth 3),
+ * whose corners, points of a
  * regular grid, often fall on checks of one colour in a pixel that holds
  * both, so that the pixel is never divided (left); with `min_depth 2`,
  * every pixel divided to squares a quarter of a pixel wide (second);
@@ -26,16 +27,6 @@
 #define SCALE 2 /* pixels magnified, so that the stripes and grain show */
 #define BLOCK 8 /* pixels averaged a side before the errors are compared */
 
-static const char SCENE[] =
-    "camera fov 20 position 0 0 0 look_at 0 -0.07 1\n"
-    "image 200 120\n"
-    "background 0.75 0.8 0.9\n"
-    "ambient 0.4 0.4 0.4\n"
-    "material floor diffuse 0.6 specular 0\n"
-    "triangle a -2000 -1 0.5  b 2000 -1 0.5  c 0 -1 4000 color 0.9 0.9 0.9 "
-    "material floor checker 0.1 0.1 0.1 tile 1\n"
-    "light directional direction 0.3 -1 0.5 intensity 0.6 0.6 0.6\n";
-
 /* The adaptive pattern at its defaults, with minimum depth m and its
  * points jittered or not. */
 static pixel_sampling adaptive(int m, bool jittered)
@@ -46,23 +37,13 @@ static pixel_sampling adaptive(int m, bool jittered)
                             .jittered_corners = jittered};
 }
 
-/* The mean number of rays of a pixel in st's histogram. */
-static double rays_per_pixel(const render_stats *st, long pixels)
-{
-    double rays = 0;
-    for (int n = 0; n < (int)(sizeof st->pixel_rays /
-                              sizeof st->pixel_rays[0]); n++)
-        rays += (double)n * st->pixel_rays[n];
-    return rays / pixels;
-}
-
 int main(int argc, char **argv)
 {
     const char *path = output_path(argc, argv);
     if (path == NULL)
         return 2;
     scene s;
-    load_text(&s, SCENE, "corners");
+    load_text(&s, FAR_FLOOR, "corners");
     static const char *const names[] = {"defaults", "min_depth 2",
                                         "jittered corners, min_depth 1"};
     pixel_sampling ways[] = {adaptive(0, false), adaptive(2, false),
@@ -75,7 +56,7 @@ int main(int argc, char **argv)
     long pixels = (long)img[3].width * img[3].height;
     for (int k = 0; k < 3; k++) {
         render_stats st = render_pixels(&s, ways[k], &img[k]);
-        rays[k] = rays_per_pixel(&st, pixels);
+        rays[k] = (double)st.primary_rays / pixels;
         error[k] = block_rms(&img[k], &img[3], BLOCK);
         printf("%s: adaptive, %s: %.2f rays a pixel, %.2f codes rms "
                "against 256 jittered rays, %dx%d blocks averaged\n",

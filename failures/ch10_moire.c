@@ -25,23 +25,13 @@
 #define SCALE 2 /* pixels magnified, so that the stripes and grain show */
 #define BLOCK 8 /* pixels averaged a side before the errors are compared */
 
-static const char SCENE[] =
-    "camera fov 20 position 0 0 0 look_at 0 -0.07 1\n"
-    "image 200 120\n"
-    "background 0.75 0.8 0.9\n"
-    "ambient 0.4 0.4 0.4\n"
-    "material floor diffuse 0.6 specular 0\n"
-    "triangle a -2000 -1 0.5  b 2000 -1 0.5  c 0 -1 4000 color 0.9 0.9 0.9 "
-    "material floor checker 0.1 0.1 0.1 tile 1\n"
-    "light directional direction 0.3 -1 0.5 intensity 0.6 0.6 0.6\n";
-
 int main(int argc, char **argv)
 {
     const char *path = output_path(argc, argv);
     if (path == NULL)
         return 2;
     scene s;
-    load_text(&s, SCENE, "moire");
+    load_text(&s, FAR_FLOOR, "moire");
     image grid, jittered, reference;
     render_pixels(&s, (pixel_sampling){.pattern = PIXEL_GRID, .side = 4},
                   &grid);

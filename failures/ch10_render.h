@@ -9,6 +9,19 @@
 #include "render.h"
 #include "scene_file.h"
 
+/* The checkered floor of scenes/ch10-checker.scene through a narrow lens
+ * tilted down a little, so that the far floor, its checks finer than the
+ * pixels, fills the frame (ch10_moire.c, ch10_corners.c). */
+static const char FAR_FLOOR[] =
+    "camera fov 20 position 0 0 0 look_at 0 -0.07 1\n"
+    "image 200 120\n"
+    "background 0.75 0.8 0.9\n"
+    "ambient 0.4 0.4 0.4\n"
+    "material floor diffuse 0.6 specular 0\n"
+    "triangle a -2000 -1 0.5  b 2000 -1 0.5  c 0 -1 4000 color 0.9 0.9 0.9 "
+    "material floor checker 0.1 0.1 0.1 tile 1\n"
+    "light directional direction 0.3 -1 0.5 intensity 0.6 0.6 0.6\n";
+
 /* scene_init, then the scene text; a figure whose own scene does not
  * parse stops with the located error. */
 static inline void load_text(scene *s, const char *text, const char *name)

@@ -156,12 +156,17 @@ show_warnings() {
 }
 
 # Builds; a workbook file named by a compiler error is left out, once.
+# The suites and the programs of the tangle in WB_BUILD, of WB_DIR.
+make_programs() {
+    $MAKE $jobs --no-print-directory -s WB_DIR="$WB_DIR" WB_BUILD="$WB_BUILD" \
+        WB_REUSE="$target" "$WB_BUILD/test/ch$target" "$WB_BUILD/bin/ch$target" \
+        ${previous:+"$WB_BUILD/bin/ch$previous"}
+}
+
 build() {
     for attempt in 1 2 3; do
         tangle_all "$@" || return 1
-        if $MAKE $jobs --no-print-directory -s WB_DIR="$WB_DIR" WB_BUILD="$WB_BUILD" \
-                WB_REUSE="$target" "$WB_BUILD/test/ch$target" "$WB_BUILD/bin/ch$target" \
-                ${previous:+"$WB_BUILD/bin/ch$previous"} > "$work/build.log" 2>&1; then
+        if make_programs > "$work/build.log" 2>&1; then
             show_warnings
             return 0
         fi
@@ -263,12 +268,7 @@ build_alone() {
         ' "$wb" > "$alone/wb/$(basename "$wb")" || return 1
     done
     (WB_DIR=$alone/wb WB_BUILD=$alone
-     tangle_all "$@" &&
-         $MAKE $jobs --no-print-directory -s WB_DIR="$WB_DIR" \
-             WB_BUILD="$WB_BUILD" WB_REUSE="$target" \
-             "$WB_BUILD/test/ch$target" "$WB_BUILD/bin/ch$target" \
-             ${previous:+"$WB_BUILD/bin/ch$previous"}) \
-        > "$work/alone.log" 2>&1
+     tangle_all "$@" && make_programs) > "$work/alone.log" 2>&1
 }
 
 # Does the program built alone pass test NAME (TEST or TEST:ITERATION)?
