@@ -28,8 +28,10 @@
  *                default: its faster, not watertight, traversal);
  *   embree-medium  the same at RTC_BUILD_QUALITY_MEDIUM, Embree's default
  *                build (binned SAH, no spatial splits);
+ *   fast         the BVH of the default width, its leaves decided in float
+ *                alone (accelerator bvh-float): not the exact answers;
  * and by any hit (shadow rays, to infinity): kdtree-any, bvh-any (the
- * default width) and embree-any (rtcOccluded1). Times come from the
+ * default width), fast-any and embree-any (rtcOccluded1). Times come from the
  * harness (bench/timing.h): one operation is one ray, every batch whole
  * passes over the rays, and all the cases of one mesh are timed together,
  * interleaved, in thread CPU time. The builds (kdtree-build, bvh-build on
@@ -40,13 +42,19 @@
  * after the "# machine:" line:
  *   METHOD-build,MESH,ns_per_build,ms,build_ms,q1,q3,wall
  *   METHOD,MESH-K,ns_per_ray,Mrays/s,mrays_per_s,q1,q3,wall
- *   ratio,METHOD@MESH-K,0,its rate / Embree's,over_embree  (medians)
+ *   ratio,METHOD@MESH-K,0,its rate / Embree's,over_embree  (medians; the
+ *       exact BVH of the default width again as METHOD default)
  *   ratio,METHOD-build@MESH,0,its time / Embree's,build_over_embree
  *   hits,MESH-K,0,count,METHOD_hits
  *   hits,MESH-K,0,count,METHOD_disagrees_with_kdtree  (a ray one hits and
  *       the other does not, or a different t, bit for bit)
  *   hits,MESH-K,0,count,rays_that_disagree  (bvh against embree: one hits
  *       and the other not, or distances more than 1e-5 apart, relatively)
+ *   hits,MESH-K,0,count,METHOD_other_answers  (fast, embree, embree-medium
+ *       against the exact answers, the kd-tree's: a ray one hits and the
+ *       other not, or a different triangle)
+ *   hits,MESH-K,0,error,METHOD_largest_t_error  (their largest relative
+ *       difference of t from the exact one, where both hit)
  *   vector,WIDTH_NAME,0,0,bvh_vector_width  (the node test's instructions) */
 #include <embree3/rtcore.h>
 #include <string.h>
@@ -95,21 +103,24 @@ typedef struct {
     int width; /* of a BVH */
     bool any;  /* shadow rays: any hit */
     bool medium; /* Embree: its default build, MEDIUM, not HIGH */
+    bool in_float; /* the BVH's leaves decided in float alone */
 } method;
 
 static const method METHODS[] = {
-    {"kdtree-ch08", KDTREE_CH08, 0, false, false},
-    {"kdtree", KDTREE, 0, false, false},
-    {"bvh4-double", BVH_DOUBLE, 4, false, false},
-    {"bvh4-double-mesh", BVH_DOUBLE_MESH, 4, false, false},
-    {"bvh2", BVH, 2, false, false},
-    {"bvh4", BVH, 4, false, false},
-    {"bvh8", BVH, 8, false, false},
-    {"embree", EMBREE, 0, false, false},
-    {"embree-medium", EMBREE, 0, false, true},
-    {"kdtree-any", KDTREE, 0, true, false},
-    {"bvh-any", BVH, BVH_WIDTH, true, false},
-    {"embree-any", EMBREE, 0, true, false},
+    {"kdtree-ch08", KDTREE_CH08, 0, false, false, false},
+    {"kdtree", KDTREE, 0, false, false, false},
+    {"bvh4-double", BVH_DOUBLE, 4, false, false, false},
+    {"bvh4-double-mesh", BVH_DOUBLE_MESH, 4, false, false, false},
+    {"bvh2", BVH, 2, false, false, false},
+    {"bvh4", BVH, 4, false, false, false},
+    {"bvh8", BVH, 8, false, false, false},
+    {"embree", EMBREE, 0, false, false, false},
+    {"embree-medium", EMBREE, 0, false, true, false},
+    {"fast", BVH, BVH_WIDTH, false, false, true},
+    {"kdtree-any", KDTREE, 0, true, false, false},
+    {"bvh-any", BVH, BVH_WIDTH, true, false, false},
+    {"fast-any", BVH, BVH_WIDTH, true, false, true},
+    {"embree-any", EMBREE, 0, true, false, false},
 };
 enum { N_METHODS = sizeof METHODS / sizeof METHODS[0] };
 
@@ -119,6 +130,7 @@ typedef struct {
     const char *name;
     mesh m;
     mesh bvh_of_width[9]; /* [2], [4], [8] */
+    mesh bvh_float;       /* bvh_of_width[BVH_WIDTH], decided in float */
     mesh bvh_double;      /* 4 wide, leaves of doubles: see double_leaves */
     triangle_corners *corners; /* bvh_double's, lane by lane */
     int *lane_items;           /* the triangle of each lane */
@@ -224,8 +236,10 @@ static double double_leaves_ray(const subject *s, const mesh_ray *mr, bool from_
     return t_max;
 }
 
-/* Ray k by Embree: its distance, or infinity (any: 0 for a hit). */
-static double embree_ray(const trace_ctx *c, long k, struct RTCIntersectContext *context)
+/* Ray k by Embree: its distance, or infinity (any: 0 for a hit); the
+ * triangle hit in *triangle (-1: none), unless NULL. */
+static double embree_ray(const trace_ctx *c, long k, struct RTCIntersectContext *context,
+                         int *triangle)
 {
     const float_ray *f = &c->rays[k];
     RTCScene scene = c->how->medium ? c->s->scene_medium : c->s->scene;
@@ -240,13 +254,22 @@ static double embree_ray(const trace_ctx *c, long k, struct RTCIntersectContext 
     }
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(scene, context, &rh);
-    return rh.hit.geomID != RTC_INVALID_GEOMETRY_ID ? rh.ray.tfar : INFINITY;
+    bool hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    if (triangle != NULL)
+        *triangle = hit ? (int)rh.hit.primID : -1;
+    return hit ? rh.ray.tfar : INFINITY;
 }
 
-/* Ray k by one of ours: its distance, or infinity (any: 0 for a hit). */
-static double our_ray(const trace_ctx *c, long k, render_stats *stats)
+/* Ray k by one of ours: its distance, or infinity (any: 0 for a hit);
+ * the triangle hit in *triangle where the method says (else -1), unless
+ * NULL. */
+static double our_ray(const trace_ctx *c, long k, render_stats *stats, int *triangle)
 {
-    const mesh *m = c->how->kind == BVH ? &c->s->bvh_of_width[c->how->width] : &c->s->m;
+    const mesh *m = c->how->kind != BVH ? &c->s->m
+                    : c->how->in_float  ? &c->s->bvh_float
+                                        : &c->s->bvh_of_width[c->how->width];
+    if (triangle != NULL)
+        *triangle = -1;
     mesh_ray mr = mesh_ray_of(ray_of(&c->rays[k]));
     if (c->how->kind == KDTREE_CH08)
         return chapter8_ray(m, &mr);
@@ -255,7 +278,10 @@ static double our_ray(const trace_ctx *c, long k, render_stats *stats)
     if (c->how->any)
         return mesh_occluded(m, &mr, 0, INFINITY, stats) ? 0 : INFINITY;
     triangle_hit th;
-    return mesh_nearest(m, &mr, 0, INFINITY, &th, stats) >= 0 ? th.t : INFINITY;
+    int found = mesh_nearest(m, &mr, 0, INFINITY, &th, stats);
+    if (triangle != NULL)
+        *triangle = found;
+    return found >= 0 ? th.t : INFINITY;
 }
 
 /* reps rays, whole passes over the rays (the harness's cycle). */
@@ -267,8 +293,8 @@ static void run_rays(void *ctx, long reps)
     rtcInitIntersectContext(&context);
     double sum = 0;
     for (long k = 0; k < reps; k++)
-        sum += (c->how->kind == EMBREE ? embree_ray(c, k % c->n_rays, &context)
-                                       : our_ray(c, k % c->n_rays, &stats)) < INFINITY;
+        sum += (c->how->kind == EMBREE ? embree_ray(c, k % c->n_rays, &context, NULL)
+                                       : our_ray(c, k % c->n_rays, &stats, NULL)) < INFINITY;
     bench_sink += sum;
 }
 
@@ -335,49 +361,80 @@ static bool is_used(const subject *s, const method *how)
            (how->kind == KDTREE && !how->any) || (how->kind == BVH && how->width == BVH_WIDTH);
 }
 
+/* Where method j's answers are not the exact ones (the kd-tree's, kd): a
+ * ray that one hits and the other does not, or that they see hit
+ * different triangles; and the largest relative difference of their t
+ * where both hit. */
+static void print_inexactness(const trace_ctx *c, int j, int kd, double *const t[],
+                              int *const id[], const char *param)
+{
+    long n_rays = c[0].n_rays, other = 0;
+    double largest = 0;
+    for (long k = 0; k < n_rays; k++) {
+        double a = t[j][k], b = t[kd][k];
+        other += id[j][k] != id[kd][k];
+        if (isfinite(a) && isfinite(b) && fabs(a - b) > largest * b)
+            largest = fabs(a - b) / b;
+    }
+    printf("hits,%s,0,%ld,%s_other_answers\n", param, other, c[j].how->name);
+    printf("hits,%s,0,%.3g,%s_largest_t_error\n", param, largest, c[j].how->name);
+}
+
 /* One untimed pass of every case over its rays: the hits, and where each
- * method disagrees with the kd-tree (ours) or with ours (Embree's). */
+ * method disagrees with the kd-tree (ours) or with ours (Embree's); for
+ * the float path and Embree, how far they are from the exact answers. */
 static void print_agreement(const trace_ctx *c, int n, const char *param)
 {
     long n_rays = c[0].n_rays;
-    float *t[N_METHODS];
+    double *t[N_METHODS];
+    int *id[N_METHODS];
     struct RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     render_stats stats = {0};
     int kd = -1, ours = -1;
     for (int j = 0; j < n; j++) {
         long hits = 0;
-        if ((t[j] = malloc((size_t)n_rays * sizeof *t[j])) == NULL)
+        t[j] = malloc((size_t)n_rays * sizeof *t[j]);
+        id[j] = malloc((size_t)n_rays * sizeof *id[j]);
+        if (t[j] == NULL || id[j] == NULL)
             exit(1);
         for (long k = 0; k < n_rays; k++) {
-            double d = c[j].how->kind == EMBREE ? embree_ray(&c[j], k, &context)
-                                                : our_ray(&c[j], k, &stats);
-            t[j][k] = (float)d, hits += d < INFINITY;
+            double d = c[j].how->kind == EMBREE ? embree_ray(&c[j], k, &context, &id[j][k])
+                                                : our_ray(&c[j], k, &stats, &id[j][k]);
+            t[j][k] = d, hits += d < INFINITY;
         }
         printf("hits,%s,0,%ld,%s_hits\n", param, hits, c[j].how->name);
         kd = strcmp(c[j].how->name, "kdtree") == 0 ? j : kd;
-        ours = c[j].how->kind == BVH && c[j].how->width == BVH_WIDTH && !c[j].how->any ? j : ours;
+        ours = c[j].how->kind == BVH && c[j].how->width == BVH_WIDTH && !c[j].how->any &&
+                       !c[j].how->in_float
+                   ? j
+                   : ours;
     }
     for (int j = 0; j < n; j++) {
-        if (c[j].how->any || c[j].how->kind == EMBREE || j == kd)
+        if (c[j].how->any || c[j].how->kind == EMBREE || c[j].how->in_float || j == kd)
             continue;
         long differ = 0;
-        for (long k = 0; k < n_rays; k++)
-            differ += memcmp(&t[j][k], &t[kd][k], sizeof(float)) != 0;
+        for (long k = 0; k < n_rays; k++) { /* as float, bit for bit */
+            float a = (float)t[j][k], b = (float)t[kd][k];
+            differ += memcmp(&a, &b, sizeof a) != 0;
+        }
         printf("hits,%s,0,%ld,%s_disagrees_with_kdtree\n", param, differ, c[j].how->name);
     }
+    for (int j = 0; j < n; j++)
+        if ((c[j].how->kind == EMBREE || c[j].how->in_float) && !c[j].how->any)
+            print_inexactness(c, j, kd, t, id, param);
     for (int j = 0; j < n; j++)
         if (c[j].how->kind == EMBREE && !c[j].how->any && !c[j].how->medium) {
             long differ = 0;
             for (long k = 0; k < n_rays; k++) {
-                float a = t[ours][k], b = t[j][k];
+                float a = (float)t[ours][k], b = (float)t[j][k];
                 bool hit_a = isfinite(a), hit_b = isfinite(b);
                 differ += hit_a != hit_b || (hit_a && fabsf(a - b) > 1e-5f * b);
             }
             printf("hits,%s,0,%ld,rays_that_disagree\n", param, differ);
         }
     for (int j = 0; j < n; j++)
-        free(t[j]);
+        free(t[j]), free(id[j]);
 }
 
 static void print_rays(const trace_ctx *c, const bench_case *cases, const bench_timing *t, int n)
@@ -393,6 +450,12 @@ static void print_rays(const trace_ctx *c, const bench_case *cases, const bench_
             if (strcmp(c[e].how->name, yardstick) == 0)
                 printf("ratio,%s@%s,0,%.4f,over_embree\n", c[j].how->name, cases[j].param,
                        t[e].median / t[j].median);
+        if (c[j].how->kind == BVH && c[j].how->width == BVH_WIDTH && !c[j].how->any &&
+            !c[j].how->in_float) /* the program's default, named as such */
+            for (int e = 0; e < n; e++)
+                if (strcmp(c[e].how->name, yardstick) == 0)
+                    printf("ratio,default@%s,0,%.4f,over_embree\n", cases[j].param,
+                           t[e].median / t[j].median);
     }
 }
 
@@ -460,6 +523,8 @@ static void prepare(subject *s, RTCDevice device)
         if (!mesh_build_bvh(copy, &bp))
             exit(1);
     }
+    s->bvh_float = s->bvh_of_width[BVH_WIDTH]; /* its tree, not a copy */
+    s->bvh_float.bvh_in_float = true;
     double_leaves(s);
     s->scene = embree_scene(device, &s->m, RTC_BUILD_QUALITY_HIGH);
     rtcCommitScene(s->scene);

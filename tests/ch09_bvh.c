@@ -584,26 +584,30 @@ START_TEST(test_the_accelerator_statement_chooses_the_tree)
     link_meshes();
     /* the default; each statement; a heat map of kd-tree nodes; and
      * --accelerator (set before the file is read) over the statement */
-    const char *texts[5] = {
+    const char *texts[7] = {
         "mesh file meshes/teapot-8.obj\n",
         "accelerator kdtree\nmesh file meshes/teapot-8.obj\n",
         "accelerator bvh\nmesh file meshes/teapot-8.obj\n",
         "kdtree heatmap 9\nmesh file meshes/teapot-8.obj\n",
-        "accelerator kdtree\nmesh file meshes/teapot-8.obj\n"};
-    const bool wants_bvh[5] = {
+        "accelerator kdtree\nmesh file meshes/teapot-8.obj\n",
+        "accelerator bvh-float\nmesh file meshes/teapot-8.obj\n",
+        "accelerator bvh-float\nmesh file meshes/teapot-8.obj\n"};
+    const bool wants_bvh[7] = {
         MESH_DEFAULT_ACCELERATOR == MESH_ACCELERATOR_BVH, false, true, false,
-        true};
-    for (int k = 0; k < 5; k++) {
+        true, true, true};
+    const bool in_float[7] = {false, false, false, false, false, true, false};
+    for (int k = 0; k < 7; k++) {
         scene s;
         scene_error err;
         char *path = (char *)write_file("choose.scene", texts[k]);
         scene_init(&s);
-        if (k == 4)
+        if (k == 4 || k == 6)
             s.accelerator_option = MESH_ACCELERATOR_BVH;
         ck_assert_msg(scene_load(&s, path, &err), "%s", err.message);
         bool bvh = wants_bvh[k];
         ck_assert_int_eq(s.meshes[0].bvh.node_count > 0, bvh);
         ck_assert_int_eq(s.meshes[0].tree.node_count > 0, !bvh);
+        ck_assert_int_eq(s.meshes[0].bvh_in_float, in_float[k]);
         scene_free(&s);
     }
 }
@@ -646,18 +650,21 @@ START_TEST(test_bad_accelerator_statements_are_located)
     expect_parse_error("accelerator bvh\n\naccelerator kdtree\n", 3, 1,
                        "first is on line 1");
     expect_parse_error("accelerator BVH\n", 1, 13, "accelerator (kdtree");
+    expect_parse_error("accelerator bvh-double\n", 1, 13,
+                       "accelerator (kdtree, bvh, bvh-float)");
 }
 END_TEST
 
 START_TEST(test_bad_accelerator_options_are_usage_errors)
 {
-    const char *bad[] = {"octree", "", "BVH", "bvh4"};
+    const char *bad[] = {"octree", "", "BVH", "bvh4", "bvh-floats"};
     for (size_t k = 0; k < sizeof bad / sizeof *bad; k++) {
         char errors[1024];
         const char *out = tmp_path("never.png");
         const char *args[] = {"--accelerator", bad[k], "-o", out, NULL};
         ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
-        ck_assert_msg(strstr(errors, "--accelerator expects kdtree or bvh"),
+        ck_assert_msg(strstr(errors, "--accelerator expects kdtree, bvh or "
+                                     "bvh-float"),
                       "%s", errors);
         ck_assert(!file_exists(out));
     }
@@ -687,6 +694,13 @@ START_TEST(test_a_kd_tree_heat_map_over_bvhs_is_refused)
     ck_assert_msg(strstr(errors, "--accelerator bvh gives the meshes BVHs"),
                   "%s", errors);
     ck_assert(!file_exists(out));
+    args[2] = "bvh-float";
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+    ck_assert_msg(strstr(errors, "--accelerator bvh-float gives the meshes"),
+                  "%s", errors);
+    ck_assert(!file_exists(out));
+    expect_parse_error("kdtree heatmap 60\naccelerator bvh-float\n", 2, 1,
+                       "heat map draws kd-tree nodes");
 }
 END_TEST
 

@@ -619,6 +619,175 @@ START_TEST(test_the_filter_decides_far_rays_alone)
 }
 END_TEST
 
+/* ------------------------------------------------------------ in float */
+
+/* For every packet: the float decision in vectors and lane by lane hit the
+ * same lanes, and the filter keeps each of them (they read the same float
+ * edge functions, whose rounding the filter's bounds cover). */
+static void check_float_hits(packet_tally *tally, const little_mesh *m,
+                             ray r, double t_min, double t_max)
+{
+    watertight_ray w = watertight_ray_of(r);
+    packet_ray pr = packet_ray_of(&w);
+    for (int p = 0; p < m->packet_count; p++) {
+        const triangle_packet *q = &m->packets[p];
+        unsigned simd = triangle_packet_float_hits_simd(q, &pr, t_min, t_max);
+        unsigned one = triangle_packet_float_hits_scalar(q, &pr, t_min,
+                                                         t_max);
+        unsigned kept = triangle_packet_candidates_simd(q, &pr, t_min,
+                                                        t_max);
+        tally->disagreements += simd != one;
+        tally->lost_hits += __builtin_popcount(simd & ~kept);
+        tally->kept_hits += __builtin_popcount(simd);
+        tally->lanes += TRIANGLE_PACKET_WIDTH;
+    }
+}
+
+START_TEST(test_float_hits_are_lanes_the_filter_keeps)
+{
+    rng_state g = {29};
+    little_mesh m = {0};
+    packet_tally tally = {0};
+    for (int n = 0; n < 20000; n++) {
+        random_mesh(&g, &m, n);
+        for (int k = 0; k < 8; k++) {
+            ray r = ray_toward(&g, &m, k, n + k);
+            check_float_hits(&tally, &m, r, 0, INFINITY);
+            ray leaving = {aim_at(&g, &m.corners[k % m.count], n + k),
+                           rng_unit_vector(&g, 0.1)};
+            check_float_hits(&tally, &m, leaving, 0, INFINITY);
+            check_float_hits(&tally, &m, r, 0, 4);
+        }
+    }
+    free(m.packets);
+    ck_assert_int_eq(tally.disagreements, 0);
+    ck_assert_msg(tally.lost_hits == 0, "%lld of %lld float hits rejected",
+                  tally.lost_hits, tally.kept_hits);
+    ck_assert_msg(tally.kept_hits > tally.lanes / 20, "%lld hits in %lld",
+                  tally.kept_hits, tally.lanes);
+}
+END_TEST
+
+START_TEST(test_float_hits_every_triangle_hit_well_inside)
+{
+    /* A ray at a point whose barycentric coordinates are all at least
+     * 1/16, from either side (both windings): float's edge functions are
+     * within e_E of the exact ones, for these triangles (no more than a
+     * thousand of their sizes from the origin, no sliver, not seen
+     * edge-on) below a thousandth of the determinant, so float must hit
+     * every one. */
+    const double kinds[3][2] = {{1, 1}, {1e-3, 1}, {1e4, 10}};
+    rng_state g = {31};
+    little_mesh m = {0};
+    int tried = 0, missed = 0;
+    for (int n = 0; n < 20000; n++) {
+        const double *k = kinds[n % 3];
+        vec3 centre = vec3_scale(rng_unit_vector(&g, 0.1), k[1]), p[3];
+        for (int i = 0; i < 3; i++)
+            p[i] = vec3_add(centre, vec3_scale(rng_unit_vector(&g, 0.1), k[0]));
+        vec3 normal = vec3_cross(vec3_sub(p[1], p[0]), vec3_sub(p[2], p[0]));
+        if (vec3_length(normal) < 0.1 * k[0] * k[0])
+            continue; /* a sliver */
+        double b[3] = {1 + 13 * rng_uniform01(&g), 1 + 13 * rng_uniform01(&g),
+                       1 + 13 * rng_uniform01(&g)}, sum = b[0] + b[1] + b[2];
+        vec3 target = vec3_add(vec3_scale(p[0], b[0] / sum),
+                               vec3_add(vec3_scale(p[1], b[1] / sum),
+                                        vec3_scale(p[2], b[2] / sum)));
+        vec3 origin = vec3_add(target, vec3_scale(rng_unit_vector(&g, 0.1),
+                                                  4 * k[0]));
+        ray r = {origin, vec3_normalize(vec3_sub(target, origin))};
+        if (fabs(vec3_dot(r.dir, normal)) < 0.1 * vec3_length(normal))
+            continue; /* a grazing ray sees a sliver */
+        m.count = 0;
+        add_triangle(&m, (triangle_corners){{p[0], p[1], p[2]}});
+        pack(&m);
+        watertight_ray w = watertight_ray_of(r);
+        packet_ray pr = packet_ray_of(&w);
+        triangle_hit exact, fast;
+        if (!triangle_hit_prepared(&w, p[0], p[1], p[2], 0, INFINITY, &exact))
+            continue;
+        tried++;
+        missed += triangle_packets_nearest_float(&pr, m.packets, 1, 0,
+                                                 INFINITY, -1, &fast) != 0;
+        missed += !triangle_packets_any_float(&pr, m.packets, 1, 0, INFINITY);
+    }
+    free(m.packets);
+    ck_assert_int_gt(tried, 15000);
+    ck_assert_int_eq(missed, 0);
+}
+END_TEST
+
+START_TEST(test_the_float_path_leaks_no_edge_aimed_ray)
+{
+    /* Every ray at an edge or a corner of the closed octahedron hits it,
+     * in float as in double: the shared edges' functions are each other's
+     * negatives. */
+    make_octahedron();
+    little_mesh m = {0};
+    for (int f = 0; f < 8; f++)
+        add_triangle(&m, octa[f]);
+    pack(&m);
+    int leaks = 0, rays = 0;
+    for (int f = 0; f < 8; f++)
+        for (int e = 0; e < 3; e++)
+            for (int s = 0; s <= 16; s++)
+                for (int o = 0; o < 12; o++) {
+                    watertight_ray w = watertight_ray_of(edge_ray(f, e, s, o));
+                    packet_ray pr = packet_ray_of(&w);
+                    triangle_hit th;
+                    rays++;
+                    leaks += triangle_packets_nearest_float(
+                                 &pr, m.packets, m.packet_count, 0, INFINITY,
+                                 -1, &th) < 0;
+                    leaks += !triangle_packets_any_float(
+                        &pr, m.packets, m.packet_count, 0, INFINITY);
+                }
+    free(m.packets);
+    ck_assert_int_eq(rays, 8 * 3 * 17 * 12);
+    ck_assert_int_eq(leaks, 0);
+}
+END_TEST
+
+START_TEST(test_the_float_path_keeps_the_tie_rule)
+{
+    /* As test_packets_keep_the_tie_rule_in_and_across_packets: one
+     * triangle four times among twelve, in one packet or over two. */
+    triangle_corners one = {{{-1, -1, 2}, {2, -1, 2}, {-1, 2, 2}}};
+    triangle_corners other = {{{5, 5, 1}, {6, 5, 1}, {5, 6, 1}}};
+    little_mesh m = {0};
+    for (int k = 0; k < 12; k++)
+        add_triangle(&m, k == 2 || k == 5 || k == 9 || k == 11 ? one : other);
+    const int order[12] = {11, 0, 1, 9, 3, 4, 6, 7, 5, 8, 10, 2};
+    memcpy(m.items, order, sizeof order);
+    pack(&m);
+    /* from either side: the determinant of either sign */
+    const ray rays[2] = {{{0.1, 0.2, 0}, {0, 0, 1}},
+                         {{0.1, 0.2, 4}, {0, 0, -1}}};
+    for (int k = 0; k < 2; k++) {
+        watertight_ray w = watertight_ray_of(rays[k]);
+        packet_ray pr = packet_ray_of(&w);
+        const triangle_packet *q = m.packets;
+        int n = m.packet_count;
+        triangle_hit th;
+        ck_assert_int_eq(
+            triangle_packets_nearest_float(&pr, q, n, 0, INFINITY, -1, &th), 2);
+        ck_assert(th.t == 2);
+        ck_assert(th.b[0] + th.b[1] + th.b[2] > 0.999f);
+        /* a tie with triangle 3, found before: 2 wins; with 1: 1 keeps it;
+         * nothing found yet: t_max itself is out */
+        ck_assert_int_eq(
+            triangle_packets_nearest_float(&pr, q, n, 0, 2, 3, &th), 2);
+        ck_assert_int_eq(
+            triangle_packets_nearest_float(&pr, q, n, 0, 2, 1, &th), -1);
+        ck_assert_int_eq(
+            triangle_packets_nearest_float(&pr, q, n, 0, 2, -1, &th), -1);
+        ck_assert(!triangle_packets_any_float(&pr, q, n, 0, 2));
+        ck_assert(triangle_packets_any_float(&pr, q, n, 0, 2.5));
+    }
+    free(m.packets);
+}
+END_TEST
+
 Suite *ch09_packets_suite(void)
 {
     Suite *s = suite_create("ch09 packets");
@@ -643,6 +812,10 @@ Suite *ch09_packets_suite(void)
     tcase_add_test(packets, test_an_empty_lane_lets_the_edges_stop_the_filter);
     tcase_add_test(packets, test_packets_hold_the_mesh_s_triangles_in_float);
     tcase_add_test(packets, test_the_filter_decides_far_rays_alone);
+    tcase_add_test(packets, test_float_hits_are_lanes_the_filter_keeps);
+    tcase_add_test(packets, test_float_hits_every_triangle_hit_well_inside);
+    tcase_add_test(packets, test_the_float_path_leaks_no_edge_aimed_ray);
+    tcase_add_test(packets, test_the_float_path_keeps_the_tie_rule);
     suite_add_tcase(s, packets);
     return s;
 }

@@ -49,6 +49,7 @@ typedef struct {
     bvh bvh;                     /* no nodes: no BVH; its leaves: packets */
     triangle_packet *bvh_packets; /* the leaves' triangles, leaf by leaf */
     int bvh_packet_count;
+    bool bvh_in_float; /* its leaves decided in float alone (bvh-float) */
 } mesh;
 
 void mesh_free(mesh *m);
@@ -158,10 +159,15 @@ int mesh_nearest_recursive(const mesh *m, const mesh_ray *mr, double t_min,
 typedef enum {
     MESH_ACCELERATOR_DEFAULT,
     MESH_ACCELERATOR_KDTREE,
-    MESH_ACCELERATOR_BVH
+    MESH_ACCELERATOR_BVH,
+    MESH_ACCELERATOR_BVH_FLOAT /* the BVH, its leaves decided in float */
 } mesh_accelerator;
 
 #define MESH_DEFAULT_ACCELERATOR MESH_ACCELERATOR_BVH
+
+/* The name of an accelerator in the scene ("kdtree", "bvh",
+ * "bvh-float"); "default" for MESH_ACCELERATOR_DEFAULT. */
+const char *mesh_accelerator_name(mesh_accelerator a);
 
 /* The bytes a triangle that a mesh's BVH holds at most, on meshes of
  * triangles of like sizes (the bunny, the teapot): packets of 44 bytes a

@@ -13,7 +13,7 @@ typedef struct {
     bool stats, help;
     /* <<option members>> ch09 */
     int threads; /* 0: one per core */
-    int accelerator; /* 0: the scene's; 1 kdtree, 2 bvh (mesh_accelerator) */
+    int accelerator; /* 0: the scene's; else a mesh_accelerator */
 } options;
 
 /* The help text, on out. */

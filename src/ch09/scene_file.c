@@ -430,20 +430,20 @@ static bool parse_kdtree(parser *p, scene *s)
 
 static bool parse_accelerator(parser *p, scene *s)
 {
-    /* in the order of mesh_accelerator, from 1 */
-    static const char *names[] = {"kdtree", "bvh"};
     if (s->accelerator_line > 0)
         return parse_fail_at(p, p->token, "expected one accelerator "
                              "statement, found a second (the first is on "
                              "line %d)", s->accelerator_line);
     if (parse_next_token(p))
-        for (int k = 0; k < 2; k++)
-            if (parse_token_is(p, names[k])) {
-                s->accelerator = (mesh_accelerator)(k + 1);
+        for (int k = MESH_ACCELERATOR_KDTREE; k <= MESH_ACCELERATOR_BVH_FLOAT;
+             k++)
+            if (parse_token_is(p, mesh_accelerator_name(k))) {
+                s->accelerator = (mesh_accelerator)k;
                 s->accelerator_line = p->line_number;
                 return true;
             }
-    return parse_expected(p, "expected an accelerator (kdtree, bvh)");
+    return parse_expected(p, "expected an accelerator (kdtree, bvh, "
+                             "bvh-float)");
 }
 
 /* <<the statement loop>> ch01 */
@@ -532,7 +532,7 @@ static bool tree_error(const scene *s, const char *name,
     const mesh_source *m = &s->meshes[why->mesh].source;
     const char *tree = "kd-tree";
     /* <<the name of the meshes' tree>> ch09 */
-    if (scene_mesh_accelerator(s) == MESH_ACCELERATOR_BVH)
+    if (scene_mesh_accelerator(s) != MESH_ACCELERATOR_KDTREE)
         tree = "BVH";
     return parse_fail_on_line(err, name, m->line, kind,
                               "the %s of mesh file '%s' %s %lld bytes "
@@ -556,12 +556,14 @@ bool scene_parse(scene *s, const char *text, size_t length, const char *name,
     if (!scene_build_trees(s, &why))
         return tree_error(s, name, &why, err);
     /* <<finish the scene>> += ch09 */
-    if (s->heatmap > 0 && scene_mesh_accelerator(s) == MESH_ACCELERATOR_BVH)
+    if (s->heatmap > 0 && scene_mesh_accelerator(s) != MESH_ACCELERATOR_KDTREE)
         return parse_fail_on_line(
             err, name, s->accelerator_option ? 0 : s->accelerator_line,
             PARSE_BAD_INPUT, "the kdtree statement's heat map draws kd-tree "
-            "nodes, and %s gives the meshes BVHs",
-            s->accelerator_option ? "--accelerator bvh" : "this statement");
+            "nodes, and %s%s gives the meshes BVHs",
+            s->accelerator_option ? "--accelerator " : "this statement",
+            s->accelerator_option ? mesh_accelerator_name(s->accelerator_option)
+                                  : "");
     return true;
 }
 

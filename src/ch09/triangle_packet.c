@@ -108,6 +108,7 @@ static inline packet_int kept_in_vectors(const triangle_packet *p,
     lane_mask empty = p->triangle < 0; /* -1 where no triangle is */
     /* <<the float filter>> ch09 */
     /* <<the float filter's edge functions>> ch09 */
+    /* <<the edge functions in float>> ch09 */
     int kx = r->kx, ky = r->ky, kz = r->kz;
     float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
     lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;
@@ -158,6 +159,7 @@ static inline int kept_alone(const triangle_packet *p, int k,
     int empty = p->triangle[k] < 0;
     /* <<the float filter>> ch09 */
     /* <<the float filter's edge functions>> ch09 */
+    /* <<the edge functions in float>> ch09 */
     int kx = r->kx, ky = r->ky, kz = r->kz;
     float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
     lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;
@@ -204,6 +206,7 @@ bool triangle_packet_stops_at_edges(const triangle_packet *p,
     lanes p_reach = p->reach;
     lane_mask empty = p->triangle < 0;
     /* <<the float filter's edge functions>> ch09 */
+    /* <<the edge functions in float>> ch09 */
     int kx = r->kx, ky = r->ky, kz = r->kz;
     float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
     lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;
@@ -396,4 +399,170 @@ bool triangle_packets_any_in_mesh(const packet_ray *r,
 {
     lane_corners from = {NULL, vertices, triangles};
     return any_of_packets(r, packets, count, &from, t_min, t_max, decided);
+}
+
+/* <<the float decision, made>> ch09 */
+/* What the lanes hit in float need for their answers: t = n / det, and
+ * u / det, v / det, w / det. */
+typedef struct {
+    packet_float u, v, w, n, det;
+} float_hits;
+
+/* The lanes of p hit in float alone: -1 in each; their numbers in *h. */
+static inline packet_int float_hits_in_vectors(const triangle_packet *p,
+                                               const packet_ray *r,
+                                               float t_min, float t_max,
+                                               float_hits *h)
+{
+    typedef packet_float lanes;
+    typedef packet_int lane_mask;
+    const lanes *a = p->corner[0], *b = p->corner[1], *c = p->corner[2];
+    lane_mask empty = p->triangle < 0;
+    /* <<the float decision>> ch09 */
+    /* <<the edge functions in float>> ch09 */
+    int kx = r->kx, ky = r->ky, kz = r->kz;
+    float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
+    lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;
+    lanes ax = (a[kx] - ox) - r->sx * az, ay = (a[ky] - oy) - r->sy * az;
+    lanes bx = (b[kx] - ox) - r->sx * bz, by = (b[ky] - oy) - r->sy * bz;
+    lanes cx = (c[kx] - ox) - r->sx * cz, cy = (c[ky] - oy) - r->sy * cz;
+    lanes u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
+    lane_mask inside = ((u >= 0) & (v >= 0) & (w >= 0)) |
+                       ((u <= 0) & (v <= 0) & (w <= 0));
+    if (lanes_all(inside == 0)) /* an edge between, in every lane */
+        return (lane_mask){0};
+    lanes det = u + v + w;
+    lanes n = u * (r->sz * az) + v * (r->sz * bz) + w * (r->sz * cz);
+    /* n / det in (t_min, t_max], without dividing: det's sign decides */
+    lane_mask ahead = ((det > 0) & (n > t_min * det) & (n <= t_max * det)) |
+                      ((det < 0) & (n < t_min * det) & (n >= t_max * det));
+    lane_mask hit = inside & ahead & (empty == 0);
+    *h = (float_hits){u, v, w, n, det};
+    return hit;
+}
+
+/* Lane k of float_hits_in_vectors, computed alone: 1 or 0. */
+static inline int float_hit_alone(const triangle_packet *p, int k,
+                                  const packet_ray *r, float t_min,
+                                  float t_max, float_hits *h)
+{
+    typedef float lanes;
+    typedef int lane_mask;
+    float a[3], b[3], c[3];
+    for (int axis = 0; axis < 3; axis++)
+        a[axis] = p->corner[0][axis][k], b[axis] = p->corner[1][axis][k],
+        c[axis] = p->corner[2][axis][k];
+    int empty = p->triangle[k] < 0;
+    /* <<the float decision>> ch09 */
+    /* <<the edge functions in float>> ch09 */
+    int kx = r->kx, ky = r->ky, kz = r->kz;
+    float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
+    lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;
+    lanes ax = (a[kx] - ox) - r->sx * az, ay = (a[ky] - oy) - r->sy * az;
+    lanes bx = (b[kx] - ox) - r->sx * bz, by = (b[ky] - oy) - r->sy * bz;
+    lanes cx = (c[kx] - ox) - r->sx * cz, cy = (c[ky] - oy) - r->sy * cz;
+    lanes u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
+    lane_mask inside = ((u >= 0) & (v >= 0) & (w >= 0)) |
+                       ((u <= 0) & (v <= 0) & (w <= 0));
+    if (lanes_all(inside == 0)) /* an edge between, in every lane */
+        return (lane_mask){0};
+    lanes det = u + v + w;
+    lanes n = u * (r->sz * az) + v * (r->sz * bz) + w * (r->sz * cz);
+    /* n / det in (t_min, t_max], without dividing: det's sign decides */
+    lane_mask ahead = ((det > 0) & (n > t_min * det) & (n <= t_max * det)) |
+                      ((det < 0) & (n < t_min * det) & (n >= t_max * det));
+    lane_mask hit = inside & ahead & (empty == 0);
+    h->u[k] = u, h->v[k] = v, h->w[k] = w, h->n[k] = n, h->det[k] = det;
+    return hit;
+}
+
+static unsigned float_hit_bits_simd(const triangle_packet *p,
+                                    const packet_ray *r, float t_min,
+                                    float t_max, float_hits *h)
+{
+    packet_int hit = float_hits_in_vectors(p, r, t_min, t_max, h);
+    unsigned bits = 0;
+    for (int k = 0; k < PACKET_W; k++)
+        bits |= (unsigned)(hit[k] & 1) << k;
+    return bits;
+}
+
+static unsigned float_hit_bits_scalar(const triangle_packet *p,
+                                      const packet_ray *r, float t_min,
+                                      float t_max, float_hits *h)
+{
+    unsigned bits = 0;
+    for (int k = 0; k < PACKET_W; k++)
+        bits |= (unsigned)float_hit_alone(p, k, r, t_min, t_max, h) << k;
+    return bits;
+}
+
+/* The program's decision: in vectors, unless built with -DRT_SCALAR. */
+static inline unsigned float_hit_bits(const triangle_packet *p,
+                                      const packet_ray *r, float t_min,
+                                      float t_max, float_hits *h)
+{
+#ifdef RT_SCALAR
+    return float_hit_bits_scalar(p, r, t_min, t_max, h);
+#else
+    return float_hit_bits_simd(p, r, t_min, t_max, h);
+#endif
+}
+
+unsigned triangle_packet_float_hits_simd(const triangle_packet *p,
+                                         const packet_ray *r, double t_min,
+                                         double t_max)
+{
+    float_hits h;
+    return float_hit_bits_simd(p, r, (float)t_min, (float)t_max, &h);
+}
+
+unsigned triangle_packet_float_hits_scalar(const triangle_packet *p,
+                                           const packet_ray *r,
+                                           double t_min, double t_max)
+{
+    float_hits h;
+    return float_hit_bits_scalar(p, r, (float)t_min, (float)t_max, &h);
+}
+
+int triangle_packets_nearest_float(const packet_ray *r,
+                                   const triangle_packet *packets, int count,
+                                   double t_min, double t_max, int best,
+                                   triangle_hit *out)
+{
+    float lo = (float)t_min, nearest_t = (float)t_max;
+    int nearest = -1;
+    for (int p = 0; p < count; p++) {
+        float_hits h;
+        unsigned bits = float_hit_bits(&packets[p], r, lo, nearest_t, &h);
+        for (; bits != 0; bits &= bits - 1) {
+            int k = __builtin_ctz(bits), i = packets[p].triangle[k];
+            float t = h.n[k] / h.det[k];
+            if (!(t > lo) || t > nearest_t || (t == nearest_t && i > best))
+                continue; /* a tie: the lower index */
+            float inv = 1 / h.det[k];
+            *out = (triangle_hit){t, {h.u[k] * inv, h.v[k] * inv,
+                                      h.w[k] * inv}};
+            nearest_t = t, best = i, nearest = i;
+        }
+    }
+    return nearest;
+}
+
+bool triangle_packets_any_float(const packet_ray *r,
+                                const triangle_packet *packets, int count,
+                                double t_min, double t_max)
+{
+    float lo = (float)t_min, hi = (float)t_max;
+    for (int p = 0; p < count; p++) {
+        float_hits h;
+        unsigned bits = float_hit_bits(&packets[p], r, lo, hi, &h);
+        for (; bits != 0; bits &= bits - 1) {
+            int k = __builtin_ctz(bits);
+            float t = h.n[k] / h.det[k];
+            if (t > lo && t < hi)
+                return true;
+        }
+    }
+    return false;
 }

@@ -124,4 +124,29 @@ bool triangle_packets_any_in_mesh(const packet_ray *r,
                                   double t_min, double t_max,
                                   long long *decided);
 
+/* Chapter 4's test in float alone, with no bound and no second test:
+ * the lanes of p that r hits in (t_min, t_max], lane k in bit k; in
+ * vectors, and lane by lane. The two are equal. */
+unsigned triangle_packet_float_hits_simd(const triangle_packet *p,
+                                         const packet_ray *r, double t_min,
+                                         double t_max);
+unsigned triangle_packet_float_hits_scalar(const triangle_packet *p,
+                                           const packet_ray *r,
+                                           double t_min, double t_max);
+
+/* The nearest triangle of count packets hit in float alone in (t_min,
+ * t_max], a hit at t_max itself only when its index is below best (the
+ * tie rule of triangle_packets_nearest): its index, its hit in *out; or
+ * -1. The hit is float's, t and barycentric coordinates. */
+int triangle_packets_nearest_float(const packet_ray *r,
+                                   const triangle_packet *packets, int count,
+                                   double t_min, double t_max, int best,
+                                   triangle_hit *out);
+
+/* Does r hit any triangle of count packets in (t_min, t_max), in float
+ * alone? */
+bool triangle_packets_any_float(const packet_ray *r,
+                                const triangle_packet *packets, int count,
+                                double t_min, double t_max);
+
 #endif

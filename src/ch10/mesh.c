@@ -369,7 +369,7 @@ void mesh_free_tree(mesh *m)
     /* <<free the mesh's other trees>> ch09 */
     bvh_free(&m->bvh);
     free(m->bvh_packets);
-    m->bvh_packets = NULL, m->bvh_packet_count = 0;
+    m->bvh_packets = NULL, m->bvh_packet_count = 0, m->bvh_in_float = false;
 }
 
 long long mesh_tree_bytes(const mesh *m)
@@ -454,6 +454,16 @@ bool mesh_occluded(const mesh *m, const mesh_ray *mr, double t_min,
 }
 /* <<intersecting a mesh>> += ch09 */
 
+/* In the order of mesh_accelerator, from MESH_ACCELERATOR_KDTREE. */
+static const char *const accelerator_names[] = {"kdtree", "bvh",
+                                                "bvh-float"};
+
+const char *mesh_accelerator_name(mesh_accelerator a)
+{
+    return a == MESH_ACCELERATOR_DEFAULT ? "default"
+                                         : accelerator_names[a - 1];
+}
+
 /* The bounding boxes of m's triangles, into bounds. */
 static void triangle_boxes(const mesh *m, box *bounds)
 {
@@ -531,6 +541,11 @@ static int bvh_leaf_test(const mesh *m, const packet_ray *r, bvh_leaf leaf,
 {
     const triangle_packet *p = m->bvh_packets + leaf.first;
     int n = triangle_packets_needed(leaf.count);
+    if (m->bvh_in_float && out == NULL)
+        return triangle_packets_any_float(r, p, n, t_min, t_max) ? 0 : -1;
+    if (m->bvh_in_float)
+        return triangle_packets_nearest_float(r, p, n, t_min, t_max, best,
+                                              out);
     if (out == NULL)
         return triangle_packets_any_in_mesh(r, p, n, m->vertices,
                                             m->triangles, t_min, t_max,
