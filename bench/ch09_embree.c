@@ -45,7 +45,11 @@
  *   ratio,METHOD@MESH-K,0,its rate / Embree's,over_embree  (medians; the
  *       exact BVH of the default width again as METHOD default)
  *   ratio,METHOD-build@MESH,0,its time / Embree's,build_over_embree
+ *   hits,MESH-K,0,count,rays  (traced by each method)
  *   hits,MESH-K,0,count,METHOD_hits
+ *   hits,MESH-K,0,mean,METHOD_nodes_per_ray  (a BVH's: nodes whose children
+ *       a ray tested, and the triangles of the leaves it met, a ray)
+ *   hits,MESH-K,0,mean,METHOD_leaf_triangles_per_ray
  *   hits,MESH-K,0,count,METHOD_disagrees_with_kdtree  (a ray one hits and
  *       the other does not, or a different t, bit for bit)
  *   hits,MESH-K,0,count,rays_that_disagree  (bvh against embree: one hits
@@ -114,9 +118,9 @@ static const method METHODS[] = {
     {"bvh2", BVH, 2, false, false, false},
     {"bvh4", BVH, 4, false, false, false},
     {"bvh8", BVH, 8, false, false, false},
+    {"fast", BVH, BVH_WIDTH, false, false, true},
     {"embree", EMBREE, 0, false, false, false},
     {"embree-medium", EMBREE, 0, false, true, false},
-    {"fast", BVH, BVH_WIDTH, false, false, true},
     {"kdtree-any", KDTREE, 0, true, false, false},
     {"bvh-any", BVH, BVH_WIDTH, true, false, false},
     {"fast-any", BVH, BVH_WIDTH, true, false, true},
@@ -386,6 +390,7 @@ static void print_inexactness(const trace_ctx *c, int j, int kd, double *const t
 static void print_agreement(const trace_ctx *c, int n, const char *param)
 {
     long n_rays = c[0].n_rays;
+    printf("hits,%s,0,%ld,rays\n", param, n_rays);
     double *t[N_METHODS];
     int *id[N_METHODS];
     struct RTCIntersectContext context;
@@ -404,6 +409,12 @@ static void print_agreement(const trace_ctx *c, int n, const char *param)
             t[j][k] = d, hits += d < INFINITY;
         }
         printf("hits,%s,0,%ld,%s_hits\n", param, hits, c[j].how->name);
+        if (c[j].how->kind == BVH) /* what a ray of the walk visits */
+            printf("hits,%s,0,%.2f,%s_nodes_per_ray\n"
+                   "hits,%s,0,%.2f,%s_leaf_triangles_per_ray\n",
+                   param, (double)stats.bvh_nodes / (double)n_rays, c[j].how->name, param,
+                   (double)stats.triangle_tests / (double)n_rays, c[j].how->name);
+        stats = (render_stats){0};
         kd = strcmp(c[j].how->name, "kdtree") == 0 ? j : kd;
         ours = c[j].how->kind == BVH && c[j].how->width == BVH_WIDTH && !c[j].how->any &&
                        !c[j].how->in_float

@@ -25,6 +25,7 @@ step(k) = word(steps, k)
 label(m) = m eq "kdtree-ch08" ? "kd-tree\nch. 8" : m eq "kdtree" ? "kd-tree\ntight" : \
            m eq "bvh4-double" ? "BVH4\ncopies" : m eq "bvh4-double-mesh" ? "BVH4\nof mesh" : \
            m eq "bvh2" ? "BVH2" : m eq "bvh4" ? "BVH4" : m eq "bvh8" ? "BVH8" : \
+           m eq "fast" ? "BVH4\nin float" : \
            m eq "embree" ? "Embree\nHIGH" : m eq "embree-medium" ? "Embree\nMED." : m
 in_steps(m) = strstrt(" ".steps, " ".m." ") > 0
 step_x(m) = in_steps(m) ? sum [k=1:words(steps)] (step(k) eq m ? k - 1 : 0) : NaN
@@ -77,3 +78,55 @@ plot csv using (ratio_x("bvh-any", -0.19)):4 with boxes lc rgb ours title "BVH, 
      csv using (ratio_x("kdtree-any", 0.19)):4 with boxes lc rgb kd title "kd-tree, any hit", \
      1 with lines dt 2 lc rgb theirs title "Embree"
 unset multiplot
+
+# stem-exactness.svg: what exactness costs. For every mesh and K, each
+# method's rate as a fraction of Embree's (HIGH) along x, and along y, on
+# log axes with a row for zero: left, the rays whose answer is not the
+# exact one (another triangle, or a hit for a miss), per million rays;
+# right, the largest relative difference of a hit's t from the exact t.
+# The program's default BVH is exact by construction (its rows say it
+# agrees with the kd-tree on every ray): it sits on the zero rows.
+if (!absent) {
+reset
+load "bench/chart.gp"
+set terminal svg size 1000,460 font "Helvetica,12" background "white"
+set output stem.'-exactness.svg'
+set bmargin 5
+# method,case,rate/Embree,other answers per million rays,largest t error
+join = "< awk -F, '$1 == \"hits\" && $5 == \"rays\" {n[$2] = $4} " . \
+       "$1 == \"ratio\" && $5 == \"over_embree\" {split($2, a, \"@\"); r[a[1], a[2]] = $4} " . \
+       "$1 == \"hits\" && $5 ~ /_other_answers$/ {m = $5; sub(/_other_answers$/, \"\", m); o[m, $2] = $4; cs[$2] = 1} " . \
+       "$1 == \"hits\" && $5 ~ /_largest_t_error$/ {m = $5; sub(/_largest_t_error$/, \"\", m); e[m, $2] = $4} " . \
+       "END {for (c in cs) {printf \"default,%s,%s,0,0\\n\", c, r[\"default\", c]; " . \
+       "printf \"embree,%s,1,%.6g,%s\\n\", c, 1e6 * o[\"embree\", c] / n[c], e[\"embree\", c]; " . \
+       "split(\"fast embree-medium\", ms, \" \"); for (k = 1; k <= 2; k++) " . \
+       "printf \"%s,%s,%s,%.6g,%s\\n\", ms[k], c, r[ms[k], c], 1e6 * o[ms[k], c] / n[c], e[ms[k], c]}}' ".csv." | sort"
+ours = "#1b9e77"
+theirs = "#7570b3"
+eval machine_label
+set multiplot layout 1,2 title "Chapter 9: what exactness costs, every mesh and distance, the same rays" font ",14" margins 0.08,0.98,0.2,0.84 spacing 0.1
+set xlabel "rate / Embree's rate, HIGH (medians)"
+set xrange [0:*]
+set key top left box opaque font ",9"
+of(m) = strcol(1) eq m ? $3 : NaN
+lo = -1
+hi = 3
+eval zero_axis_y
+set ylabel "rays with another answer than the exact one, per million"
+set title "other answers: another triangle, or a hit for a miss" font ",10"
+plot join using (of("default")):(at_zero($4)) with points pt 7 ps 1.1 lc rgb ours title "BVH, exact (the default)", \
+     join using (of("fast")):(at_zero($4)) with points pt 9 ps 1.3 lc rgb ours title "BVH, in float (bvh-float)", \
+     join using (of("embree")):(at_zero($4)) with points pt 5 ps 1.0 lc rgb theirs title "Embree, HIGH", \
+     join using (of("embree-medium")):(at_zero($4)) with points pt 4 ps 1.0 lc rgb theirs title "Embree, MEDIUM"
+lo = -8
+hi = -2
+eval zero_axis_y
+set ylabel "largest relative difference of t from the exact t"
+set title "the largest error of t, where both hit" font ",10"
+unset key
+plot join using (of("default")):(at_zero($5)) with points pt 7 ps 1.1 lc rgb ours notitle, \
+     join using (of("fast")):(at_zero($5)) with points pt 9 ps 1.3 lc rgb ours notitle, \
+     join using (of("embree")):(at_zero($5)) with points pt 5 ps 1.0 lc rgb theirs notitle, \
+     join using (of("embree-medium")):(at_zero($5)) with points pt 4 ps 1.0 lc rgb theirs notitle
+unset multiplot
+}

@@ -1,11 +1,12 @@
 /* ch09_profile.c: where a ray's time goes, in chapter 8's kd-tree and in
- * chapter 9's BVH, by Linux's profiler.
+ * chapter 9's BVH, exact and in float, by Linux's profiler.
  *
  *   build/rel/bench/ch09_profile > figures/ch09-profile.csv
  *
  * Run without arguments, the program runs itself under `perf record -e
- * cpu-clock` once for each tree and distance of RUNS (the kd-tree and the
- * BVH of the default width, the bunny at K = 1 and K = 2.5), with the
+ * cpu-clock` once for each tree and distance of RUNS (the kd-tree, the
+ * BVH of the default width and the same BVH with its leaves decided in
+ * float, the bunny at K = 1 and K = 2.5), with the
  * arguments TREE K: then it traces the closest hits of the 1024 x 1024
  * rays of bench/ch08_rays.h (the Embree comparison's) PASSES times. `perf
  * report` gives each function's share of the samples, and the functions
@@ -38,8 +39,9 @@ enum { SIDE = 1024, PASSES = 60 }; /* the tree's build: a few per cent */
 static const struct {
     const char *tree, *name; /* as the command line and the CSV name it */
     double K;
-} RUNS[] = {{"kdtree", "kdtree@1.0", 1.0}, {"kdtree", "kdtree@2.5", 2.5},
-            {"bvh", "bvh@1.0", 1.0},       {"bvh", "bvh@2.5", 2.5}};
+} RUNS[] = {{"kdtree", "kdtree@1.0", 1.0},       {"kdtree", "kdtree@2.5", 2.5},
+            {"bvh", "bvh@1.0", 1.0},             {"bvh", "bvh@2.5", 2.5},
+            {"bvh-float", "bvh-float@1.0", 1.0}, {"bvh-float", "bvh-float@2.5", 2.5}};
 enum { N_RUNS = sizeof RUNS / sizeof RUNS[0] };
 
 /* Which group each function the profile names belongs to; any other is
@@ -54,6 +56,7 @@ static const struct {
     {"mesh_search_bvh", "interior"},    {"bvh_walk", "interior"},
     {"kept_in_vectors", "leaves"},      {"nearest_of_packets", "leaves"},
     {"hit_lane", "leaves"},             {"triangle_nearest_of_leaf", "leaves"},
+    {"float_hits_in_vectors", "leaves"}, {"triangle_packets_nearest_float", "leaves"},
     {"hit_corners", "double"},          {"hit_sheared", "double"},
     {"triangle_hit_prepared", "double"}, {"triangle_hit_tightened", "double"},
 };
@@ -80,11 +83,12 @@ static int trace(const char *tree, double K)
 {
     mesh m;
     load_float_mesh("meshes/bunny.obj", &m);
-    bool bvh = strcmp(tree, "bvh") == 0;
+    bool bvh = strncmp(tree, "bvh", 3) == 0;
     kdtree_params kp = kdtree_default_params();
     bvh_params bp = bvh_default_params();
     if (!(bvh ? mesh_build_bvh(&m, &bp) : mesh_build_tree(&m, &kp)))
         return 1;
+    m.bvh_in_float = strcmp(tree, "bvh-float") == 0; /* the float path */
     float_ray *rays = make_rays(&m, K, SIDE);
     render_stats st = {0};
     double sum = 0;
