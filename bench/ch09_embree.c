@@ -59,7 +59,9 @@
  *       other not, or a different triangle)
  *   hits,MESH-K,0,error,METHOD_largest_t_error  (their largest relative
  *       difference of t from the exact one, where both hit)
- *   vector,WIDTH_NAME,0,0,bvh_vector_width  (the node test's instructions) */
+ *   vector,WIDTH_NAME,0,0,bvh_vector_width  (the node test's instructions)
+ *   default,bvhN,0,0,default_method  (the program's default: N wide, where
+ *       bvh-any, fast and fast-any are N wide as well) */
 #include <embree3/rtcore.h>
 #include <string.h>
 
@@ -104,7 +106,7 @@ typedef enum { KDTREE_CH08, KDTREE, BVH, BVH_DOUBLE, BVH_DOUBLE_MESH, EMBREE } k
 typedef struct {
     const char *name;
     kind kind;
-    int width; /* of a BVH */
+    int width; /* of a BVH; 0: the program's default (default_width) */
     bool any;  /* shadow rays: any hit */
     bool medium; /* Embree: its default build, MEDIUM, not HIGH */
     bool in_float; /* the BVH's leaves decided in float alone */
@@ -118,15 +120,29 @@ static const method METHODS[] = {
     {"bvh2", BVH, 2, false, false, false},
     {"bvh4", BVH, 4, false, false, false},
     {"bvh8", BVH, 8, false, false, false},
-    {"fast", BVH, BVH_WIDTH, false, false, true},
+    {"fast", BVH, 0, false, false, true},
     {"embree", EMBREE, 0, false, false, false},
     {"embree-medium", EMBREE, 0, false, true, false},
     {"kdtree-any", KDTREE, 0, true, false, false},
-    {"bvh-any", BVH, BVH_WIDTH, true, false, false},
-    {"fast-any", BVH, BVH_WIDTH, true, false, true},
+    {"bvh-any", BVH, 0, true, false, false},
+    {"fast-any", BVH, 0, true, false, true},
     {"embree-any", EMBREE, 0, true, false, false},
 };
 enum { N_METHODS = sizeof METHODS / sizeof METHODS[0] };
+
+/* The width of how's BVH: its own, or the program's default (eight where
+ * the walk uses AVX2, four elsewhere). */
+static int width_of(const method *how)
+{
+    return how->width ? how->width : bvh_default_params().width;
+}
+
+/* Is how the program's default: the exact BVH of the default width? */
+static bool is_default(const method *how)
+{
+    return how->kind == BVH && !how->any && !how->in_float &&
+           width_of(how) == bvh_default_params().width;
+}
 
 /* A mesh and everything built over it: its kd-tree (in m), a copy of it
  * for each BVH width, and Embree's scene. */
@@ -134,7 +150,7 @@ typedef struct {
     const char *name;
     mesh m;
     mesh bvh_of_width[9]; /* [2], [4], [8] */
-    mesh bvh_float;       /* bvh_of_width[BVH_WIDTH], decided in float */
+    mesh bvh_float;       /* the default width's, decided in float */
     mesh bvh_double;      /* 4 wide, leaves of doubles: see double_leaves */
     triangle_corners *corners; /* bvh_double's, lane by lane */
     int *lane_items;           /* the triangle of each lane */
@@ -271,7 +287,7 @@ static double our_ray(const trace_ctx *c, long k, render_stats *stats, int *tria
 {
     const mesh *m = c->how->kind != BVH ? &c->s->m
                     : c->how->in_float  ? &c->s->bvh_float
-                                        : &c->s->bvh_of_width[c->how->width];
+                                        : &c->s->bvh_of_width[width_of(c->how)];
     if (triangle != NULL)
         *triangle = -1;
     mesh_ray mr = mesh_ray_of(ray_of(&c->rays[k]));
@@ -362,7 +378,7 @@ static void time_builds(const subject *s, RTCDevice device)
 static bool is_used(const subject *s, const method *how)
 {
     return !s->few_methods || how->kind == EMBREE ||
-           (how->kind == KDTREE && !how->any) || (how->kind == BVH && how->width == BVH_WIDTH);
+           (how->kind == KDTREE && !how->any) || (how->kind == BVH && width_of(how) == bvh_default_params().width);
 }
 
 /* Where method j's answers are not the exact ones (the kd-tree's, kd): a
@@ -416,10 +432,7 @@ static void print_agreement(const trace_ctx *c, int n, const char *param)
                    (double)stats.triangle_tests / (double)n_rays, c[j].how->name);
         stats = (render_stats){0};
         kd = strcmp(c[j].how->name, "kdtree") == 0 ? j : kd;
-        ours = c[j].how->kind == BVH && c[j].how->width == BVH_WIDTH && !c[j].how->any &&
-                       !c[j].how->in_float
-                   ? j
-                   : ours;
+        ours = is_default(c[j].how) ? j : ours;
     }
     for (int j = 0; j < n; j++) {
         if (c[j].how->any || c[j].how->kind == EMBREE || c[j].how->in_float || j == kd)
@@ -461,8 +474,7 @@ static void print_rays(const trace_ctx *c, const bench_case *cases, const bench_
             if (strcmp(c[e].how->name, yardstick) == 0)
                 printf("ratio,%s@%s,0,%.4f,over_embree\n", c[j].how->name, cases[j].param,
                        t[e].median / t[j].median);
-        if (c[j].how->kind == BVH && c[j].how->width == BVH_WIDTH && !c[j].how->any &&
-            !c[j].how->in_float) /* the program's default, named as such */
+        if (is_default(c[j].how)) /* the program's default, named as such */
             for (int e = 0; e < n; e++)
                 if (strcmp(c[e].how->name, yardstick) == 0)
                     printf("ratio,default@%s,0,%.4f,over_embree\n", cases[j].param,
@@ -534,7 +546,7 @@ static void prepare(subject *s, RTCDevice device)
         if (!mesh_build_bvh(copy, &bp))
             exit(1);
     }
-    s->bvh_float = s->bvh_of_width[BVH_WIDTH]; /* its tree, not a copy */
+    s->bvh_float = s->bvh_of_width[bvh_default_params().width]; /* shared */
     s->bvh_float.bvh_in_float = true;
     double_leaves(s);
     s->scene = embree_scene(device, &s->m, RTC_BUILD_QUALITY_HIGH);
@@ -575,6 +587,7 @@ int main(int argc, char **argv)
     bench_print_machine();
     bench_csv_header();
     printf("vector,%s,0,0,bvh_vector_width\n", bvh_vector_width_name());
+    printf("default,bvh%d,0,0,default_method\n", bvh_default_params().width);
     /* CH09_QUICK=1: the bunny at K = 1 alone, no builds (a quick look) */
     bool quick = getenv("CH09_QUICK") != NULL;
     for (int k = 0; k < (quick ? 1 : N_SUBJECTS); k++) {

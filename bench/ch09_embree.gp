@@ -18,7 +18,9 @@ set terminal svg size 1250,520 font "Helvetica,12" background "white"
 set bmargin 6.5
 set output stem.'.svg'
 absent = int(system("grep -c '^embree,absent' ".csv))
-default = "bvh4"
+# the program's default width's BVH (bvh4 in CSVs older than the row)
+default = system("awk -F, '$5 == \"default_method\" {print $2}' ".csv)
+default = default eq "" ? "bvh4" : default
 # the bunny's closest-hit methods at K = 1, in the file's order: "name rate"
 steps = system("awk -F, '$2 == \"bunny-1.0\" && $5 == \"mrays_per_s\" && $1 !~ /-any$/ {printf \"%s \", $1}' ".csv)
 step(k) = word(steps, k)

@@ -103,7 +103,11 @@ static void expect_agreement(const mesh *m, int count, const char *what)
     }
     ck_assert_msg(kd_differ == 0, "%s: the kd-tree differs on %d of %d rays",
                   what, kd_differ, n);
-    for (int width = 2; width <= 8; width *= 2) {
+    /* 2, 4 and 8 wide, and 8 again with the walk kept from AVX2 */
+    for (int run = 0; run < 4; run++) {
+        int width = run < 3 ? 2 << run : 8;
+        const char *how = run < 3 ? "" : ", without AVX2";
+        bvh_allow_avx2(run < 3);
         mesh b = with_bvh(m, width, 0);
         int differ = 0, shadows = 0;
         for (int k = 0; k < n; k++) {
@@ -117,10 +121,11 @@ static void expect_agreement(const mesh *m, int count, const char *what)
             shadows += mesh_occluded(&b, &mr, 1e-9, t_max, &stats) !=
                        mesh_occluded(&brute, &mr, 1e-9, t_max, &stats);
         }
-        ck_assert_msg(differ == 0, "%s, %d wide: %d of %d rays differ", what,
-                      width, differ, n);
-        ck_assert_msg(shadows == 0, "%s, %d wide: %d of %d shadow rays "
-                      "differ", what, width, shadows, n);
+        bvh_allow_avx2(true);
+        ck_assert_msg(differ == 0, "%s, %d wide%s: %d of %d rays differ",
+                      what, width, how, differ, n);
+        ck_assert_msg(shadows == 0, "%s, %d wide%s: %d of %d shadow rays "
+                      "differ", what, width, how, shadows, n);
         mesh_free_tree(&b);
     }
     mesh_free_tree(&kd);
@@ -288,6 +293,11 @@ START_TEST(test_vector_and_scalar_node_tests_agree)
         float t_max = k % 4 ? INFINITY : (float)rng_uniform01(&rng);
         float v8[8], s8[8], v4[4], s4[4];
         unsigned m8 = bvh_node8_test_vector(&n8, &br, t_max, v8);
+        if (bvh_walks_with_avx2()) { /* AVX2's eight lanes as well */
+            float a8[8];
+            ck_assert_uint_eq(bvh_node8_test_avx2(&n8, &br, t_max, a8), m8);
+            ck_assert(memcmp(a8, v8, sizeof a8) == 0);
+        }
         unsigned m4 = bvh_node4_test_vector(&n4, &br, t_max, v4);
         ck_assert_uint_eq(m8, bvh_lanes_test_scalar(&n8.box[0][0], 8, 8, &br,
                                                     t_max, s8));

@@ -11,7 +11,8 @@
 /* <<bvh storage>> ch09 */
 bvh_params bvh_default_params(void)
 {
-    return (bvh_params){.width = BVH_WIDTH, .bins = 32, .max_leaf_items = 8,
+    int width = bvh_walks_with_avx2() ? 8 : BVH_WIDTH;
+    return (bvh_params){.width = width, .bins = 32, .max_leaf_items = 8,
                         .traversal_cost = 1, .intersection_cost = 1,
                         .min_items = 1, .item_group = 1};
 }
@@ -503,8 +504,27 @@ bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
     return ok;
 }
 
+/* Set by bvh_allow_avx2 (the tests); read by every walk. */
+static atomic_bool avx2_forbidden;
+
+bool bvh_walks_with_avx2(void)
+{
+#if BVH_HAS_AVX2_PATH
+    return __builtin_cpu_supports("avx2") && !atomic_load(&avx2_forbidden);
+#else
+    return false;
+#endif
+}
+
+void bvh_allow_avx2(bool allowed)
+{
+    atomic_store(&avx2_forbidden, !allowed);
+}
+
 const char *bvh_vector_width_name(void)
 {
+    if (bvh_walks_with_avx2())
+        return "AVX2 chosen at run time";
 #if defined(RT_SCALAR)
     return "scalar";
 #elif defined(__AVX512F__)

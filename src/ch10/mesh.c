@@ -567,8 +567,11 @@ static int mesh_search_all(const mesh *m, const mesh_ray *mr, double t_min,
                                        out != NULL ? out : &unused);
 }
 
-int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
-                    double t_max, triangle_hit *out, render_stats *stats)
+/* The walk of m's BVH for mr, its eight-wide nodes tested with AVX2 when
+ * avx2 (which the caller's instructions must allow). */
+static inline int search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
+                             double t_max, triangle_hit *out,
+                             render_stats *stats, bool avx2)
 {
     bvh_ray r;
     if (!bvh_ray_of(mr->r.origin, mr->inv_dir, t_min, t_max, &r))
@@ -581,6 +584,7 @@ int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
     bool made = false; /* pr: made at the first leaf, if any */
     bvh_walk_start(&w, &m->bvh, &r);
     w.sorted = out != NULL; /* any hit will do: no order to keep */
+    w.avx2 = avx2;
     while (bvh_walk_next(&w, t_max, &leaf)) {
         if (!made)
             pr = packet_ray_of(&mr->shear), made = true;
@@ -596,6 +600,32 @@ int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
     }
     stats->bvh_nodes += w.visited;
     return found;
+}
+
+/* The search compiled for AVX2, every call in it inlined (flatten): called
+ * only where the processor has it. */
+BVH_AVX2_TARGET __attribute__((flatten)) static int search_bvh_avx2(const mesh *m, const mesh_ray *mr,
+                                           double t_min, double t_max,
+                                           triangle_hit *out,
+                                           render_stats *stats)
+{
+    return search_bvh(m, mr, t_min, t_max, out, stats, true);
+}
+
+/* The search compiled for the build's own instructions. */
+__attribute__((flatten)) static int search_bvh_plain(const mesh *m, const mesh_ray *mr, double t_min,
+                            double t_max, triangle_hit *out,
+                            render_stats *stats)
+{
+    return search_bvh(m, mr, t_min, t_max, out, stats, false);
+}
+
+int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
+                    double t_max, triangle_hit *out, render_stats *stats)
+{
+    if (m->bvh.width == 8 && bvh_walks_with_avx2())
+        return search_bvh_avx2(m, mr, t_min, t_max, out, stats);
+    return search_bvh_plain(m, mr, t_min, t_max, out, stats);
 }
 
 /* <<the triangle's hit-point bound>> ch06 */
