@@ -143,7 +143,7 @@ previous = $(lastword $(filter-out $(1),$(filter $(call nums_upto,$(1)),$(NUMS))
         check-book check-lines check-quotes test-tangle tools benches \
         book-check check-book-browser check-code-width check-commands
 
-all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures book
+all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures wasm book
 
 deps:
 	@sh tools/deps.sh
@@ -762,6 +762,47 @@ valgrind: all $(B)/test/tangle $(foreach n,$(NUMS),$(B)/test/ch$(n))
 	  done; \
 	done
 	@echo "make valgrind: clean"
+
+# ---------------------------------------------------------------- the page
+# Each chapter's program compiled for WebAssembly, for the book's page to
+# render its scenes (chapter 10, "The program in the page"): the same
+# files as bin/chNN, with the headers of the last chapter's page/ folder
+# in front of the system's. make installs the toolchain as root (Debian:
+# clang lld wasi-libc libclang-rt-dev-wasm32, tools/deps.sh --page);
+# without it the programs are skipped, and the book has no playground.
+# make page-check (in make test where Chromium is installed) renders
+# every chapter's scenes in the book's page in headless Chromium.
+WASM_CC   := clang --target=wasm32-wasi
+PAGE_DIR  := build/tangle/ch$(LAST)/page
+HAVE_WASM := $(if $(filter clean,$(MAKECMDGOALS)),,$(shell sh tools/deps.sh --page >&2; \
+               printf 'int main(void) { return 0; }\n' | \
+               $(WASM_CC) -x c - -o /dev/null >/dev/null 2>&1 && echo yes))
+# No debugging information: the page is one file, and it carries them all.
+WASM_CFLAGS = $(CSTD) $(WARN) -O2 -I$(PAGE_DIR) -include $(PAGE_DIR)/page.h -MMD -MP
+# A scene's trees recurse: a stack of 8 MiB, as a Linux thread has.
+WASM_LDFLAGS := -Wl,--strip-all -Wl,-z,stack-size=8388608
+
+define page_rules
+PO$(1) := build/wasm/obj/ch$(1)
+$$(PO$(1))/%.o: $$(T$(1))/%.c | $$(T$(LAST))/.stamp $(REUSE)
+	@$$(dir_of_target)
+	$$(if $$(call previous,$(1)),$(REUSE) build/wasm/obj/ch$$(call previous,$(1))/$$*.o build/tangle/ch$$(call previous,$(1)) $$(T$(1)) -- )$(WASM_CC) $$(WASM_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
+
+build/wasm/ch$(1).wasm: $$(patsubst %.c,$$(PO$(1))/%.o,$$(SRC$(1)))
+	$(WASM_CC) -O2 $(WASM_LDFLAGS) -o $$@ $$^ -lm
+
+ifneq ($(call previous,$(1)),)
+$$(patsubst %.c,$$(PO$(1))/%.o,$$(filter $$(SRC$(call previous,$(1))),$$(SRC$(1)))): \
+  $$(PO$(1))/%.o: | build/wasm/obj/ch$(call previous,$(1))/%.o
+endif
+-include $$(wildcard $$(PO$(1))/*.d)
+endef
+$(foreach n,$(NUMS),$(eval $(call page_rules,$(n))))
+
+WASM_PROGRAMS := $(if $(HAVE_WASM),$(foreach n,$(NUMS),build/wasm/ch$(n).wasm))
+.PHONY: wasm
+wasm: $(WASM_PROGRAMS)
+	$(if $(HAVE_WASM),,@echo "wasm: skipped: no clang for wasm32-wasi (Debian: apt-get install clang lld wasi-libc libclang-rt-dev-wasm32); the book has no playground")
 
 # ---------------------------------------------------------------- book
 CHARTS := $(wildcard figures/ch[0-9][0-9]-*.svg)
