@@ -141,7 +141,7 @@ previous = $(lastword $(filter-out $(1),$(filter $(call nums_upto,$(1)),$(NUMS))
 
 .PHONY: all test deps src figures charts book clean check-src check-figures check-map check-stray check-allocations check-test-width \
         check-book check-lines check-quotes test-tangle tools benches \
-        book-check check-book-browser check-code-width check-commands
+        book-check check-book-browser check-page check-code-width check-commands
 
 all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures wasm book
 
@@ -800,6 +800,10 @@ endef
 $(foreach n,$(NUMS),$(eval $(call page_rules,$(n))))
 
 WASM_PROGRAMS := $(if $(HAVE_WASM),$(foreach n,$(NUMS),build/wasm/ch$(n).wasm))
+PAGE_MESHES := $(wildcard meshes/*.obj)
+build/page/playground.html: $(WASM_PROGRAMS) $(PAGE_MESHES) tools/page.sh $(wildcard tools/page/*)
+	@$(dir_of_target)
+	sh tools/page.sh $@ $(WASM_PROGRAMS) -- $(PAGE_MESHES)
 .PHONY: wasm
 wasm: $(WASM_PROGRAMS)
 	$(if $(HAVE_WASM),,@echo "wasm: skipped: no clang for wasm32-wasi (Debian: apt-get install clang lld wasi-libc libclang-rt-dev-wasm32); the book has no playground")
@@ -808,10 +812,12 @@ wasm: $(WASM_PROGRAMS)
 CHARTS := $(wildcard figures/ch[0-9][0-9]-*.svg)
 
 book: build/book.html
+# With the programs for the page (above), the page renders the scenes.
+PAGE_HTML := $(if $(HAVE_WASM),build/page/playground.html)
 build/book.html: book.md $(CHAPTERS) tools/weave.lua tools/weave_names.lua tools/weave.sh \
-                 tools/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) | deps
+                 tools/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) $(PAGE_HTML) | deps
 	@$(dir_of_target)
-	sh tools/weave.sh book.md $@ $(CHAPTERS)
+	WEAVE_PAGE=$(PAGE_HTML) sh tools/weave.sh book.md $@ $(CHAPTERS)
 
 # The weaver stops at a chunk no program uses: a made-up chapter woven
 # with and without one.
@@ -841,6 +847,13 @@ book-check: build/book.html
 
 check-book-browser: build/book.html
 	@sh tools/book_check.sh --no-install build/book.html build/book-screenshot.png
+
+# The scenes rendered in the page against the programs' own PNGs (at a
+# small size, to be quick), a located mistake, a cancelled render, the
+# network off: headless Chromium, where it is installed (tools/page_check.sh).
+PAGE_CHECK_SIZE := 160x120
+check-page: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n))
+	@sh tools/page_check.sh build/book.html $(BIN) $(PAGE_CHECK_SIZE) $(NUMS)
 
 # Every bin/chNN command the book and README quote runs (the self-test
 # first: the check must be able to fail).
@@ -924,7 +937,7 @@ PROGRAM_TESTS := test-tangle $(foreach n,$(NUMS),test-ch$(n)) \
                  check-lines check-commands
 BOOK_TESTS := benches check-src check-charts check-book check-map check-stray \
               check-allocations check-test-width check-quotes check-workbook \
-              check-handout check-epub check-pdf check-book-browser check-build-speed \
+              check-handout check-epub check-pdf check-book-browser check-page check-build-speed \
               check-brackets check-weave-errors check-reuse
 test: deps $(PROGRAM_TESTS) $(if $(SAN),,$(BOOK_TESTS))
 	@# the book is up to date by now (check-book): -o keeps it so
