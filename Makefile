@@ -15,9 +15,15 @@
 #   make failures     render figures/chNN-failure-*.png: what a naive method
 #                     draws (left) next to what the program draws (right)
 #   make charts       run bench/ (built with link-time optimization, under
-#                     build/rel-lto) and redraw figures/chNN-*.svg
+#                     build/rel-lto) and redraw figures/chNN-*.svg; and
+#                     chart-ch10_page: the page's programs against bin/chNN
 #   make diagrams     redraw the explanatory figures/chNN-diagram-*.svg
 #   make book         build/book.html          make clean
+#   make wasm         build/wasm/chNN.wasm: each chapter's program for the
+#                     book's page, which renders its scenes (part of make
+#                     where clang can target wasm32-wasi: make installs it)
+#   make check-page   the scenes rendered in the page in headless Chromium
+#                     against bin/chNN (in make test where it is installed)
 #   make book-check   the book in headless Chromium at 1280x900 (installs it
 #                     as root): nothing wider than the text column, and a
 #                     screenshot build/book-screenshot.png
@@ -390,6 +396,22 @@ chart-ch09_profile-plain: $(B)/bench/ch09_profile | deps
 	gnuplot -e "csv='figures/ch09-profile.csv'; stem='figures/ch09-profile'" bench/ch09_profile.gp
 	@echo "wrote figures/ch09-profile*.svg"
 
+# Chapter 10's chart of the programs in the page: each chapter's own scene
+# rendered in the book's page (headless Chromium) and by bin/chNN, the
+# everyday build, on one thread (tools/page_check.sh --speed). It needs
+# Chromium and the programs for the page; make charts draws it where it can.
+.PHONY: chart-ch10_page chart-ch10_page-plain
+PAGE_SPEED_SIZE := 640x480
+PAGE_SPEED_ROUNDS := 11
+chart-ch10_page: | deps
+	+@$(MAKE) --no-print-directory LTO= chart-ch10_page-plain
+chart-ch10_page-plain: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n)) | deps
+	sh tools/page_check.sh --speed figures/ch10-page.csv.tmp $(PAGE_SPEED_ROUNDS) \
+	  build/book.html $(BIN) $(PAGE_SPEED_SIZE) $(NUMS)
+	mv figures/ch10-page.csv.tmp figures/ch10-page.csv
+	gnuplot -e "csv='figures/ch10-page.csv'; stem='figures/ch10-page'" bench/ch10_page.gp
+	@echo "wrote figures/ch10-page.svg"
+
 ifeq ($(LTO_FLAGS)$(SAN),)
 # The charts measure the program built with link-time optimization.
 chart-%: | deps
@@ -406,6 +428,9 @@ chart-%: $(B)/bench/% | deps
 charts: deps $(BENCHES)
 	@for b in $(notdir $(BENCHES)); do $(MAKE) --no-print-directory chart-$$b || exit 1; done
 	$(if $(filter 09,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
+	@if [ -n "$(HAVE_WASM)" ] && . tools/find_chromium.sh && [ -n "$$(find_chromium)" ]; then \
+	  $(MAKE) --no-print-directory chart-ch10_page; \
+	else echo "charts: figures/ch10-page.svg not measured: no Chromium or no programs for the page"; fi
 
 # Can the speed axes be trusted? Every bench run twice: the largest ratio
 # between two runs of a method, and whether an ordering a quoted ratio

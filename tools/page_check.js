@@ -17,9 +17,16 @@
  * of Cancel, and the playground must render again afterwards. The network
  * is off for the whole page (offline, and no request but file:, data: and
  * blob: may be made). Prints one line a check; exits 1 on any failure.
+ *
+ * With "speed": { "bin", "chapters", "size", "rounds", "csv" } in
+ * CASES.json it measures instead: each chapter's own scene (no scene file)
+ * at --size size, drawn by bin/chNN on one thread and by the program in
+ * the page, rounds times, interleaved; the render's time is what --stats
+ * says of it in both. It writes csv (the benchmarks' columns: the median
+ * and quartiles of each, and the ratio of the medians, page over native).
  */
 "use strict";
-const { spawn } = require("child_process");
+const { spawn, spawnSync } = require("child_process");
 const fs = require("fs");
 const os = require("os");
 const path = require("path");
@@ -161,6 +168,58 @@ function offsetOf(text, line, column) {
   return at + column - 1;
 }
 
+// "render 118.0 ms" of --stats, in ms.
+function renderMs(stderr) {
+  const m = /^time +scene [0-9.]+ ms, render ([0-9.]+) ms/m.exec(stderr);
+  if (!m) throw new Error("no render time in: " + stderr.slice(-300));
+  return +m[1];
+}
+
+// A chapter's own scene in the page, through a worker of the page's own.
+function pageRender(job) {
+  return new Promise(function (resolve) {
+    var code = document.getElementById("rt-worker").textContent;
+    var worker = new Worker(URL.createObjectURL(new Blob([code], { type: "text/javascript" })));
+    worker.onmessage = function (event) { worker.terminate(); resolve(event.data.stderr); };
+    worker.postMessage({ program: document.getElementById("rt-program-" + job.chapter).textContent.trim(),
+                         scene: "", sceneName: "scenes/none.scene", meshes: [],
+                         args: ["-o", "-", "--stats", "--size", job.size] });
+  });
+}
+
+function quartiles(list) {
+  const s = list.slice().sort((a, b) => a - b);
+  const at = (q) => s[Math.min(s.length - 1, Math.round(q * (s.length - 1)))];
+  return [at(0.25), at(0.5), at(0.75)];
+}
+
+async function speed(sessionId, c) {
+  const times = {};
+  for (let round = 0; round < c.rounds; round++) {
+    for (const n of c.chapters) {
+      const threads = +n >= 9 ? ["--threads", "1"] : [];
+      const native = spawnSync(c.bin + "/ch" + n, ["-o", "/dev/null", "--stats", "--size", c.size].concat(threads),
+                               { encoding: "utf8" });
+      const page = await inPage(sessionId, pageRender.toString(), { chapter: n, size: c.size });
+      (times["native," + n] = times["native," + n] || []).push(renderMs(native.stderr));
+      (times["page," + n] = times["page," + n] || []).push(renderMs(page));
+    }
+  }
+  const rows = ["method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns"];
+  for (const n of c.chapters) {
+    const median = {};
+    for (const method of ["native", "page"]) {
+      const [q1, q2, q3] = quartiles(times[method + "," + n]);
+      median[method] = q2;
+      rows.push([method, "ch" + n, (q2 * 1e6).toFixed(0), q2.toFixed(2), "render_ms",
+                 (q1 * 1e6).toFixed(0), (q3 * 1e6).toFixed(0), (q2 * 1e6).toFixed(0)].join(","));
+    }
+    rows.push(["ratio", "ch" + n, 0, (median.page / median.native).toFixed(3), "page_over_native"].join(","));
+    report(true, "chapter " + n + ": " + median.native + " ms native, " + median.page + " ms in the page");
+  }
+  fs.writeFileSync(c.csv, c.machine + "\n# size: " + c.size + "\n" + rows.join("\n") + "\n");
+}
+
 async function main() {
   const { targetId } = await send("Target.createTarget", { url: "about:blank" });
   const { sessionId } = await send("Target.attachToTarget", { targetId, flatten: true });
@@ -178,6 +237,7 @@ async function main() {
   }));
   await send("Page.navigate", { url: "file://" + path.resolve(book) }, sessionId);
   await loaded;
+  if (cases.speed) return speed(sessionId, cases.speed);
   const run = (c) => inPage(sessionId, renderInPage.toString().replace("HELPERS;", PAGE_HELPERS), c);
   const count = await inPage(sessionId, "function () { return document.querySelectorAll('div.playground details').length; }");
   report(count > 0, count + " playgrounds in the page");

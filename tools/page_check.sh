@@ -10,9 +10,17 @@
 # (the program's own located error, as bin/chNN wrote it), a long render
 # cancelled, and no request outside the file. Skipped, with status 0,
 # when Chromium or node is not installed, or the page has no programs.
+#
+#     sh tools/page_check.sh --speed CSV ROUNDS BOOK.html BIN_DIR SIZE NN...
+#
+# measures instead: each chapter's own scene at --size SIZE, its render on
+# one thread by BIN_DIR/chNN and in the page, ROUNDS times, into CSV (make
+# chart-ch10_page; it fails without Chromium or the programs).
 set -u
+speed=""
+if [ "${1:-}" = "--speed" ]; then speed=$2 rounds=$3; shift 3; fi
 if [ "$#" -lt 4 ]; then
-  echo "usage: $0 BOOK.html BIN_DIR SIZE NN..." >&2
+  echo "usage: $0 [--speed CSV ROUNDS] BOOK.html BIN_DIR SIZE NN..." >&2
   exit 2
 fi
 book=$1 bin=$2 size=$3
@@ -20,17 +28,33 @@ shift 3
 tools_dir=$(cd "$(dirname "$0")" && pwd)
 . "$tools_dir/find_chromium.sh"
 browser=$(find_chromium)
+# skip WHY: the check cannot run here; a measurement must.
+skip() {
+  if [ -n "$speed" ]; then echo "page-speed: error: $1" >&2; exit 1; fi
+  echo "page-check: skipped: $1"; exit 0
+}
 if [ -z "$browser" ] || ! command -v node >/dev/null 2>&1; then
-  echo "page-check: skipped: no chromium or no node (make book-check installs Chromium)"
-  exit 0
+  skip "no chromium or no node (make book-check installs Chromium)"
 fi
-if ! grep -q 'id="rt-program-' "$book"; then
-  echo "page-check: skipped: the page has no programs (no clang for wasm32-wasi)"
-  exit 0
-fi
+grep -q 'id="rt-program-' "$book" ||
+  skip "the page has no programs (no clang for wasm32-wasi)"
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 root=$(pwd)
+
+if [ -n "$speed" ]; then
+  chapters=$(printf '"%s",' "$@")
+  machine="# machine: $(sed -n 's/^model name[^:]*: *//p' /proc/cpuinfo | head -n 1), \
+$(nproc) CPUs (load $(cut -d ' ' -f 1 /proc/loadavg)); \
+$(cc --version | head -n 1 | sed 's/ (.*)//') -O2 -g against $(clang --version | head -n 1 | \
+  sed 's/ (.*//') --target=wasm32-wasi -O2 in $("$browser" --version 2>/dev/null | awk '{print $1, $2; exit}'); \
+$(date -u '+%Y-%m-%d %H:%M UTC')"
+  printf '{"speed": {"bin": "%s", "chapters": [%s], "size": "%s", "rounds": %s, "csv": "%s", "machine": "%s"}}\n' \
+    "$bin" "${chapters%,}" "$size" "$rounds" "$work/speed.csv" "$machine" > "$work/cases.json"
+  node "$tools_dir/page_check.js" "$browser" "$book" "$work/cases.json" || exit 1
+  mv "$work/speed.csv" "$speed"
+  exit 0
+fi
 
 # case_json NN SCENE: one render's case, SCENE empty for the empty scene.
 case_json() {
