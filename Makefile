@@ -799,9 +799,14 @@ valgrind: all $(B)/test/tangle $(foreach n,$(NUMS),$(B)/test/ch$(n))
 # every chapter's scenes in the book's page in headless Chromium.
 WASM_CC   := clang --target=wasm32-wasi
 PAGE_DIR  := build/tangle/ch$(LAST)/page
+# Asked once, by the first make: its sub-makes get the answer from it.
+ifndef PAGE_PROBED
 HAVE_WASM := $(if $(filter clean,$(MAKECMDGOALS)),,$(shell sh tools/deps.sh --page >&2; \
                printf 'int main(void) { return 0; }\n' | \
                $(WASM_CC) -x c - -o /dev/null >/dev/null 2>&1 && echo yes))
+export HAVE_WASM
+export PAGE_PROBED := 1
+endif
 # No debugging information: the page is one file, and it carries them all.
 WASM_CFLAGS = $(CSTD) $(WARN) -O2 -I$(PAGE_DIR) -include $(PAGE_DIR)/page.h -MMD -MP
 # A scene's trees recurse: a stack of 8 MiB, as a Linux thread has.
@@ -814,6 +819,7 @@ $$(PO$(1))/%.o: $$(T$(1))/%.c | $$(T$(LAST))/.stamp $(REUSE)
 	$$(if $$(call previous,$(1)),$(REUSE) build/wasm/obj/ch$$(call previous,$(1))/$$*.o build/tangle/ch$$(call previous,$(1)) $$(T$(1)) -- )$(WASM_CC) $$(WASM_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
 
 build/wasm/ch$(1).wasm: $$(patsubst %.c,$$(PO$(1))/%.o,$$(SRC$(1)))
+	@$$(dir_of_target)
 	$(WASM_CC) -O2 $(WASM_LDFLAGS) -o $$@ $$^ -lm
 
 ifneq ($(call previous,$(1)),)
