@@ -16,7 +16,9 @@
  * column in the editor. The long render must be cancelled within a second
  * of Cancel, and the playground must render again afterwards. The network
  * is off for the whole page (offline, and no request but file:, data: and
- * blob: may be made). Prints one line a check; exits 1 on any failure.
+ * blob: may be made). "control" is a render whose reference is another
+ * scene's: it must differ, so that the comparison is seen to be able to
+ * fail. Prints one line a check; exits 1 on any failure.
  *
  * With "speed": { "bin", "chapters", "size", "rounds", "csv" } in
  * CASES.json it measures instead: each chapter's own scene (no scene file)
@@ -259,6 +261,11 @@ async function main() {
   }
   report(true, "renders: " + differing + " of " + pixels + " pixels differ, by " +
          largest + " code at most");
+
+  const control = await run(cases.control);
+  report(control.state === "done" && control.largest > 1,
+         "the comparison can fail: chapter 2's empty scene against one of its scenes: " +
+         control.differ + " pixels differ, by " + control.largest + " codes at most");
 
   const m = cases.mistake;
   const r = await run({ chapter: m.chapter, scene: "", size: "", text: m.text });

@@ -77,6 +77,13 @@ case_json() {
     done
   done
   printf '],\n'
+  # The comparison must be able to fail: chapter 2's empty scene against
+  # the first scene chapter 2 shows (the scene's background alone, against
+  # its spheres).
+  printf '"control": '
+  control=$(cd build/tangle/ch02 && ls scenes/ch02-*.scene | head -n 1)
+  case_json 02 "$control" | sed 's/"scene": "[^"]*"/"scene": ""/' || exit 1
+  printf ',\n'
   # A mistake in chapter 2's empty scene, the program's line as it writes it.
   mkdir -p "$work/mistake/scenes"
   printf 'camera fov 60\nsphere center 0 0 5 radius banana\n' > "$work/mistake/scenes/yours.scene"
