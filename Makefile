@@ -832,9 +832,20 @@ $(foreach n,$(NUMS),$(eval $(call page_rules,$(n))))
 
 WASM_PROGRAMS := $(if $(HAVE_WASM),$(foreach n,$(NUMS),build/wasm/ch$(n).wasm))
 PAGE_MESHES := $(wildcard meshes/*.obj)
-build/page/playground.html: $(WASM_PROGRAMS) $(PAGE_MESHES) tools/page.sh $(wildcard tools/page/*)
+# Each program and mesh as the page holds it, gzip'd (-n: the same bytes
+# every time) and in base64, made apart so that a build remakes only the
+# programs that changed, side by side.
+build/page/%.wasm.b64: build/wasm/%.wasm
 	@$(dir_of_target)
-	sh tools/page.sh $@ $(WASM_PROGRAMS) -- $(PAGE_MESHES)
+	gzip -9 -n -c $< | base64 -w 76 > $@
+build/page/%.obj.b64: meshes/%.obj
+	@$(dir_of_target)
+	gzip -9 -n -c $< | base64 -w 76 > $@
+build/page/playground.html: $(patsubst build/wasm/%,build/page/%.b64,$(WASM_PROGRAMS)) \
+                            $(patsubst meshes/%,build/page/%.b64,$(PAGE_MESHES)) \
+                            tools/page.sh $(wildcard tools/page/*)
+	sh tools/page.sh $@ $(patsubst build/wasm/%,build/page/%.b64,$(WASM_PROGRAMS)) \
+	  -- $(patsubst meshes/%,build/page/%.b64,$(PAGE_MESHES))
 .PHONY: wasm
 wasm: $(WASM_PROGRAMS)
 	$(if $(HAVE_WASM),,@echo "wasm: skipped: no clang for wasm32-wasi (Debian: apt-get install clang lld wasi-libc libclang-rt-dev-wasm32); the book has no playground")
