@@ -6,7 +6,8 @@
 #   make test         every test: the tangler suite, each chapter's suites
 #                     against every later chapter, src/ and figures up to date,
 #                     the book's links, images and math, the commands it
-#                     quotes, its layout in Chromium (if installed) and, last,
+#                     quotes, its layout and its scenes rendered in the page
+#                     in Chromium (if installed) and, last,
 #                     that no code line is wider than 80 columns
 #   make chNN         build bin/chNN           make test-chNN  its suites
 #   make run-chNN     render its own scene     make diff-chNN  what it adds

@@ -273,7 +273,7 @@ async function main() {
   const where = /:(\d+):(\d+): error: /.exec(expected);
   const want = where ? offsetOf(m.text, +where[1], +where[2]) : -1;
   report(r.state === "error" && r.stderr.trim() === expected && r.selection[0] === want,
-         "a mistake: " + r.state + ", \"" + r.status + "\", the program's line " +
+         "a mistake (the playground's state: " + r.state + "): \"" + r.status + "\", the program's line " +
          (r.stderr.trim() === expected ? "as bin/ch" + m.chapter + " wrote it" : JSON.stringify(r.stderr)) +
          ", selected from " + r.selection[0] + " (its column: " + want + ")");
 
