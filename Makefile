@@ -6,7 +6,8 @@
 #   make test         every test: the tangler suite, each chapter's suites
 #                     against every later chapter, src/ and figures up to date,
 #                     the book's links, images and math, the commands it
-#                     quotes, its layout in Chromium (if installed) and, last,
+#                     quotes, its layout and its scenes rendered in the page
+#                     in Chromium (if installed) and, last,
 #                     that no code line is wider than 80 columns
 #   make chNN         build bin/chNN           make test-chNN  its suites
 #   make run-chNN     render its own scene     make diff-chNN  what it adds
@@ -15,9 +16,15 @@
 #   make failures     render figures/chNN-failure-*.png: what a naive method
 #                     draws (left) next to what the program draws (right)
 #   make charts       run bench/ (built with link-time optimization, under
-#                     build/rel-lto) and redraw figures/chNN-*.svg
+#                     build/rel-lto) and redraw figures/chNN-*.svg; and
+#                     chart-ch10_page: the page's programs against bin/chNN
 #   make diagrams     redraw the explanatory figures/chNN-diagram-*.svg
 #   make book         build/book.html          make clean
+#   make wasm         build/wasm/chNN.wasm: each chapter's program for the
+#                     book's page, which renders its scenes (part of make
+#                     where clang can target wasm32-wasi: make installs it)
+#   make check-page   the scenes rendered in the page in headless Chromium
+#                     against bin/chNN (in make test where it is installed)
 #   make book-check   the book in headless Chromium at 1280x900 (installs it
 #                     as root): nothing wider than the text column, and a
 #                     screenshot build/book-screenshot.png
@@ -141,9 +148,9 @@ previous = $(lastword $(filter-out $(1),$(filter $(call nums_upto,$(1)),$(NUMS))
 
 .PHONY: all test deps src figures charts book clean check-src check-figures check-map check-stray check-allocations check-test-width \
         check-book check-lines check-quotes test-tangle tools benches \
-        book-check check-book-browser check-code-width check-commands
+        book-check check-book-browser check-page check-code-width check-commands
 
-all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures book
+all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures wasm book
 
 deps:
 	@sh tools/deps.sh
@@ -390,6 +397,22 @@ chart-ch09_profile-plain: $(B)/bench/ch09_profile | deps
 	gnuplot -e "csv='figures/ch09-profile.csv'; stem='figures/ch09-profile'" bench/ch09_profile.gp
 	@echo "wrote figures/ch09-profile*.svg"
 
+# Chapter 10's chart of the programs in the page: each chapter's own scene
+# rendered in the book's page (headless Chromium) and by bin/chNN, the
+# everyday build, on one thread (tools/page_check.sh --speed). It needs
+# Chromium and the programs for the page; make charts draws it where it can.
+.PHONY: chart-ch10_page chart-ch10_page-plain
+PAGE_SPEED_SIZE := 640x480
+PAGE_SPEED_ROUNDS := 11
+chart-ch10_page: | deps
+	+@$(MAKE) --no-print-directory LTO= chart-ch10_page-plain
+chart-ch10_page-plain: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n)) | deps
+	sh tools/page_check.sh --speed figures/ch10-page.csv.tmp $(PAGE_SPEED_ROUNDS) \
+	  build/book.html $(BIN) $(PAGE_SPEED_SIZE) $(NUMS)
+	mv figures/ch10-page.csv.tmp figures/ch10-page.csv
+	gnuplot -e "csv='figures/ch10-page.csv'; stem='figures/ch10-page'" bench/ch10_page.gp
+	@echo "wrote figures/ch10-page.svg"
+
 ifeq ($(LTO_FLAGS)$(SAN),)
 # The charts measure the program built with link-time optimization.
 chart-%: | deps
@@ -406,6 +429,9 @@ chart-%: $(B)/bench/% | deps
 charts: deps $(BENCHES)
 	@for b in $(notdir $(BENCHES)); do $(MAKE) --no-print-directory chart-$$b || exit 1; done
 	$(if $(filter 09,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
+	@if [ -n "$(HAVE_WASM)" ] && . tools/find_chromium.sh && [ -n "$$(find_chromium)" ]; then \
+	  $(MAKE) --no-print-directory chart-ch10_page; \
+	else echo "charts: figures/ch10-page.svg not measured: no Chromium or no programs for the page"; fi
 
 # Can the speed axes be trusted? Every bench run twice: the largest ratio
 # between two runs of a method, and whether an ordering a quoted ratio
@@ -763,14 +789,78 @@ valgrind: all $(B)/test/tangle $(foreach n,$(NUMS),$(B)/test/ch$(n))
 	done
 	@echo "make valgrind: clean"
 
+# ---------------------------------------------------------------- the page
+# Each chapter's program compiled for WebAssembly, for the book's page to
+# render its scenes (chapter 10, "The program in the page"): the same
+# files as bin/chNN, with the headers of the last chapter's page/ folder
+# in front of the system's. make installs the toolchain as root (Debian:
+# clang lld wasi-libc libclang-rt-dev-wasm32, tools/deps.sh --page);
+# without it the programs are skipped, and the book has no playground.
+# make page-check (in make test where Chromium is installed) renders
+# every chapter's scenes in the book's page in headless Chromium.
+WASM_CC   := clang --target=wasm32-wasi
+PAGE_DIR  := build/tangle/ch$(LAST)/page
+# Asked once, by the first make: its sub-makes get the answer from it.
+ifndef PAGE_PROBED
+HAVE_WASM := $(if $(filter clean,$(MAKECMDGOALS)),,$(shell sh tools/deps.sh --page >&2; \
+               printf 'int main(void) { return 0; }\n' | \
+               $(WASM_CC) -x c - -o /dev/null >/dev/null 2>&1 && echo yes))
+export HAVE_WASM
+export PAGE_PROBED := 1
+endif
+# No debugging information: the page is one file, and it carries them all.
+WASM_CFLAGS = $(CSTD) $(WARN) -O2 -I$(PAGE_DIR) -include $(PAGE_DIR)/page.h -MMD -MP
+# A scene's trees recurse: a stack of 8 MiB, as a Linux thread has.
+WASM_LDFLAGS := -Wl,--strip-all -Wl,-z,stack-size=8388608
+
+define page_rules
+PO$(1) := build/wasm/obj/ch$(1)
+$$(PO$(1))/%.o: $$(T$(1))/%.c | $$(T$(LAST))/.stamp $(REUSE)
+	@$$(dir_of_target)
+	$$(if $$(call previous,$(1)),$(REUSE) build/wasm/obj/ch$$(call previous,$(1))/$$*.o build/tangle/ch$$(call previous,$(1)) $$(T$(1)) -- )$(WASM_CC) $$(WASM_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
+
+build/wasm/ch$(1).wasm: $$(patsubst %.c,$$(PO$(1))/%.o,$$(SRC$(1)))
+	@$$(dir_of_target)
+	$(WASM_CC) -O2 $(WASM_LDFLAGS) -o $$@ $$^ -lm
+
+ifneq ($(call previous,$(1)),)
+$$(patsubst %.c,$$(PO$(1))/%.o,$$(filter $$(SRC$(call previous,$(1))),$$(SRC$(1)))): \
+  $$(PO$(1))/%.o: | build/wasm/obj/ch$(call previous,$(1))/%.o
+endif
+-include $$(wildcard $$(PO$(1))/*.d)
+endef
+$(foreach n,$(NUMS),$(eval $(call page_rules,$(n))))
+
+WASM_PROGRAMS := $(if $(HAVE_WASM),$(foreach n,$(NUMS),build/wasm/ch$(n).wasm))
+PAGE_MESHES := $(wildcard meshes/*.obj)
+# Each program and mesh as the page holds it, gzip'd (-n: the same bytes
+# every time) and in base64, made apart so that a build remakes only the
+# programs that changed, side by side.
+build/page/%.wasm.b64: build/wasm/%.wasm
+	@$(dir_of_target)
+	gzip -9 -n -c $< | base64 -w 76 > $@
+build/page/%.obj.b64: meshes/%.obj
+	@$(dir_of_target)
+	gzip -9 -n -c $< | base64 -w 76 > $@
+build/page/playground.html: $(patsubst build/wasm/%,build/page/%.b64,$(WASM_PROGRAMS)) \
+                            $(patsubst meshes/%,build/page/%.b64,$(PAGE_MESHES)) \
+                            tools/page.sh $(wildcard tools/page/*)
+	sh tools/page.sh $@ $(patsubst build/wasm/%,build/page/%.b64,$(WASM_PROGRAMS)) \
+	  -- $(patsubst meshes/%,build/page/%.b64,$(PAGE_MESHES))
+.PHONY: wasm
+wasm: $(WASM_PROGRAMS)
+	$(if $(HAVE_WASM),,@echo "wasm: skipped: no clang for wasm32-wasi (Debian: apt-get install clang lld wasi-libc libclang-rt-dev-wasm32); the book has no playground")
+
 # ---------------------------------------------------------------- book
 CHARTS := $(wildcard figures/ch[0-9][0-9]-*.svg)
 
 book: build/book.html
+# With the programs for the page (above), the page renders the scenes.
+PAGE_HTML := $(if $(HAVE_WASM),build/page/playground.html)
 build/book.html: book.md $(CHAPTERS) tools/weave.lua tools/weave_names.lua tools/weave.sh \
-                 tools/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) | deps
+                 tools/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) $(PAGE_HTML) | deps
 	@$(dir_of_target)
-	sh tools/weave.sh book.md $@ $(CHAPTERS)
+	WEAVE_PAGE=$(PAGE_HTML) sh tools/weave.sh book.md $@ $(CHAPTERS)
 
 # The weaver stops at a chunk no program uses: a made-up chapter woven
 # with and without one.
@@ -800,6 +890,13 @@ book-check: build/book.html
 
 check-book-browser: build/book.html
 	@sh tools/book_check.sh --no-install build/book.html build/book-screenshot.png
+
+# The scenes rendered in the page against the programs' own PNGs (at a
+# small size, to be quick), a located mistake, a cancelled render, the
+# network off: headless Chromium, where it is installed (tools/page_check.sh).
+PAGE_CHECK_SIZE := 160x120
+check-page: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n))
+	@sh tools/page_check.sh build/book.html $(BIN) $(PAGE_CHECK_SIZE) $(NUMS)
 
 # Every bin/chNN command the book and README quote runs (the self-test
 # first: the check must be able to fail).
@@ -883,7 +980,7 @@ PROGRAM_TESTS := test-tangle $(foreach n,$(NUMS),test-ch$(n)) \
                  check-lines check-commands
 BOOK_TESTS := benches check-src check-charts check-book check-map check-stray \
               check-allocations check-test-width check-quotes check-workbook \
-              check-handout check-epub check-pdf check-book-browser check-build-speed \
+              check-handout check-epub check-pdf check-book-browser check-page check-build-speed \
               check-brackets check-weave-errors check-reuse
 test: deps $(PROGRAM_TESTS) $(if $(SAN),,$(BOOK_TESTS))
 	@# the book is up to date by now (check-book): -o keeps it so

@@ -3,6 +3,11 @@
 # Run by `make` before anything is compiled. Debian and Ubuntu: apt-get,
 # as root or with passwordless sudo; anywhere else it prints the command.
 # Extra packages can be asked for by name: `sh tools/deps.sh clang`.
+# `sh tools/deps.sh --page` asks only for what compiles the programs for
+# the book's page (WebAssembly: Clang, its linker, wasi-libc and its
+# builtins), wanted rather than needed: the Makefile asks for them before
+# it looks for them, and builds the book without its playground if they
+# cannot be installed.
 # Wanted, not needed: epubcheck (make test checks the EPUB with it where it
 # is installed, and says it skipped the check where it is not) is
 # installed with the others when apt-get can, and its absence, or an
@@ -15,6 +20,15 @@ need() { missing="$missing $1"; }
 wanted=""
 want() { wanted="$wanted $1"; }
 
+if [ "${1:-}" = "--page" ]; then
+  printf 'int main(void) { return 0; }\n' |
+    clang --target=wasm32-wasi -x c - -o /dev/null >/dev/null 2>&1 && exit 0
+  for p in clang lld wasi-libc libclang-rt-dev-wasm32; do want "$p"; done
+  shift
+  failed_wanted=build/deps-page.failed
+  [ -f "$failed_wanted" ] && [ "$(cat "$failed_wanted")" = "$wanted" ] && exit 0
+  missing="" # only these, whatever else is missing: the build asks later
+else
 command -v pkg-config >/dev/null 2>&1 || need pkg-config
 command -v cc >/dev/null 2>&1 || need gcc
 if command -v pkg-config >/dev/null 2>&1; then
@@ -30,6 +44,7 @@ command -v zip >/dev/null 2>&1 || need zip     # tools/epub.sh writes it
 command -v epubcheck >/dev/null 2>&1 || want epubcheck
 failed_wanted=build/deps-wanted.failed
 [ -f "$failed_wanted" ] && [ "$(cat "$failed_wanted")" = "$wanted" ] && wanted=""
+fi
 for extra in "$@"; do
   dpkg -s "$extra" >/dev/null 2>&1 || need "$extra"
 done

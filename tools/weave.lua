@@ -510,14 +510,26 @@ local function render_exercise_label(exercise)
     .. '<br />graded by ' .. table.concat(tests, ", ") .. '</div>'
 end
 
+-- Where the HTML page lets the reader edit a scene and render it with
+-- chapter number's program (tools/page/playground.js fills it; it stays
+-- empty, and hidden, in a page without the programs). scene: the file's
+-- name, or nil for an empty scene of the reader's own. Not in the EPUB.
+local function playground_html(number, scene)
+  if not FORMAT:match("html") or not number then return "" end
+  return '\n<div class="playground" data-chapter="' .. number .. '"'
+    .. (scene and (' data-scene="' .. escape_html(scene) .. '"') or "") .. '></div>'
+end
+
 local function render_piece(piece)
   local lines = shown_lines(piece)
   if #lines == 0 then return render_empty_piece(piece) end
+  local scene = piece.is_file and piece.name:match("%.scene$")
   return chunk_div(piece, piece.exercise and " chunk-exercise" or "")
     .. (piece.exercise and render_exercise_label(piece.exercise) or "")
     .. render_header(piece) .. "\n"
     .. render_code(lines, piece.language) .. "\n"
     .. render_footer(piece) .. "\n</div>"
+    .. (scene and playground_html(piece.chapter and piece.chapter.number, piece.name) or "")
 end
 
 -- An exercise's notes: the task shown, the hint folded away.
@@ -705,16 +717,26 @@ local function nav_html(where, previous, next_one)
 end
 
 -- Copies blocks, adding a nav after each level-1 header and before the
--- next one (and at the end of the last section).
+-- next one (and at the end of the last section); a numbered chapter ends
+-- with an empty scene to write (playground_html).
 local function with_chapter_navs(blocks)
   local headers = {}
   for i, block in ipairs(blocks) do
     if block.t == "Header" and block.level == 1 then headers[#headers + 1] = i end
   end
   local out, k = {}, 0
+  local function end_of(header)
+    local number = number_from_id(header.identifier)
+    if number and playground_html(number) ~= "" then
+      out[#out + 1] = pandoc.RawBlock("html", playground_html(number))
+    end
+  end
   for i, block in ipairs(blocks) do
     if block.t == "Header" and block.level == 1 then
-      if k > 0 then out[#out + 1] = nav_html("end", blocks[headers[k - 1]], block) end
+      if k > 0 then
+        end_of(blocks[headers[k]])
+        out[#out + 1] = nav_html("end", blocks[headers[k - 1]], block)
+      end
       k = k + 1
       out[#out + 1] = block
       out[#out + 1] = nav_html("start", k > 1 and blocks[headers[k - 1]], blocks[headers[k + 1]])
@@ -722,7 +744,10 @@ local function with_chapter_navs(blocks)
       out[#out + 1] = block
     end
   end
-  if k > 0 then out[#out + 1] = nav_html("end", blocks[headers[k - 1]], nil) end
+  if k > 0 then
+    end_of(blocks[headers[k]])
+    out[#out + 1] = nav_html("end", blocks[headers[k - 1]], nil)
+  end
   return out
 end
 

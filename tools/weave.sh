@@ -7,6 +7,9 @@
 #
 # Exits non-zero if pandoc fails or warns that a resource (an image, the
 # CSS) is missing; the output file is only written when all went well.
+#
+# WEAVE_PAGE=FILE: FILE's HTML goes before the page's </body> (the book's
+# scenes rendered in the page: tools/page.sh makes it).
 set -eu  # plain POSIX sh: the Makefile may run it as 'sh tools/weave.sh'
 
 if [ "$#" -lt 3 ]; then
@@ -81,5 +84,11 @@ if missing_resources > /dev/null; then
     exit 1
 fi
 
+if [ -n "${WEAVE_PAGE:-}" ]; then
+    awk -v page="$WEAVE_PAGE" '
+      /<\/body>/ { while ((getline line < page) > 0) print line }
+      { print }' "$partial" > "$partial.page"
+    mv "$partial.page" "$partial"
+fi
 mv "$partial" "$out"
 echo "weave.sh: wrote $out"
