@@ -54,6 +54,8 @@ static const struct {
     {"box_clip", "setup"},              {"mesh_nearest", "setup"},
     {"mesh_search_tree", "interior"},   {"nearest_in", "interior"},
     {"mesh_search_bvh", "interior"},    {"bvh_walk", "interior"},
+    {"search_bvh", "interior"},         {"search_bvh_avx2", "interior"},
+    {"search_bvh_plain", "interior"},
     {"kept_in_vectors", "leaves"},      {"nearest_of_packets", "leaves"},
     {"hit_lane", "leaves"},             {"triangle_nearest_of_leaf", "leaves"},
     {"float_hits_in_vectors", "leaves"}, {"triangle_packets_nearest_float", "leaves"},

@@ -604,18 +604,17 @@ static inline int search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
 
 /* The search compiled for AVX2, every call in it inlined (flatten): called
  * only where the processor has it. */
-BVH_AVX2_TARGET __attribute__((flatten)) static int search_bvh_avx2(const mesh *m, const mesh_ray *mr,
-                                           double t_min, double t_max,
-                                           triangle_hit *out,
-                                           render_stats *stats)
+BVH_AVX2_TARGET __attribute__((flatten)) static int
+search_bvh_avx2(const mesh *m, const mesh_ray *mr, double t_min,
+                double t_max, triangle_hit *out, render_stats *stats)
 {
     return search_bvh(m, mr, t_min, t_max, out, stats, true);
 }
 
 /* The search compiled for the build's own instructions. */
-__attribute__((flatten)) static int search_bvh_plain(const mesh *m, const mesh_ray *mr, double t_min,
-                            double t_max, triangle_hit *out,
-                            render_stats *stats)
+__attribute__((flatten)) static int
+search_bvh_plain(const mesh *m, const mesh_ray *mr, double t_min,
+                 double t_max, triangle_hit *out, render_stats *stats)
 {
     return search_bvh(m, mr, t_min, t_max, out, stats, false);
 }

@@ -532,17 +532,18 @@ int triangle_packets_nearest_float(const packet_ray *r,
 {
     float lo = (float)t_min, nearest_t = (float)t_max;
     int nearest = -1;
-    for (int p = 0; p < count; p++) {
+    for (const triangle_packet *q = packets; q < packets + count; q++) {
         float_hits h;
-        unsigned bits = float_hit_bits(&packets[p], r, lo, nearest_t, &h);
+        unsigned bits = float_hit_bits(q, r, lo, nearest_t, &h);
         for (; bits != 0; bits &= bits - 1) {
-            int k = __builtin_ctz(bits), i = packets[p].triangle[k];
+            int k = __builtin_ctz(bits), i = q->triangle[k];
             float t = h.n[k] / h.det[k];
             if (!(t > lo) || t > nearest_t || (t == nearest_t && i > best))
                 continue; /* a tie: the lower index */
             float inv = 1 / h.det[k];
-            *out = (triangle_hit){t, {h.u[k] * inv, h.v[k] * inv,
-                                      h.w[k] * inv}};
+            out->t = t;
+            out->b[0] = h.u[k] * inv, out->b[1] = h.v[k] * inv;
+            out->b[2] = h.w[k] * inv;
             nearest_t = t, best = i, nearest = i;
         }
     }
@@ -554,9 +555,9 @@ bool triangle_packets_any_float(const packet_ray *r,
                                 double t_min, double t_max)
 {
     float lo = (float)t_min, hi = (float)t_max;
-    for (int p = 0; p < count; p++) {
+    for (const triangle_packet *q = packets; q < packets + count; q++) {
         float_hits h;
-        unsigned bits = float_hit_bits(&packets[p], r, lo, hi, &h);
+        unsigned bits = float_hit_bits(q, r, lo, hi, &h);
         for (; bits != 0; bits &= bits - 1) {
             int k = __builtin_ctz(bits);
             float t = h.n[k] / h.det[k];
