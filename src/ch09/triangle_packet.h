@@ -13,6 +13,9 @@
  *   packet_ray_of             a ray's constants, rounded to float
  *   triangle_packets_nearest  the nearest hit, keeping the tie rule
  *   triangle_packets_any      any hit, for a shadow ray
+ *   triangle_packets_nearest_float, triangle_packets_any_float
+ *                             the same decided in float alone: faster,
+ *                             and float's answers, not chapter 4's
  *
  * The filter is compiled twice, with vectors (_simd) and lane by lane
  * (_scalar); the program uses the first, or the second when built with
