@@ -29,4 +29,21 @@ bool mesh_load_obj_within(mesh *m, const char *path, mesh_budget budget,
 bool mesh_parse_obj(mesh *m, const char *text, size_t length,
                     const char *name, parse_error *err);
 
+/* <<more OBJ readers>> ch09 */
+/* mesh_load_obj_within on threads threads (0: one per core), for files
+ * large enough to share: the same mesh, bit for bit, and the same
+ * errors. */
+bool mesh_load_obj_on(mesh *m, const char *path, mesh_budget budget,
+                      int threads, parse_error *err);
+
+/* mesh_parse_obj within budget, the text cut into parts (1 to
+ * OBJ_MAX_PARTS), one thread each: the same mesh and errors. */
+bool mesh_parse_obj_in_parts(mesh *m, const char *text, size_t length,
+                             const char *name, mesh_budget budget,
+                             int parts, parse_error *err);
+
+#define OBJ_MAX_PARTS 256
+/* A thread costs its start: a part is at least this much text. */
+#define OBJ_MIN_PART_BYTES (1 << 16)
+
 #endif
