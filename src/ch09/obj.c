@@ -6,6 +6,7 @@
 #include "array.h"
 /* <<OBJ reader includes>> ch09 */
 #include <pthread.h>
+#include <stdatomic.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -248,21 +249,40 @@ typedef struct {
     bool ok;
 } obj_part;
 
-/* Runs work on every part, one thread each, the first on this one; a
- * thread that cannot start leaves its part to this one. */
-static void run_parts(obj_part *parts, int n, void *(*work)(void *))
+typedef struct {
+    obj_part *parts;
+    int count;
+    void (*work)(obj_part *);
+    atomic_int next;
+} obj_queue;
+
+static void *take_parts(void *queue)
 {
-    pthread_t id[OBJ_MAX_PARTS];
-    bool started[OBJ_MAX_PARTS] = {false};
-    for (int k = 1; k < n; k++)
-        started[k] = pthread_create(&id[k], NULL, work, &parts[k]) == 0;
-    work(&parts[0]);
-    for (int k = 1; k < n; k++) {
-        if (started[k])
-            pthread_join(id[k], NULL);
-        else
-            work(&parts[k]);
-    }
+    obj_queue *q = queue;
+    for (int k; (k = atomic_fetch_add(&q->next, 1)) < q->count;)
+        q->work(&q->parts[k]);
+    return NULL;
+}
+
+/* Runs work on every part, on threads threads (0: one per core; never
+ * more than parts), this one among them: each takes the next part left,
+ * as the render's threads take bands. */
+static void run_parts(obj_part *parts, int n, int threads,
+                      void (*work)(obj_part *))
+{
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    long t = threads > 0 ? threads : cores > 0 ? cores : 1;
+    t = t < n ? t : n, t = t < OBJ_MAX_THREADS ? t : OBJ_MAX_THREADS;
+    obj_queue q = {.parts = parts, .count = n, .work = work};
+    atomic_init(&q.next, 0);
+    pthread_t id[OBJ_MAX_THREADS];
+    int started = 0;
+    while (started < t - 1 &&
+           pthread_create(&id[started], NULL, take_parts, &q) == 0)
+        started++; /* a thread that cannot start leaves its share to us */
+    take_parts(&q);
+    for (int k = 0; k < started; k++)
+        pthread_join(id[k], NULL);
 }
 
 static bool count_obj_statement(parser *p, void *target)
@@ -283,22 +303,18 @@ static bool count_obj_statement(parser *p, void *target)
     return true;
 }
 
-static void *count_part(void *part)
+static void count_part(obj_part *t)
 {
-    obj_part *t = part;
     t->ok = parse_lines(t->text, t->length, t->name, &t->err,
                         count_obj_statement, t);
-    return NULL;
 }
 
-static void *read_part(void *part)
+static void read_part(obj_part *t)
 {
-    obj_part *t = part;
     /* no bytes to grow: every array was made to measure */
     obj_reader r = {&t->m, {MESH_MAX_TRIANGLES, 0}};
     t->ok = parse_lines(t->text, t->length, t->name, &t->err,
                         parse_obj_statement, &r);
-    return NULL;
 }
 
 /* The capacity that growing one item at a time gives count items. */
@@ -392,17 +408,17 @@ static size_t part_start(const char *text, size_t length, int k, int n)
 
 /* The parts counted, the arrays made, the parts read: false when the
  * serial reader must say what is wrong. */
-static bool read_in_parts(mesh *m, obj_part *parts, int n,
+static bool read_in_parts(mesh *m, obj_part *parts, int n, int threads,
                           mesh_budget budget)
 {
-    run_parts(parts, n, count_part);
+    run_parts(parts, n, threads, count_part);
     for (int k = 0; k < n; k++)
         if (!parts[k].ok)
             return false;
     if (!make_arrays(m, parts, n, budget))
         return false;
     share_arrays(m, parts, n);
-    run_parts(parts, n, read_part);
+    run_parts(parts, n, threads, read_part);
     for (int k = 0; k < n; k++)
         if (!parts[k].ok)
             return false;
@@ -411,7 +427,7 @@ static bool read_in_parts(mesh *m, obj_part *parts, int n,
 
 bool mesh_parse_obj_in_parts(mesh *m, const char *text, size_t length,
                              const char *name, mesh_budget budget,
-                             int parts, parse_error *err)
+                             int parts, int threads, parse_error *err)
 {
     int n = parts < 1 ? 1 : parts < OBJ_MAX_PARTS ? parts : OBJ_MAX_PARTS;
     obj_part *part = memory_alloc_zeroed((size_t)n, sizeof *part);
@@ -420,7 +436,7 @@ bool mesh_parse_obj_in_parts(mesh *m, const char *text, size_t length,
         part[k].text = text + b, part[k].name = name;
         part[k].length = part_start(text, length, k + 1, n) - b;
     }
-    bool ok = part != NULL && read_in_parts(m, part, n, budget);
+    bool ok = part != NULL && read_in_parts(m, part, n, threads, budget);
     free(part);
     if (ok)
         return true;
@@ -437,10 +453,11 @@ bool mesh_load_obj_on(mesh *m, const char *path, mesh_budget budget,
         return false;
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     long n = threads > 0 ? threads : cores > 0 ? cores : 1;
-    size_t most = 1 + length / OBJ_MIN_PART_BYTES; /* parts worth a thread */
-    int parts = (size_t)n < most ? (int)n : (int)most;
+    size_t most = 1 + length / OBJ_MIN_PART_BYTES;
+    size_t wanted = (size_t)n * OBJ_PARTS_A_THREAD;
+    int parts = (int)(wanted < most ? wanted : most);
     bool ok = mesh_parse_obj_in_parts(m, text, length, path, budget, parts,
-                                      err);
+                                      threads, err);
     free(text);
     return ok;
 }

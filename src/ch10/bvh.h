@@ -44,6 +44,10 @@ typedef struct {
  * all items: as chapter 8's planes are thick (KDTREE_THICKNESS), for the
  * rounding of the triangle tests. */
 #define BVH_THICKNESS 0x1p-32
+/* A node of more items has its passes over them shared by the threads
+ * at the top of the tree, and keeps its items' order as it partitions:
+ * a pass over fewer is not worth a thread's start. */
+#define BVH_SHARED_ITEMS (1 << 16)
 
 /* The defaults, every member filled. */
 bvh_params bvh_default_params(void);
