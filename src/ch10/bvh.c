@@ -68,18 +68,15 @@ static box box_union(box a, box b)
     return (box){vec3_min(a.lo, b.lo), vec3_max(a.hi, b.hi)};
 }
 
-/* BVH_THICKNESS times the largest coordinate of the boxes. */
-static double bvh_pad(const box *bounds, int count)
+/* The largest of most and the coordinates of b, in magnitude: the boxes'
+ * largest, times BVH_THICKNESS, is a build's pad. */
+static double largest_coordinate(const box *b, double most)
 {
-    double most = 0;
-    for (int k = 0; k < count; k++) {
-        for (int a = 0; a < 3; a++) { /* not fmax: a call, on most machines */
-            double lo = fabs(vec3_axis(bounds[k].lo, a));
-            double hi = fabs(vec3_axis(bounds[k].hi, a));
-            most = lo > most ? lo : most, most = hi > most ? hi : most;
-        }
+    for (int a = 0; a < 3; a++) { /* not fmax: a call, on most machines */
+        double lo = fabs(vec3_axis(b->lo, a)), hi = fabs(vec3_axis(b->hi, a));
+        most = lo > most ? lo : most, most = hi > most ? hi : most;
     }
-    return BVH_THICKNESS * most;
+    return most;
 }
 
 bool bvh_ray_of(vec3 origin, vec3 inv, double t_min, double t_max,
@@ -104,11 +101,12 @@ bool bvh_ray_of(vec3 origin, vec3 inv, double t_min, double t_max,
 /* <<the bins of a split>> ch09 */
 typedef struct bvh_slice bvh_slice;
 
-/* What a build shares between its nodes and its threads; only items,
- * scratch and slots are written, each range of them by one thread. */
+/* What a build shares between its nodes and its threads; only centers,
+ * items, scratch and slots are written, each range of them by one
+ * thread. */
 typedef struct {
     const box *bounds;  /* of each item */
-    const vec3 *centers; /* of each item's box */
+    vec3 *centers;       /* of each item's box, made first */
     int *items;          /* reordered range by range */
     int *scratch;        /* as many: the partitions of large nodes */
     bvh_node *slots;     /* 2 count - 1 of them: see build_range */
@@ -158,6 +156,7 @@ struct bvh_slice {
     double lo, scale;
     bvh_bin bins[BVH_MAX_BINS];
     int low, high; /* how many go low; then where they go, either side */
+    double largest; /* coordinate of its boxes, in magnitude */
 };
 
 /* Cuts items[b..e) into n slices, or one when there are too few items
@@ -174,30 +173,22 @@ static int cut_slices(const bvh_builder *bd, bvh_slice *sl, int n, int b,
     return n;
 }
 
-static void *run_slice(void *slice)
+static void run_slice(void *slices, int k)
 {
-    bvh_slice *s = slice;
+    bvh_slice *s = (bvh_slice *)slices + k;
     s->pass(s);
-    return NULL;
 }
 
-/* pass over each of the n slices, one thread each, the first on this
- * one; a thread that cannot start leaves its slice to this one. */
+/* pass over each of the n slices, one thread each (one slice: this
+ * thread, at once, as for almost every node). */
 static void run_slices(bvh_slice *sl, int n, void (*pass)(bvh_slice *))
 {
-    pthread_t id[BVH_MAX_THREADS];
-    bool started[BVH_MAX_THREADS] = {false};
-    for (int k = 1; k < n; k++) {
+    for (int k = 0; k < n; k++)
         sl[k].pass = pass;
-        started[k] = pthread_create(&id[k], NULL, run_slice, &sl[k]) == 0;
-    }
-    pass(&sl[0]);
-    for (int k = 1; k < n; k++) {
-        if (started[k])
-            pthread_join(id[k], NULL);
-        else
-            pass(&sl[k]);
-    }
+    if (n == 1)
+        pass(&sl[0]);
+    else
+        bvh_run_jobs(n, n, run_slice, sl);
 }
 
 static void slice_boxes(bvh_slice *s)
@@ -210,6 +201,21 @@ static void slice_boxes(bvh_slice *s)
         c = box_union(c, (box){bd->centers[item], bd->centers[item]});
     }
     s->bounds = b, s->centers = c;
+}
+
+/* The first pass of a build, over every item: its center, its place in
+ * the first order, and the largest coordinate. */
+static void slice_centers(bvh_slice *s)
+{
+    const bvh_builder *bd = s->bd;
+    double most = 0;
+    for (int k = s->b; k < s->e; k++) {
+        const box *b = &bd->bounds[k];
+        bd->centers[k] = vec3_scale(vec3_add(b->lo, b->hi), 0.5);
+        bd->items[k] = k;
+        most = largest_coordinate(b, most);
+    }
+    s->largest = most;
 }
 
 static void slice_bins(bvh_slice *s)
@@ -459,6 +465,37 @@ static int run_tasks(bvh_queue *q, int threads)
     return started + 1;
 }
 
+typedef struct {
+    void (*job)(void *, int);
+    void *context;
+    int count;
+    atomic_int next;
+} bvh_jobs;
+
+static void *take_jobs(void *jobs)
+{
+    bvh_jobs *q = jobs;
+    for (int k; (k = atomic_fetch_add(&q->next, 1)) < q->count;)
+        q->job(q->context, k);
+    return NULL;
+}
+
+void bvh_run_jobs(int count, int threads, void (*job)(void *, int),
+                  void *context)
+{
+    bvh_jobs q = {.job = job, .context = context, .count = count};
+    atomic_init(&q.next, 0);
+    int n = thread_count(threads), started = 0;
+    n = n < count ? n : count > 1 ? count : 1;
+    pthread_t id[BVH_MAX_THREADS];
+    while (started < n - 1 &&
+           pthread_create(&id[started], NULL, take_jobs, &q) == 0)
+        started++; /* a thread that cannot start leaves its share to us */
+    take_jobs(&q);
+    for (int k = 0; k < started; k++)
+        pthread_join(id[k], NULL);
+}
+
 /* <<closing the gaps>> ch09 */
 /* Copies the subtree at slots[s] into t->nodes from t->node_count on, in
  * the order of a walk, each node's first child right after it; where
@@ -600,12 +637,13 @@ static bool make_wide(bvh *t)
 static void build_binary(bvh_builder *bd, vec3 *centers, int count,
                          bvh_task *tasks, bvh *t)
 {
-    for (int k = 0; k < count; k++) {
-        const box *b = &bd->bounds[k];
-        centers[k] = vec3_scale(vec3_add(b->lo, b->hi), 0.5);
-        bd->items[k] = k;
-    }
     bd->centers = centers;
+    int n = cut_slices(bd, bd->slices, bd->slice_count, 0, count);
+    run_slices(bd->slices, n, slice_centers);
+    double most = 0;
+    for (int k = 0; k < n; k++) /* a maximum: the same in any order */
+        most = bd->slices[k].largest > most ? bd->slices[k].largest : most;
+    bd->pad = BVH_THICKNESS * most;
     /* a task's size: eight tasks a thread, enough to share them out */
     int tasks_wanted = 8 * thread_count(bd->p.threads);
     int small = count / tasks_wanted > 1024 ? count / tasks_wanted : 1024;
@@ -626,7 +664,7 @@ bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
     if (count < q.min_items || count < 1)
         return true;
     size_t n = (size_t)count, slots = 2 * n - 1;
-    bvh_builder bd = {.bounds = bounds, .p = q, .pad = bvh_pad(bounds, count)};
+    bvh_builder bd = {.bounds = bounds, .p = q};
     vec3 *centers = memory_alloc(n, sizeof *centers);
     bvh_task *tasks = memory_alloc(n, sizeof *tasks);
     bd.slots = memory_alloc(slots, sizeof *bd.slots);

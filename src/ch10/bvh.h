@@ -113,6 +113,13 @@ long long bvh_bytes(const bvh *t);
  * the compiler was allowed ("SSE2", "AVX2", ...). */
 const char *bvh_vector_width_name(void);
 
+/* Runs job(context, k) for every k in [0, count) on threads threads (0:
+ * one per core; never more than count), this one among them, each taking
+ * the next k left: for the work around a build (a mesh's boxes, its
+ * packets). */
+void bvh_run_jobs(int count, int threads, void (*job)(void *, int),
+                  void *context);
+
 /* <<bvh ray tests>> ch09 */
 /* <<the ray's float constants>> ch09 */
 /* What a ray's box tests need, in float: for each axis the face it meets
