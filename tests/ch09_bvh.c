@@ -467,6 +467,10 @@ START_TEST(test_thread_counts_build_the_same_tree)
                           threads[k]);
             ck_assert(memcmp(many.bvh.items, one.bvh.items,
                              (size_t)m.triangle_count * sizeof(int)) == 0);
+            ck_assert_int_eq(many.bvh_packet_count, one.bvh_packet_count);
+            ck_assert(memcmp(many.bvh_packets, one.bvh_packets,
+                             (size_t)one.bvh_packet_count *
+                                 sizeof(triangle_packet)) == 0);
             mesh_free_tree(&many);
         }
         mesh_free_tree(&one);
