@@ -25,13 +25,12 @@ static int below(int n) { return (int)(rng_next(&rng) % (uint64_t)n); }
 static const mesh_budget NO_BUDGET = {MESH_MAX_TRIANGLES, 1LL << 60};
 
 /* The first n items of two arrays of size bytes each, alike. */
-static void expect_same_items(const void *a, const void *b, int n,
-                              size_t size, const char *what)
+static void expect_same_items(const void *a, const void *b, int n, size_t size,
+                              const char *what)
 {
     ck_assert_msg((a == NULL) == (b == NULL), "%s: one is NULL", what);
     if (n > 0)
-        ck_assert_msg(memcmp(a, b, (size_t)n * size) == 0,
-                      "%s differ", what);
+        ck_assert_msg(memcmp(a, b, (size_t)n * size) == 0, "%s differ", what);
 }
 
 static void expect_same_mesh(const mesh *a, const mesh *b)
@@ -45,8 +44,8 @@ static void expect_same_mesh(const mesh *a, const mesh *b)
     ck_assert_int_eq(a->triangle_normals_capacity,
                      b->triangle_normals_capacity);
     ck_assert_int_eq(a->texcoord_count, b->texcoord_count);
-    expect_same_items(a->vertices, b->vertices, a->vertex_count,
-                      sizeof(vec3), "vertices");
+    expect_same_items(a->vertices, b->vertices, a->vertex_count, sizeof(vec3),
+                      "vertices");
     expect_same_items(a->normals, b->normals, a->normal_count, sizeof(vec3),
                       "normals");
     expect_same_items(a->triangles, b->triangles, a->triangle_count,
@@ -58,8 +57,8 @@ static void expect_same_mesh(const mesh *a, const mesh *b)
 
 /* Chapter 4's reader of text[0..length) within budget: the text written
  * to a file and read by mesh_load_obj_within. */
-static bool read_serially(const char *text, size_t length,
-                          mesh_budget budget, mesh *m, parse_error *err)
+static bool read_serially(const char *text, size_t length, mesh_budget budget,
+                          mesh *m, parse_error *err)
 {
     const char *path = write_bytes("mesh.obj", text, length);
     return mesh_load_obj_within(m, path, budget, err);
@@ -74,9 +73,9 @@ static void expect_parts_read_as_chapter_4(const char *text, size_t length,
     mesh serial = {0}, parallel = {0};
     parse_error e1 = {0}, e2 = {0};
     bool ok1 = read_serially(text, length, budget, &serial, &e1);
-    bool ok2 = mesh_parse_obj_in_parts(&parallel, text, length,
-                                       tmp_path("mesh.obj"), budget, parts,
-                                       1 + parts % 3, &e2);
+    bool ok2 =
+        mesh_parse_obj_in_parts(&parallel, text, length, tmp_path("mesh.obj"),
+                                budget, parts, 1 + parts % 3, &e2);
     ck_assert_msg(ok1 == ok2, "%d parts: %s", parts,
                   ok1 ? e2.message : e1.message);
     expect_same_mesh(&serial, &parallel);
@@ -108,8 +107,7 @@ START_TEST(test_parts_read_the_project_s_meshes_as_chapter_4_does)
         size_t length;
         char *text = read_whole(paths[k], &length);
         for (size_t j = 0; j < sizeof parts / sizeof *parts; j++)
-            expect_parts_read_as_chapter_4(text, length, NO_BUDGET,
-                                           parts[j]);
+            expect_parts_read_as_chapter_4(text, length, NO_BUDGET, parts[j]);
         free(text);
     }
 }
@@ -133,8 +131,8 @@ START_TEST(test_threads_read_a_file_as_chapter_4_does)
 END_TEST
 
 /* Appends printf's text to buf[*at..size). */
-static void put(char *buf, size_t size, size_t *at, const char *format,
-                ...) __attribute__((format(printf, 4, 5)));
+static void put(char *buf, size_t size, size_t *at, const char *format, ...)
+    __attribute__((format(printf, 4, 5)));
 static void put(char *buf, size_t size, size_t *at, const char *format, ...)
 {
     va_list args;
@@ -174,9 +172,10 @@ static size_t every_kind_of_statement(char *buf, size_t size, int lines)
         int kind = v < 3 ? 0 : below(10);
         double x = rng_uniform(&rng, -0.5, 0.5), y = rng_uniform01(&rng);
         if (kind <= 2)
-            put(buf, size, &at, kind ? "v %.17g %.9g %g\n"
-                                     : "v\t%.17g %.9g %g 1\r\n",
-                x, y, x * y), v++;
+            put(buf, size, &at,
+                kind ? "v %.17g %.9g %g\n" : "v\t%.17g %.9g %g 1\r\n", x, y,
+                x * y),
+                v++;
         else if (kind == 3)
             put(buf, size, &at, "vn %g %g 1\n", x, y), vn++;
         else if (kind == 4)
@@ -202,8 +201,8 @@ START_TEST(test_parts_read_every_kind_of_statement_as_chapter_4_does)
     size_t length = every_kind_of_statement(text, sizeof text, 12000);
     mesh m = {0};
     parse_error err;
-    ck_assert_msg(read_serially(text, length, NO_BUDGET, &m, &err),
-                  "%d:%d: %s", err.line, err.col, err.message);
+    ck_assert_msg(read_serially(text, length, NO_BUDGET, &m, &err), "%d:%d: %s",
+                  err.line, err.col, err.message);
     ck_assert_int_gt(m.triangle_count, 5000); /* and it is not empty */
     ck_assert_int_gt(m.normal_count, 500);
     mesh_free(&m);
@@ -244,9 +243,15 @@ START_TEST(test_a_mistake_at_a_part_s_first_line_is_chapter_4_s)
     static char text[1 << 18], wrong[(1 << 18) + 256];
     size_t length = every_kind_of_statement(text, sizeof text, 3000);
     const char *mistakes[] = {
-        "v 1 2 x\n",        "f 1 2 99999\n",  "f -1 -2 -99999\n",
-        "f 1 2\n",          "f 1/1/1/1 2 3\n", "vn 1 nan 0\n",
-        "f 0 1 2\n",        "v 1 2 3\0\n",    "\xEF\xBB\xBF" "f -1 -2 0\n",
+        "v 1 2 x\n",
+        "f 1 2 99999\n",
+        "f -1 -2 -99999\n",
+        "f 1 2\n",
+        "f 1/1/1/1 2 3\n",
+        "vn 1 nan 0\n",
+        "f 0 1 2\n",
+        "v 1 2 3\0\n",
+        "\357\273\277f -1 -2 0\n", /* after a byte order mark */
     };
     int n = 5;
     for (int k = 1; k < n; k++) {
@@ -310,11 +315,10 @@ START_TEST(test_a_budget_is_crossed_where_chapter_4_crosses_it)
         expect_parts_read_as_chapter_4(
             text, length, (mesh_budget){MESH_MAX_TRIANGLES, bytes}, parts);
         expect_parts_read_as_chapter_4(
-            text, length, (mesh_budget){MESH_MAX_TRIANGLES, bytes - 1},
-            parts);
+            text, length, (mesh_budget){MESH_MAX_TRIANGLES, bytes - 1}, parts);
         for (long t = triangles - 2; t <= triangles; t++)
-            expect_parts_read_as_chapter_4(
-                text, length, (mesh_budget){t, 1LL << 60}, parts);
+            expect_parts_read_as_chapter_4(text, length,
+                                           (mesh_budget){t, 1LL << 60}, parts);
     }
 }
 END_TEST
