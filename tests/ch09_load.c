@@ -339,6 +339,24 @@ START_TEST(test_a_byte_order_mark_is_skipped_at_the_file_s_start_only)
 }
 END_TEST
 
+/* A number of OBJ_LONG_NUMBER characters or more is read from a copy in
+ * memory, which only the calling thread may take: such a file is read as
+ * chapter 4 reads it, wherever the number is. */
+START_TEST(test_a_long_number_is_read_as_chapter_4_reads_it)
+{
+    static char text[1 << 16], longer[(1 << 16) + 256];
+    char line[256] = "v 0.";
+    memset(line + 4, '5', OBJ_LONG_NUMBER);
+    strcpy(line + 4 + OBJ_LONG_NUMBER, " 1 2\n");
+    size_t length = every_kind_of_statement(text, sizeof text, 600);
+    for (int k = 0; k < 4; k++) {
+        size_t at = start_of_part(text, length, k, 4);
+        size_t l = insert(longer, text, length, at, line);
+        expect_parts_read_as_chapter_4(longer, l, NO_BUDGET, 4);
+    }
+}
+END_TEST
+
 Suite *ch09_load_suite(void)
 {
     Suite *s = suite_create("ch09 load");
@@ -349,6 +367,7 @@ Suite *ch09_load_suite(void)
     tcase_add_test(same,
                    test_parts_read_the_project_s_meshes_as_chapter_4_does);
     tcase_add_test(same, test_threads_read_a_file_as_chapter_4_does);
+    tcase_add_test(same, test_a_long_number_is_read_as_chapter_4_reads_it);
     tcase_add_test(same,
                    test_parts_read_every_kind_of_statement_as_chapter_4_does);
     suite_add_tcase(s, same);

@@ -289,6 +289,10 @@ static bool count_obj_statement(parser *p, void *target)
 {
     obj_part *part = target;
     if (parse_next_token(p)) {
+        bool point = parse_token_is(p, "v") || parse_token_is(p, "vn");
+        int numbers = point ? 3 : parse_token_is(p, "vt");
+        if (p->end - p->line < OBJ_LONG_NUMBER)
+            numbers = 0; /* a line this short has no long number */
         part->vertices += parse_token_is(p, "v");
         part->normals += parse_token_is(p, "vn");
         part->texcoords += parse_token_is(p, "vt");
@@ -298,6 +302,9 @@ static bool count_obj_statement(parser *p, void *target)
                 corners++;
             part->triangles += corners > 2 ? corners - 2 : 0;
         }
+        for (int k = 0; k < numbers && parse_next_token(p); k++)
+            if (p->token_length >= OBJ_LONG_NUMBER)
+                return false; /* not for this part: chapter 4's reader */
     }
     p->next = p->end; /* the numbers are the reading's */
     return true;

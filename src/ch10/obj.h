@@ -49,5 +49,7 @@ bool mesh_parse_obj_in_parts(mesh *m, const char *text, size_t length,
 #define OBJ_PARTS_A_THREAD 8
 /* A part is at least this much text: a thread costs its start. */
 #define OBJ_MIN_PART_BYTES (1 << 16)
+/* parse.c reads a number this long from a copy in memory of its own */
+#define OBJ_LONG_NUMBER 64
 
 #endif
