@@ -10,6 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "memory.h"
 #include "obj.h"
 #include "rng.h"
 #include "test_util.h"
@@ -357,6 +358,54 @@ START_TEST(test_a_long_number_is_read_as_chapter_4_reads_it)
 }
 END_TEST
 
+/* Texts shorter than their parts, each in memory of its own length, so
+ * that the sanitizers see a part that reads past the text's end. */
+START_TEST(test_texts_shorter_than_their_parts_read_as_chapter_4_reads_them)
+{
+    const char *texts[] = {"", "\n", "v 1 2 3", "v 1 2 3\n",
+                           "v 1 2 3\nv 4 5 6\nv 7 8 9\nf 1 2 -1",
+                           "v 1 2 3\n\n\nf 1 1 1\n"};
+    for (size_t k = 0; k < sizeof texts / sizeof *texts; k++) {
+        size_t length = strlen(texts[k]);
+        char *text = malloc(length); /* of 0 bytes too: none to read */
+        ck_assert(text != NULL || length == 0);
+        if (length > 0)
+            memcpy(text, texts[k], length);
+        for (int parts = 1; parts <= 9; parts++)
+            expect_parts_read_as_chapter_4(text, length, NO_BUDGET, parts);
+        free(text);
+    }
+}
+END_TEST
+
+/* With memory for only the first n allocations, the reader in parts
+ * fails as chapter 4's does, with no memory, and leaves no mesh; or it
+ * reads chapter 4's mesh (its threads take no memory of their own). */
+START_TEST(test_running_out_of_memory_in_parts_is_reported)
+{
+    static char text[1 << 16];
+    size_t length = every_kind_of_statement(text, sizeof text, 600);
+    mesh whole = {0};
+    parse_error err;
+    ck_assert(read_serially(text, length, NO_BUDGET, &whole, &err));
+    bool read = false;
+    for (long n = 0; n < 40 && !read; n++) {
+        mesh m = {0};
+        memory_fail_after(n);
+        read = mesh_parse_obj_in_parts(&m, text, length, "mesh.obj",
+                                       NO_BUDGET, 4, 2, &err);
+        memory_fail_after(-1);
+        if (read)
+            expect_same_mesh(&whole, &m);
+        else
+            ck_assert_int_eq(err.kind, PARSE_NO_MEMORY);
+        mesh_free(&m);
+    }
+    ck_assert_msg(read, "never read with 40 allocations");
+    mesh_free(&whole);
+}
+END_TEST
+
 Suite *ch09_load_suite(void)
 {
     Suite *s = suite_create("ch09 load");
@@ -368,6 +417,8 @@ Suite *ch09_load_suite(void)
                    test_parts_read_the_project_s_meshes_as_chapter_4_does);
     tcase_add_test(same, test_threads_read_a_file_as_chapter_4_does);
     tcase_add_test(same, test_a_long_number_is_read_as_chapter_4_reads_it);
+    tcase_add_test(
+        same, test_texts_shorter_than_their_parts_read_as_chapter_4_reads_them);
     tcase_add_test(same,
                    test_parts_read_every_kind_of_statement_as_chapter_4_does);
     suite_add_tcase(s, same);
@@ -380,6 +431,7 @@ Suite *ch09_load_suite(void)
     tcase_add_test(bad, test_a_budget_is_crossed_where_chapter_4_crosses_it);
     tcase_add_test(bad,
                    test_a_byte_order_mark_is_skipped_at_the_file_s_start_only);
+    tcase_add_test(bad, test_running_out_of_memory_in_parts_is_reported);
     suite_add_tcase(s, bad);
     return s;
 }

@@ -410,7 +410,7 @@ static size_t part_start(const char *text, size_t length, int k, int n)
         if (text[at - 1] == '\n' &&
             !starts_with_mark(text + at, length - at))
             break;
-    return at;
+    return at < length ? at : length; /* no line starts there: the end */
 }
 
 /* The parts counted, the arrays made, the parts read: false when the
