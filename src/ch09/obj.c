@@ -324,25 +324,23 @@ static void read_part(obj_part *t)
                         parse_obj_statement, &r);
 }
 
-/* The capacity that growing one item at a time gives count items. */
-static int grown_capacity(long long count, int max)
+/* The capacity that growing an array one item at a time, to at most
+ * max, gives count items; its bytes added to *bytes. */
+static int grown_capacity(long long count, int max, size_t size,
+                          long long *bytes)
 {
     int capacity = 0;
     while (capacity < count)
         capacity = array_next_capacity(capacity, max);
+    *bytes += (long long)capacity * (long long)size;
     return capacity;
 }
 
-/* An array of count items of size, as grown one at a time, in *items;
- * its bytes added to *bytes. False: no memory. */
-static bool make_to_measure(void **items, int *capacity, long long count,
-                            size_t size, long long *bytes)
+/* An array of capacity items of size; NULL for none, as chapter 4's
+ * reader leaves it, or when there is no memory. */
+static void *made(int capacity, size_t size)
 {
-    *capacity = grown_capacity(count, INT_MAX);
-    *bytes += (long long)*capacity * (long long)size;
-    if (*capacity == 0)
-        return true; /* chapter 4's reader leaves it NULL */
-    return (*items = memory_alloc((size_t)*capacity, size)) != NULL;
+    return capacity > 0 ? memory_alloc((size_t)capacity, size) : NULL;
 }
 
 /* m's arrays for the parts' counts, within budget; false when the serial
@@ -358,17 +356,20 @@ static bool make_arrays(mesh *m, const obj_part *parts, int n,
         vt > MESH_MAX_VERTICES || t > MESH_MAX_TRIANGLES ||
         t > budget.triangles)
         return false;
-    bool ok = make_to_measure((void **)&m->vertices, &m->vertex_capacity,
-                              v, sizeof(vec3), &bytes) &&
-              make_to_measure((void **)&m->normals, &m->normal_capacity,
-                              vn, sizeof(vec3), &bytes) &&
-              make_to_measure((void **)&m->triangles,
-                              &m->triangle_capacity, t,
-                              sizeof(mesh_triangle), &bytes) &&
-              make_to_measure((void **)&m->triangle_normals,
-                              &m->triangle_normals_capacity, t,
-                              sizeof(mesh_triangle), &bytes);
-    return ok && bytes <= budget.bytes;
+    int vs = grown_capacity(v, MESH_MAX_VERTICES, sizeof(vec3), &bytes);
+    int ns = grown_capacity(vn, MESH_MAX_VERTICES, sizeof(vec3), &bytes);
+    int ts = grown_capacity(t, MESH_MAX_TRIANGLES, sizeof(mesh_triangle),
+                            &bytes);
+    bytes += (long long)ts * (long long)sizeof(mesh_triangle); /* normals */
+    if (bytes > budget.bytes)
+        return false; /* before a byte is taken */
+    m->vertex_capacity = vs, m->normal_capacity = ns;
+    m->triangle_capacity = m->triangle_normals_capacity = ts;
+    m->vertices = made(vs, sizeof(vec3)), m->normals = made(ns, sizeof(vec3));
+    m->triangles = made(ts, sizeof(mesh_triangle));
+    m->triangle_normals = made(ts, sizeof(mesh_triangle));
+    return (m->vertices || !vs) && (m->normals || !ns) &&
+           (m->triangles || !ts) && (m->triangle_normals || !ts);
 }
 
 /* Each part's view of m: the counts before it, its items' end. */
