@@ -477,11 +477,57 @@ START_TEST(test_thread_counts_build_the_same_tree)
                           threads[k]);
             ck_assert(memcmp(many.bvh.items, one.bvh.items,
                              (size_t)m.triangle_count * sizeof(int)) == 0);
+            ck_assert_int_eq(many.bvh_packet_count, one.bvh_packet_count);
+            ck_assert(memcmp(many.bvh_packets, one.bvh_packets,
+                             (size_t)one.bvh_packet_count *
+                                 sizeof(triangle_packet)) == 0);
             mesh_free_tree(&many);
         }
         mesh_free_tree(&one);
     }
     mesh_free(&m);
+}
+END_TEST
+
+/* Boxes enough for the top's passes to be shared (several times
+ * BVH_SHARED_ITEMS), on a coarse grid so that many centers coincide, some
+ * at the origin with either sign of zero: the slices' boxes, bins and
+ * partitions make the tree that one thread makes, to the bit. */
+START_TEST(test_thread_counts_build_the_same_tree_over_many_items)
+{
+    int n = 5 * BVH_SHARED_ITEMS + 17;
+    box *b = malloc((size_t)n * sizeof *b);
+    ck_assert_ptr_nonnull(b);
+    for (int k = 0; k < n; k++) {
+        vec3 c = {(double)(rng_next(&rng) % 64) - 32,
+                  (double)(rng_next(&rng) % 8),
+                  rng_uniform(&rng, -1, 1)};
+        c = k % 7 == 0 ? (vec3){k % 2 ? -0.0 : 0.0, k % 3 ? -0.0 : 0.0,
+                                k % 5 ? -0.0 : 0.0}
+                       : c;
+        b[k] = (box){c, vec3_add(c, (vec3){0.5, k % 11 ? 0.25 : 0, 0})};
+    }
+    for (int width = 2; width <= 8; width *= 2) {
+        bvh one, many;
+        ck_assert(bvh_build(&one, n, b,
+                            &(bvh_params){.width = width, .threads = 1}));
+        const int threads[] = {2, 3, 5};
+        for (int k = 0; k < 3; k++) {
+            ck_assert(bvh_build(&many, n, b,
+                                &(bvh_params){.width = width,
+                                              .threads = threads[k]}));
+            ck_assert_int_eq(many.node_count, one.node_count);
+            ck_assert_msg(memcmp(node_array(&many), node_array(&one),
+                                 node_bytes(&one)) == 0,
+                          "width %d, %d threads: other nodes", width,
+                          threads[k]);
+            ck_assert(memcmp(many.items, one.items,
+                             (size_t)n * sizeof(int)) == 0);
+            bvh_free(&many);
+        }
+        bvh_free(&one);
+    }
+    free(b);
 }
 END_TEST
 
@@ -787,6 +833,8 @@ Suite *ch09_bvh_suite(void)
     tcase_add_test(nodes, test_float_boxes_hold_their_items);
     tcase_add_test(nodes, test_wide_nodes_hold_their_leaves_items);
     tcase_add_test(nodes, test_thread_counts_build_the_same_tree);
+    tcase_add_test(nodes,
+                   test_thread_counts_build_the_same_tree_over_many_items);
     tcase_add_test(nodes, test_a_build_starts_no_more_threads_than_tasks);
     tcase_add_test(nodes, test_running_out_of_memory_in_a_build_leaves_no_tree);
     tcase_add_test(nodes, test_every_leaf_s_packets_hold_its_triangles);

@@ -57,7 +57,7 @@ static bool load_scene(const options *opt, scene *s)
     scene_init(s);
     /* <<what the command line tells the scene>> ch09 */
     s->accelerator_option = (mesh_accelerator)opt->accelerator;
-    s->bvh_settings.threads = opt->threads; /* the build's too */
+    s->bvh_settings.threads = opt->threads; /* its reading and build too */
     bool ok = opt->scene_path != NULL
                   ? scene_load(s, opt->scene_path, &err)
                   : scene_parse(s, DEFAULT_SCENE, sizeof DEFAULT_SCENE - 1,

@@ -4,6 +4,11 @@
 #include <limits.h>
 #include <stdlib.h>
 #include "array.h"
+/* <<OBJ reader includes>> ch09 */
+#include <pthread.h>
+#include <stdatomic.h>
+#include <string.h>
+#include <unistd.h>
 
 typedef struct {
     mesh *m;
@@ -231,4 +236,236 @@ bool mesh_load_obj_within(mesh *m, const char *path, mesh_budget budget,
 bool mesh_load_obj(mesh *m, const char *path, parse_error *err)
 {
     return mesh_load_obj_within(m, path, no_budget, err);
+}
+/* <<reading an OBJ file>> += ch09 */
+
+/* One part of the text, whole lines, and what its thread found. */
+typedef struct {
+    const char *text, *name;
+    size_t length;
+    long long vertices, normals, texcoords, triangles; /* counted */
+    mesh m; /* the whole mesh's arrays, from the parts before it on */
+    parse_error err;
+    bool ok;
+} obj_part;
+
+typedef struct {
+    obj_part *parts;
+    int count;
+    void (*work)(obj_part *);
+    atomic_int next;
+} obj_queue;
+
+static void *take_parts(void *queue)
+{
+    obj_queue *q = queue;
+    for (int k; (k = atomic_fetch_add(&q->next, 1)) < q->count;)
+        q->work(&q->parts[k]);
+    return NULL;
+}
+
+/* Runs work on every part, on threads threads (0: one per core; never
+ * more than parts), this one among them: each takes the next part left,
+ * as the render's threads take bands. */
+static void run_parts(obj_part *parts, int n, int threads,
+                      void (*work)(obj_part *))
+{
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    long t = threads > 0 ? threads : cores > 0 ? cores : 1;
+    t = t < n ? t : n, t = t < OBJ_MAX_THREADS ? t : OBJ_MAX_THREADS;
+    obj_queue q = {.parts = parts, .count = n, .work = work};
+    atomic_init(&q.next, 0);
+    pthread_t id[OBJ_MAX_THREADS];
+    int started = 0;
+    while (started < t - 1 &&
+           pthread_create(&id[started], NULL, take_parts, &q) == 0)
+        started++; /* a thread that cannot start leaves its share to us */
+    take_parts(&q);
+    for (int k = 0; k < started; k++)
+        pthread_join(id[k], NULL);
+}
+
+static bool count_obj_statement(parser *p, void *target)
+{
+    obj_part *part = target;
+    if (parse_next_token(p)) {
+        bool point = parse_token_is(p, "v") || parse_token_is(p, "vn");
+        int numbers = point ? 3 : parse_token_is(p, "vt");
+        if (p->end - p->line < OBJ_LONG_NUMBER)
+            numbers = 0; /* a line this short has no long number */
+        part->vertices += parse_token_is(p, "v");
+        part->normals += parse_token_is(p, "vn");
+        part->texcoords += parse_token_is(p, "vt");
+        if (parse_token_is(p, "f")) {
+            int corners = 0;
+            while (parse_next_token(p))
+                corners++;
+            part->triangles += corners > 2 ? corners - 2 : 0;
+        }
+        for (int k = 0; k < numbers && parse_next_token(p); k++)
+            if (p->token_length >= OBJ_LONG_NUMBER)
+                return false; /* not for this part: chapter 4's reader */
+    }
+    p->next = p->end; /* the numbers are the reading's */
+    return true;
+}
+
+static void count_part(obj_part *t)
+{
+    t->ok = parse_lines(t->text, t->length, t->name, &t->err,
+                        count_obj_statement, t);
+}
+
+static void read_part(obj_part *t)
+{
+    /* no bytes to grow: every array was made to measure */
+    obj_reader r = {&t->m, {MESH_MAX_TRIANGLES, 0}};
+    t->ok = parse_lines(t->text, t->length, t->name, &t->err,
+                        parse_obj_statement, &r);
+}
+
+/* The capacity that growing an array one item at a time, to at most
+ * max, gives count items; its bytes added to *bytes. */
+static int grown_capacity(long long count, int max, size_t size,
+                          long long *bytes)
+{
+    int capacity = 0;
+    while (capacity < count)
+        capacity = array_next_capacity(capacity, max);
+    *bytes += (long long)capacity * (long long)size;
+    return capacity;
+}
+
+/* An array of capacity items of size; NULL for none, as chapter 4's
+ * reader leaves it, or when there is no memory. */
+static void *made(int capacity, size_t size)
+{
+    return capacity > 0 ? memory_alloc((size_t)capacity, size) : NULL;
+}
+
+/* m's arrays for the parts' counts, within budget; false when the serial
+ * reader would stop (a limit, the budget, memory). */
+static bool make_arrays(mesh *m, const obj_part *parts, int n,
+                        mesh_budget budget)
+{
+    long long v = 0, vn = 0, vt = 0, t = 0, bytes = 0;
+    for (int k = 0; k < n; k++)
+        v += parts[k].vertices, vn += parts[k].normals,
+            vt += parts[k].texcoords, t += parts[k].triangles;
+    if (v > MESH_MAX_VERTICES || vn > MESH_MAX_VERTICES ||
+        vt > MESH_MAX_VERTICES || t > MESH_MAX_TRIANGLES ||
+        t > budget.triangles)
+        return false;
+    int vs = grown_capacity(v, MESH_MAX_VERTICES, sizeof(vec3), &bytes);
+    int ns = grown_capacity(vn, MESH_MAX_VERTICES, sizeof(vec3), &bytes);
+    int ts = grown_capacity(t, MESH_MAX_TRIANGLES, sizeof(mesh_triangle),
+                            &bytes);
+    bytes += (long long)ts * (long long)sizeof(mesh_triangle); /* normals */
+    if (bytes > budget.bytes)
+        return false; /* before a byte is taken */
+    m->vertex_capacity = vs, m->normal_capacity = ns;
+    m->triangle_capacity = m->triangle_normals_capacity = ts;
+    m->vertices = made(vs, sizeof(vec3)), m->normals = made(ns, sizeof(vec3));
+    m->triangles = made(ts, sizeof(mesh_triangle));
+    m->triangle_normals = made(ts, sizeof(mesh_triangle));
+    return (m->vertices || !vs) && (m->normals || !ns) &&
+           (m->triangles || !ts) && (m->triangle_normals || !ts);
+}
+
+/* Each part's view of m: the counts before it, its items' end. */
+static void share_arrays(mesh *m, obj_part *parts, int n)
+{
+    mesh at = *m; /* the counts so far */
+    for (int k = 0; k < n; k++) {
+        mesh *p = &parts[k].m;
+        *p = at;
+        p->vertex_capacity = (int)(at.vertex_count + parts[k].vertices);
+        p->normal_capacity = (int)(at.normal_count + parts[k].normals);
+        p->triangle_capacity =
+            (int)(at.triangle_count + parts[k].triangles);
+        p->triangle_normals_capacity = p->triangle_capacity;
+        at.vertex_count = p->vertex_capacity;
+        at.normal_count = p->normal_capacity;
+        at.triangle_count = p->triangle_capacity;
+        at.texcoord_count += (int)parts[k].texcoords;
+    }
+    m->vertex_count = at.vertex_count, m->normal_count = at.normal_count;
+    m->triangle_count = at.triangle_count;
+    m->texcoord_count = at.texcoord_count;
+}
+
+static bool starts_with_mark(const char *text, size_t length)
+{
+    return length >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0;
+}
+
+/* Where part k of n begins: the first line that starts at or after k/n
+ * of the text, and not with a byte order mark. */
+static size_t part_start(const char *text, size_t length, int k, int n)
+{
+    if (k == 0)
+        return 0;
+    size_t at = (size_t)((unsigned long long)length * (unsigned)k /
+                         (unsigned)n);
+    for (at = at > 0 ? at : 1; at < length; at++)
+        if (text[at - 1] == '\n' &&
+            !starts_with_mark(text + at, length - at))
+            break;
+    return at < length ? at : length; /* no line starts there: the end */
+}
+
+/* The parts counted, the arrays made, the parts read: false when the
+ * serial reader must say what is wrong. */
+static bool read_in_parts(mesh *m, obj_part *parts, int n, int threads,
+                          mesh_budget budget)
+{
+    run_parts(parts, n, threads, count_part);
+    for (int k = 0; k < n; k++)
+        if (!parts[k].ok)
+            return false;
+    if (!make_arrays(m, parts, n, budget))
+        return false;
+    share_arrays(m, parts, n);
+    run_parts(parts, n, threads, read_part);
+    for (int k = 0; k < n; k++)
+        if (!parts[k].ok)
+            return false;
+    return true;
+}
+
+bool mesh_parse_obj_in_parts(mesh *m, const char *text, size_t length,
+                             const char *name, mesh_budget budget,
+                             int parts, int threads, parse_error *err)
+{
+    int n = parts < 1 ? 1 : parts < OBJ_MAX_PARTS ? parts : OBJ_MAX_PARTS;
+    obj_part *part = memory_alloc_zeroed((size_t)n, sizeof *part);
+    for (int k = 0; part != NULL && k < n; k++) {
+        size_t b = part_start(text, length, k, n);
+        part[k].text = text + b, part[k].name = name;
+        part[k].length = part_start(text, length, k + 1, n) - b;
+    }
+    bool ok = part != NULL && read_in_parts(m, part, n, threads, budget);
+    free(part);
+    if (ok)
+        return true;
+    mesh_free(m); /* chapter 4's reader, from the start, says why */
+    return parse_obj_within(m, text, length, name, budget, err);
+}
+
+bool mesh_load_obj_on(mesh *m, const char *path, mesh_budget budget,
+                      int threads, parse_error *err)
+{
+    char *text;
+    size_t length;
+    if (!parse_read_file(path, OBJ_MAX_BYTES, &text, &length, err))
+        return false;
+    long cores = sysconf(_SC_NPROCESSORS_ONLN);
+    long n = threads > 0 ? threads : cores > 0 ? cores : 1;
+    size_t most = 1 + length / OBJ_MIN_PART_BYTES;
+    size_t wanted = (size_t)n * OBJ_PARTS_A_THREAD;
+    int parts = (int)(wanted < most ? wanted : most);
+    bool ok = mesh_parse_obj_in_parts(m, text, length, path, budget, parts,
+                                      threads, err);
+    free(text);
+    return ok;
 }

@@ -69,18 +69,15 @@ static box box_union(box a, box b)
     return (box){vec3_min(a.lo, b.lo), vec3_max(a.hi, b.hi)};
 }
 
-/* BVH_THICKNESS times the largest coordinate of the boxes. */
-static double bvh_pad(const box *bounds, int count)
+/* The largest of most and the coordinates of b, in magnitude: the boxes'
+ * largest, times BVH_THICKNESS, is a build's pad. */
+static double largest_coordinate(const box *b, double most)
 {
-    double most = 0;
-    for (int k = 0; k < count; k++) {
-        for (int a = 0; a < 3; a++) { /* not fmax: a call, on most machines */
-            double lo = fabs(vec3_axis(bounds[k].lo, a));
-            double hi = fabs(vec3_axis(bounds[k].hi, a));
-            most = lo > most ? lo : most, most = hi > most ? hi : most;
-        }
+    for (int a = 0; a < 3; a++) { /* not fmax: a call, on most machines */
+        double lo = fabs(vec3_axis(b->lo, a)), hi = fabs(vec3_axis(b->hi, a));
+        most = lo > most ? lo : most, most = hi > most ? hi : most;
     }
-    return BVH_THICKNESS * most;
+    return most;
 }
 
 bool bvh_ray_of(vec3 origin, vec3 inv, double t_min, double t_max,
@@ -103,13 +100,19 @@ bool bvh_ray_of(vec3 origin, vec3 inv, double t_min, double t_max,
 }
 
 /* <<the bins of a split>> ch09 */
-/* What a build shares between its nodes and its threads; only items and
- * slots are written, each range of them by one thread. */
+typedef struct bvh_slice bvh_slice;
+
+/* What a build shares between its nodes and its threads; only centers,
+ * items, scratch and slots are written, each range of them by one
+ * thread. */
 typedef struct {
     const box *bounds;  /* of each item */
-    const vec3 *centers; /* of each item's box */
+    vec3 *centers;       /* of each item's box, made first */
     int *items;          /* reordered range by range */
+    int *scratch;        /* as many: the partitions of large nodes */
     bvh_node *slots;     /* 2 count - 1 of them: see build_range */
+    bvh_slice *slices;   /* the top's: one a thread */
+    int slice_count;
     bvh_params p;
     double pad;
 } bvh_builder;
@@ -138,6 +141,153 @@ static void fill_bins(const bvh_builder *bd, int b, int e, int axis,
                                    bd->p.bins)];
         in->count++, in->b = box_union(in->b, bd->bounds[item]);
     }
+}
+
+/* <<a node's items in slices>> ch09 */
+#define BVH_MAX_THREADS 256
+
+/* A slice of a node's items, one thread's share of a pass over them,
+ * and what the pass found there. */
+struct bvh_slice {
+    const bvh_builder *bd;
+    int b, e; /* items[b..e) */
+    void (*pass)(bvh_slice *);
+    box bounds, centers; /* around its items' boxes, and their centers */
+    int axis, split;     /* its bins, and the first bin of the upper side */
+    double lo, scale;
+    bvh_bin bins[BVH_MAX_BINS];
+    int low, high; /* how many go low; then where they go, either side */
+    double largest; /* coordinate of its boxes, in magnitude */
+};
+
+/* Cuts items[b..e) into n slices, or one when there are too few items
+ * to share; how many. */
+static int cut_slices(const bvh_builder *bd, bvh_slice *sl, int n, int b,
+                      int e)
+{
+    n = e - b > BVH_SHARED_ITEMS ? n : 1;
+    for (int k = 0; k < n; k++) { /* not a compound literal: no bins */
+        sl[k].bd = bd;
+        sl[k].b = b + (int)((long long)(e - b) * k / n);
+        sl[k].e = b + (int)((long long)(e - b) * (k + 1) / n);
+    }
+    return n;
+}
+
+static void run_slice(void *slices, int k)
+{
+    bvh_slice *s = (bvh_slice *)slices + k;
+    s->pass(s);
+}
+
+/* pass over each of the n slices, one thread each (one slice: this
+ * thread, at once, as for almost every node). */
+static void run_slices(bvh_slice *sl, int n, void (*pass)(bvh_slice *))
+{
+    for (int k = 0; k < n; k++)
+        sl[k].pass = pass;
+    if (n == 1)
+        pass(&sl[0]);
+    else
+        bvh_run_jobs(n, n, run_slice, sl);
+}
+
+static void slice_boxes(bvh_slice *s)
+{
+    const bvh_builder *bd = s->bd;
+    box b = box_empty(), c = box_empty();
+    for (int i = s->b; i < s->e; i++) {
+        int item = bd->items[i];
+        b = box_union(b, bd->bounds[item]);
+        c = box_union(c, (box){bd->centers[item], bd->centers[item]});
+    }
+    s->bounds = b, s->centers = c;
+}
+
+/* The first pass of a build, over every item: its center, its place in
+ * the first order, and the largest coordinate. */
+static void slice_centers(bvh_slice *s)
+{
+    const bvh_builder *bd = s->bd;
+    double most = 0;
+    for (int k = s->b; k < s->e; k++) {
+        const box *b = &bd->bounds[k];
+        bd->centers[k] = vec3_scale(vec3_add(b->lo, b->hi), 0.5);
+        bd->items[k] = k;
+        most = largest_coordinate(b, most);
+    }
+    s->largest = most;
+}
+
+static void slice_bins(bvh_slice *s)
+{
+    fill_bins(s->bd, s->b, s->e, s->axis, s->lo, s->scale, s->bins);
+}
+
+static bool goes_low(const bvh_slice *s, int item)
+{
+    return bin_of(s->bd->centers[item], s->axis, s->lo, s->scale,
+                  s->bd->p.bins) < s->split;
+}
+
+static void slice_count_low(bvh_slice *s)
+{
+    int low = 0;
+    for (int i = s->b; i < s->e; i++)
+        low += goes_low(s, s->bd->items[i]);
+    s->low = low;
+}
+
+static void slice_scatter(bvh_slice *s)
+{
+    const bvh_builder *bd = s->bd;
+    for (int i = s->b; i < s->e; i++) {
+        int item = bd->items[i];
+        bd->scratch[goes_low(s, item) ? s->low++ : s->high++] = item;
+    }
+}
+
+static void slice_copy_back(bvh_slice *s)
+{
+    memcpy(s->bd->items + s->b, s->bd->scratch + s->b,
+           (size_t)(s->e - s->b) * sizeof(int));
+}
+
+/* The slices' items in bins on axis, from lo, scale bins a unit: the
+ * bins of the first slice, the others' added in. */
+static const bvh_bin *slices_binned(bvh_slice *sl, int n, int axis,
+                                    double lo, double scale)
+{
+    for (int k = 0; k < n; k++)
+        sl[k].axis = axis, sl[k].lo = lo, sl[k].scale = scale;
+    run_slices(sl, n, slice_bins);
+    for (int k = 1; k < n; k++)
+        for (int j = 0; j < sl[0].bd->p.bins; j++) {
+            sl[0].bins[j].count += sl[k].bins[j].count;
+            sl[0].bins[j].b = box_union(sl[0].bins[j].b, sl[k].bins[j].b);
+        }
+    return sl[0].bins;
+}
+
+/* Puts the items of bins below split first, each side in the order it
+ * had; the first of the others. */
+static int partition_in_order(bvh_slice *sl, int n, int split)
+{
+    for (int k = 0; k < n; k++)
+        sl[k].split = split;
+    run_slices(sl, n, slice_count_low);
+    int low = sl[0].b, high = sl[0].b;
+    for (int k = 0; k < n; k++)
+        high += sl[k].low;
+    int first_high = high;
+    for (int k = 0; k < n; k++) {
+        int lows = sl[k].low;
+        sl[k].low = low, low += lows;
+        sl[k].high = high, high += sl[k].e - sl[k].b - lows;
+    }
+    run_slices(sl, n, slice_scatter);
+    run_slices(sl, n, slice_copy_back);
+    return first_high;
 }
 
 /* <<the binned split>> ch09 */
@@ -191,68 +341,65 @@ static int partition(const bvh_builder *bd, int b, int e, int axis,
     return i;
 }
 
-/* The box around the centers of items[b..e). */
-static box center_box(const bvh_builder *bd, int b, int e)
+/* Where the n slices' items, in the box bb, their centers in cb, split:
+ * the first item of the upper side, the items reordered and the axis in
+ * *axis; -1: a leaf. */
+static int split_range(bvh_slice *sl, int n, int depth, const box *bb,
+                       const box *cb, int *axis)
 {
-    box c = box_empty();
-    for (int i = b; i < e; i++)
-        c = box_union(c, (box){bd->centers[bd->items[i]],
-                               bd->centers[bd->items[i]]});
-    return c;
-}
-
-/* Where items[b..e), in the box bb, split: the first item of the upper
- * side, the items reordered and the axis in *axis; -1: a leaf. */
-static int split_range(const bvh_builder *bd, int b, int e, int depth,
-                       const box *bb, int *axis)
-{
-    int n = e - b;
-    box cb = center_box(bd, b, e);
-    vec3 size = vec3_sub(cb.hi, cb.lo);
+    const bvh_builder *bd = sl[0].bd;
+    int b = sl[0].b, e = sl[n - 1].e, items = e - b;
+    vec3 size = vec3_sub(cb->hi, cb->lo);
     *axis = size.y > size.x ? 1 : 0; /* the longest side of the centers */
     *axis = size.z > vec3_axis(size, *axis) ? 2 : *axis;
-    double lo = vec3_axis(cb.lo, *axis), extent = vec3_axis(size, *axis);
-    if (n == 1)
+    double lo = vec3_axis(cb->lo, *axis), extent = vec3_axis(size, *axis);
+    if (items == 1)
         return -1;
     if (!(extent > 0) || depth >= BVH_MEDIAN_DEPTH) /* the middle */
-        return n <= bd->p.max_leaf_items ? -1 : b + n / 2;
-    bvh_bin bins[BVH_MAX_BINS];
+        return items <= bd->p.max_leaf_items ? -1 : b + items / 2;
     double scale = bd->p.bins / extent, area = box_area(bb), cost;
-    fill_bins(bd, b, e, *axis, lo, scale, bins);
+    const bvh_bin *bins = slices_binned(sl, n, *axis, lo, scale);
     int k = best_bin(bd, bins, area > 0 ? area : 1, &cost);
-    if (k < 0 || (n <= bd->p.max_leaf_items &&
-                  bd->p.intersection_cost * groups(bd, n) <= cost))
-        return k < 0 && n > bd->p.max_leaf_items ? b + n / 2 : -1;
+    if (k < 0 || (items <= bd->p.max_leaf_items &&
+                  bd->p.intersection_cost * groups(bd, items) <= cost))
+        return k < 0 && items > bd->p.max_leaf_items ? b + items / 2 : -1;
+    if (items > BVH_SHARED_ITEMS)
+        return partition_in_order(sl, n, k);
     return partition(bd, b, e, *axis, lo, scale, k);
 }
 
 /* <<building a range>> ch09 */
-/* Fills slot s with the node of items[b..e); the first item of its
+/* Fills slot s with the node of items[b..e), its passes over the items
+ * shared by the slices sl[0..n) when it is large; the first item of its
  * upper child, or -1 for a leaf. */
-static int build_node(const bvh_builder *bd, int b, int e, int s, int depth)
+static int build_node(const bvh_builder *bd, bvh_slice *sl, int n, int b,
+                      int e, int s, int depth)
 {
-    box bb = box_empty();
-    for (int i = b; i < e; i++)
-        bb = box_union(bb, bd->bounds[bd->items[i]]);
-    bvh_node *n = &bd->slots[s];
-    bvh_set_box(n->box, &bb, bd->pad);
-    int axis = 0, m = split_range(bd, b, e, depth, &bb, &axis);
-    n->index = (uint32_t)(m < 0 ? b : s + 2 * (m - b));
-    n->count = (uint16_t)(m < 0 ? e - b : 0), n->axis = (uint16_t)axis;
+    n = cut_slices(bd, sl, n, b, e);
+    run_slices(sl, n, slice_boxes);
+    box bb = sl[0].bounds, cb = sl[0].centers;
+    for (int k = 1; k < n; k++) /* in order: the same bits as one pass */
+        bb = box_union(bb, sl[k].bounds), cb = box_union(cb, sl[k].centers);
+    bvh_node *node = &bd->slots[s];
+    bvh_set_box(node->box, &bb, bd->pad);
+    int axis = 0, m = split_range(sl, n, depth, &bb, &cb, &axis);
+    node->index = (uint32_t)(m < 0 ? b : s + 2 * (m - b));
+    node->count = (uint16_t)(m < 0 ? e - b : 0), node->axis = (uint16_t)axis;
     return m;
 }
 
 /* Builds the subtree of items[b..e) into slots[s .. s + 2 (e - b) - 1):
  * its root at s, its first child's subtree from s + 1, its second's
- * after that. A pure function of the range, whichever thread runs it. */
-static void build_range(const bvh_builder *bd, int b, int e, int s,
-                        int depth)
+ * after that, on this thread (sl: its slice). A pure function of the
+ * range, whichever thread runs it. */
+static void build_range(const bvh_builder *bd, bvh_slice *sl, int b, int e,
+                        int s, int depth)
 {
-    int m = build_node(bd, b, e, s, depth);
+    int m = build_node(bd, sl, 1, b, e, s, depth);
     if (m < 0)
         return;
-    build_range(bd, b, m, s + 1, depth + 1);
-    build_range(bd, m, e, s + 2 * (m - b), depth + 1);
+    build_range(bd, sl, b, m, s + 1, depth + 1);
+    build_range(bd, sl, m, e, s + 2 * (m - b), depth + 1);
 }
 
 /* <<the build's threads>> ch09 */
@@ -277,7 +424,7 @@ static void build_top(const bvh_builder *bd, int b, int e, int s, int depth,
         tasks[(*count)++] = (bvh_task){b, e, s, depth};
         return;
     }
-    int m = build_node(bd, b, e, s, depth);
+    int m = build_node(bd, bd->slices, bd->slice_count, b, e, s, depth);
     if (m < 0)
         return;
     build_top(bd, b, m, s + 1, depth + 1, small, tasks, count);
@@ -287,13 +434,12 @@ static void build_top(const bvh_builder *bd, int b, int e, int s, int depth,
 static void *build_tasks(void *queue)
 {
     bvh_queue *q = queue;
+    bvh_slice mine; /* this thread's passes, one node at a time */
     for (int k; (k = atomic_fetch_add(&q->next, 1)) < q->task_count;)
-        build_range(q->bd, q->tasks[k].b, q->tasks[k].e, q->tasks[k].s,
-                    q->tasks[k].depth);
+        build_range(q->bd, &mine, q->tasks[k].b, q->tasks[k].e,
+                    q->tasks[k].s, q->tasks[k].depth);
     return NULL;
 }
-
-#define BVH_MAX_THREADS 256
 
 /* The threads of a build asked for threads (0: one per core). */
 static int thread_count(int threads)
@@ -318,6 +464,37 @@ static int run_tasks(bvh_queue *q, int threads)
     for (int k = 0; k < started; k++)
         pthread_join(id[k], NULL);
     return started + 1;
+}
+
+typedef struct {
+    void (*job)(void *, int);
+    void *context;
+    int count;
+    atomic_int next;
+} bvh_jobs;
+
+static void *take_jobs(void *jobs)
+{
+    bvh_jobs *q = jobs;
+    for (int k; (k = atomic_fetch_add(&q->next, 1)) < q->count;)
+        q->job(q->context, k);
+    return NULL;
+}
+
+void bvh_run_jobs(int count, int threads, void (*job)(void *, int),
+                  void *context)
+{
+    bvh_jobs q = {.job = job, .context = context, .count = count};
+    atomic_init(&q.next, 0);
+    int n = thread_count(threads), started = 0;
+    n = n < count ? n : count > 1 ? count : 1;
+    pthread_t id[BVH_MAX_THREADS];
+    while (started < n - 1 &&
+           pthread_create(&id[started], NULL, take_jobs, &q) == 0)
+        started++; /* a thread that cannot start leaves its share to us */
+    take_jobs(&q);
+    for (int k = 0; k < started; k++)
+        pthread_join(id[k], NULL);
 }
 
 /* <<closing the gaps>> ch09 */
@@ -461,12 +638,13 @@ static bool make_wide(bvh *t)
 static void build_binary(bvh_builder *bd, vec3 *centers, int count,
                          bvh_task *tasks, bvh *t)
 {
-    for (int k = 0; k < count; k++) {
-        const box *b = &bd->bounds[k];
-        centers[k] = vec3_scale(vec3_add(b->lo, b->hi), 0.5);
-        bd->items[k] = k;
-    }
     bd->centers = centers;
+    int n = cut_slices(bd, bd->slices, bd->slice_count, 0, count);
+    run_slices(bd->slices, n, slice_centers);
+    double most = 0;
+    for (int k = 0; k < n; k++) /* a maximum: the same in any order */
+        most = bd->slices[k].largest > most ? bd->slices[k].largest : most;
+    bd->pad = BVH_THICKNESS * most;
     /* a task's size: eight tasks a thread, enough to share them out */
     int tasks_wanted = 8 * thread_count(bd->p.threads);
     int small = count / tasks_wanted > 1024 ? count / tasks_wanted : 1024;
@@ -487,17 +665,22 @@ bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
     if (count < q.min_items || count < 1)
         return true;
     size_t n = (size_t)count, slots = 2 * n - 1;
-    bvh_builder bd = {.bounds = bounds, .p = q, .pad = bvh_pad(bounds, count)};
+    bvh_builder bd = {.bounds = bounds, .p = q};
     vec3 *centers = memory_alloc(n, sizeof *centers);
     bvh_task *tasks = memory_alloc(n, sizeof *tasks);
     bd.slots = memory_alloc(slots, sizeof *bd.slots);
+    bd.scratch = memory_alloc(n, sizeof *bd.scratch);
+    bd.slice_count = thread_count(q.threads);
+    bd.slices = memory_alloc((size_t)bd.slice_count, sizeof *bd.slices);
     t->items = bd.items = memory_alloc(n, sizeof *t->items);
     t->nodes = memory_alloc(slots, sizeof *t->nodes);
-    bool ok = centers && tasks && bd.slots && t->items && t->nodes;
+    bool ok = centers && tasks && bd.slots && bd.scratch && bd.slices &&
+              t->items && t->nodes;
     t->node_capacity = (int)slots, t->item_count = ok ? count : 0;
     if (ok)
         build_binary(&bd, centers, count, tasks, t);
-    free(centers), free(tasks), free(bd.slots);
+    free(centers), free(tasks), free(bd.slots), free(bd.scratch);
+    free(bd.slices);
     ok = ok && (q.width == 2 ? shrink_binary(t) : make_wide(t));
     if (!ok)
         bvh_free(t);

@@ -45,6 +45,10 @@ typedef struct {
  * all items: as chapter 8's planes are thick (KDTREE_THICKNESS), for the
  * rounding of the triangle tests. */
 #define BVH_THICKNESS 0x1p-32
+/* A node of more items has its passes over them shared by the threads
+ * at the top of the tree, and keeps its items' order as it partitions:
+ * a pass over fewer is not worth a thread's start. */
+#define BVH_SHARED_ITEMS (1 << 16)
 
 /* The defaults, every member filled: eight wide where the walk may use
  * AVX2 (bvh_walks_with_avx2), BVH_WIDTH elsewhere. */
@@ -120,6 +124,13 @@ long long bvh_bytes(const bvh *t);
  * compiler was allowed ("SSE2", "AVX2", ...), or AVX2 chosen when the
  * program runs. */
 const char *bvh_vector_width_name(void);
+
+/* Runs job(context, k) for every k in [0, count) on threads threads (0:
+ * one per core; never more than count), this one among them, each taking
+ * the next k left: for the work around a build (a mesh's boxes, its
+ * packets). */
+void bvh_run_jobs(int count, int threads, void (*job)(void *, int),
+                  void *context);
 
 /* <<bvh ray tests>> ch09 */
 /* <<the ray's float constants>> ch09 */

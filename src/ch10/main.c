@@ -59,7 +59,7 @@ static bool load_scene(const options *opt, scene *s)
     scene_init(s);
     /* <<what the command line tells the scene>> ch09 */
     s->accelerator_option = (mesh_accelerator)opt->accelerator;
-    s->bvh_settings.threads = opt->threads; /* the build's too */
+    s->bvh_settings.threads = opt->threads; /* its reading and build too */
     /* <<what the command line tells the scene>> += ch10 */
     s->pixel_option = opt->pixel;
     s->width_option = opt->width, s->height_option = opt->height;

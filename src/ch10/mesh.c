@@ -464,10 +464,32 @@ const char *mesh_accelerator_name(mesh_accelerator a)
                                          : accelerator_names[a - 1];
 }
 
-/* The bounding boxes of m's triangles, into bounds. */
-static void triangle_boxes(const mesh *m, box *bounds)
+/* The work around a mesh's build, in pieces for the build's threads:
+ * pieces of its triangles for their boxes, then of the tree's nodes for
+ * their packets. */
+typedef struct {
+    mesh *m;
+    box *bounds;
+    triangle_packet *packets;
+    int pieces;
+    int first[MESH_BVH_PIECES + 1]; /* the first packet of each piece */
+} mesh_pieces;
+
+/* Where piece k of n of count things begins. */
+static int piece_start(int count, int k, int n)
 {
-    for (int k = 0; k < m->triangle_count; k++) {
+    return (int)((long long)count * k / n);
+}
+
+/* The bounding boxes of piece k of m's triangles, into bounds. */
+static void triangle_boxes(void *pieces, int piece)
+{
+    mesh_pieces *w = pieces;
+    const mesh *m = w->m;
+    box *bounds = w->bounds;
+    int end = piece_start(m->triangle_count, piece + 1, w->pieces);
+    for (int k = piece_start(m->triangle_count, piece, w->pieces); k < end;
+         k++) {
         const int *v = m->triangles[k].v;
         vec3 a = m->vertices[v[0]], b = m->vertices[v[1]];
         vec3 c = m->vertices[v[2]];
@@ -487,14 +509,15 @@ static uint32_t *leaf_start(bvh *t, int k, int c, uint32_t *count)
     return *count = t->nodes8[k].count[c], &t->nodes8[k].child[c];
 }
 
-/* Packs each leaf of m's BVH into packets of its own, leaf after leaf,
- * and points the leaf at its first packet (packets NULL: only counts);
- * the number of packets. */
-static int pack_leaves(mesh *m, triangle_packet *packets)
+/* Packs each leaf of m's BVH in nodes [from, to) into packets of its
+ * own from packets[next] on, leaf after leaf, and points the leaf at its
+ * first packet (packets NULL: only counts); the packet after the last. */
+static int pack_leaves(mesh *m, triangle_packet *packets, int from, int to,
+                       int next)
 {
     bvh *t = &m->bvh;
-    int next = 0, refs = t->width == 2 ? 1 : t->width;
-    for (int k = 0; k < t->node_count; k++)
+    int refs = t->width == 2 ? 1 : t->width;
+    for (int k = from; k < to; k++)
         for (int c = 0; c < refs; c++) {
             uint32_t count, *first = leaf_start(t, k, c, &count);
             if (count == 0)
@@ -509,26 +532,53 @@ static int pack_leaves(mesh *m, triangle_packet *packets)
     return next;
 }
 
+static void pack_piece(void *pieces, int piece)
+{
+    mesh_pieces *w = pieces;
+    int nodes = w->m->bvh.node_count;
+    pack_leaves(w->m, w->packets, piece_start(nodes, piece, w->pieces),
+                piece_start(nodes, piece + 1, w->pieces), w->first[piece]);
+}
+
+/* m's BVH's packets, piece by piece on threads threads, each piece's
+ * first packet counted beforehand; false: no memory. */
+static bool make_packets(mesh_pieces *w, int threads)
+{
+    int nodes = w->m->bvh.node_count;
+    for (int k = 0; k < w->pieces; k++)
+        w->first[k + 1] =
+            pack_leaves(w->m, NULL, piece_start(nodes, k, w->pieces),
+                        piece_start(nodes, k + 1, w->pieces), w->first[k]);
+    w->packets = memory_alloc_aligned(_Alignof(triangle_packet),
+                                      (size_t)w->first[w->pieces],
+                                      sizeof(triangle_packet));
+    if (w->packets == NULL)
+        return false;
+    bvh_run_jobs(w->pieces, threads, pack_piece, w);
+    w->m->bvh_packets = w->packets;
+    w->m->bvh_packet_count = w->first[w->pieces];
+    return true;
+}
+
 bool mesh_build_bvh(mesh *m, const bvh_params *p)
 {
     mesh_free_tree(m);
     bvh_params q = *p;
     q.min_items = q.min_items > 0 ? q.min_items : MESH_TREE_MIN_TRIANGLES;
     q.item_group = q.item_group > 0 ? q.item_group : PACKET_W;
-    box *bounds = memory_alloc((size_t)m->triangle_count, sizeof *bounds);
-    if (bounds != NULL)
-        triangle_boxes(m, bounds);
-    bool ok = bounds != NULL &&
-              bvh_build(&m->bvh, m->triangle_count, bounds, &q);
-    free(bounds);
+    int pieces = 1 + m->triangle_count / BVH_SHARED_ITEMS;
+    mesh_pieces w = {.m = m, .pieces = pieces < MESH_BVH_PIECES
+                                           ? pieces : MESH_BVH_PIECES};
+    w.bounds = memory_alloc((size_t)m->triangle_count, sizeof *w.bounds);
+    if (w.bounds != NULL)
+        bvh_run_jobs(w.pieces, q.threads, triangle_boxes, &w);
+    bool ok = w.bounds != NULL &&
+              bvh_build(&m->bvh, m->triangle_count, w.bounds, &q);
+    free(w.bounds);
     if (!ok || m->bvh.node_count == 0)
         return ok;
-    int n = pack_leaves(m, NULL);
-    m->bvh_packets = memory_alloc_aligned(_Alignof(triangle_packet),
-                                          (size_t)n, sizeof(triangle_packet));
-    if (m->bvh_packets == NULL)
+    if (!make_packets(&w, q.threads))
         return bvh_free(&m->bvh), false;
-    m->bvh_packet_count = pack_leaves(m, m->bvh_packets);
     return true;
 }
 

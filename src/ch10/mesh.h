@@ -175,6 +175,10 @@ const char *mesh_accelerator_name(mesh_accelerator a);
  * nodes. A copy of the double corners alone would be 72. */
 #define MESH_BVH_MAX_BYTES_PER_TRIANGLE 100
 
+/* The build's threads make a large mesh's boxes and packets in up to
+ * this many pieces, of about BVH_SHARED_ITEMS triangles. */
+#define MESH_BVH_PIECES 64
+
 /* Builds m's BVH with p, in place of any tree it had (none for fewer
  * than MESH_TREE_MIN_TRIANGLES); false when out of memory, and then m
  * has no tree. */
