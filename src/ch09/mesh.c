@@ -661,10 +661,11 @@ search_bvh_avx2(const mesh *m, const mesh_ray *mr, double t_min,
     return search_bvh(m, mr, t_min, t_max, out, stats, true);
 }
 
-/* The search compiled for the build's own instructions. */
-__attribute__((flatten)) static int
-search_bvh_plain(const mesh *m, const mesh_ray *mr, double t_min,
-                 double t_max, triangle_hit *out, render_stats *stats)
+/* The search compiled for the build's own instructions (flattened, it
+ * was slower: the compiler inlines what pays there by itself). */
+static int search_bvh_plain(const mesh *m, const mesh_ray *mr,
+                            double t_min, double t_max, triangle_hit *out,
+                            render_stats *stats)
 {
     return search_bvh(m, mr, t_min, t_max, out, stats, false);
 }
