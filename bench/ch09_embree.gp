@@ -27,7 +27,7 @@ step(k) = word(steps, k)
 label(m) = m eq "kdtree-ch08" ? "kd-tree\nch. 8" : m eq "kdtree" ? "kd-tree\ntight" : \
            m eq "bvh4-double" ? "BVH4\ncopies" : m eq "bvh4-double-mesh" ? "BVH4\nof mesh" : \
            m eq "bvh2" ? "BVH2" : m eq "bvh4" ? "BVH4" : m eq "bvh8" ? "BVH8" : \
-           m eq "fast" ? "BVH4\nin float" : \
+           m eq "fast" ? "BVH".default[4:]."\nin float" : \
            m eq "embree" ? "Embree\nHIGH" : m eq "embree-medium" ? "Embree\nMED." : m
 in_steps(m) = strstrt(" ".steps, " ".m." ") > 0
 step_x(m) = in_steps(m) ? sum [k=1:words(steps)] (step(k) eq m ? k - 1 : 0) : NaN
