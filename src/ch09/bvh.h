@@ -285,6 +285,7 @@ static inline unsigned bvh_node8_test_vector(const bvh_node8 *n,
     return bvh_lanes4_test_vector(box, 8, r, t_max, t_near) |
            bvh_lanes4_test_vector(box + 4, 8, r, t_max, t_near + 4) << 4;
 #else
+    /* <<the slab test in eight lanes>> ch09 */
     float lo = r->t_min, hi = t_max;
     bvh_f8 t0 = {lo, lo, lo, lo, lo, lo, lo, lo};
     bvh_f8 t1 = {hi, hi, hi, hi, hi, hi, hi, hi}, face;
@@ -337,7 +338,8 @@ BVH_AVX2_TARGET static inline unsigned
 bvh_node8_test_avx2(const bvh_node8 *n, const bvh_ray *r, float t_max,
                     float t_near[8])
 {
-#if BVH_HAS_AVX2_PATH
+#if BVH_HAS_AVX2_PATH /* the text of the eight-wide test with AVX */
+    /* <<the slab test in eight lanes>> ch09 */
     float lo = r->t_min, hi = t_max;
     bvh_f8 t0 = {lo, lo, lo, lo, lo, lo, lo, lo};
     bvh_f8 t1 = {hi, hi, hi, hi, hi, hi, hi, hi}, face;

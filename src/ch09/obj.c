@@ -5,8 +5,6 @@
 #include <stdlib.h>
 #include "array.h"
 /* <<OBJ reader includes>> ch09 */
-#include <pthread.h>
-#include <stdatomic.h>
 #include <string.h>
 #include <unistd.h>
 
@@ -249,40 +247,27 @@ typedef struct {
     bool ok;
 } obj_part;
 
+/* What a job of run_parts does: work on parts[k]. */
 typedef struct {
     obj_part *parts;
-    int count;
     void (*work)(obj_part *);
-    atomic_int next;
-} obj_queue;
+} obj_work;
 
-static void *take_parts(void *queue)
+static void part_job(void *context, int k)
 {
-    obj_queue *q = queue;
-    for (int k; (k = atomic_fetch_add(&q->next, 1)) < q->count;)
-        q->work(&q->parts[k]);
-    return NULL;
+    obj_work *w = context;
+    w->work(&w->parts[k]);
 }
 
 /* Runs work on every part, on threads threads (0: one per core; never
  * more than parts), this one among them: each takes the next part left,
- * as the render's threads take bands. */
+ * as the BVH's build hands out its jobs (bvh_run_jobs, whose threads
+ * these are). */
 static void run_parts(obj_part *parts, int n, int threads,
                       void (*work)(obj_part *))
 {
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    long t = threads > 0 ? threads : cores > 0 ? cores : 1;
-    t = t < n ? t : n, t = t < OBJ_MAX_THREADS ? t : OBJ_MAX_THREADS;
-    obj_queue q = {.parts = parts, .count = n, .work = work};
-    atomic_init(&q.next, 0);
-    pthread_t id[OBJ_MAX_THREADS];
-    int started = 0;
-    while (started < t - 1 &&
-           pthread_create(&id[started], NULL, take_parts, &q) == 0)
-        started++; /* a thread that cannot start leaves its share to us */
-    take_parts(&q);
-    for (int k = 0; k < started; k++)
-        pthread_join(id[k], NULL);
+    obj_work w = {parts, work};
+    bvh_run_jobs(n, threads, part_job, &w);
 }
 
 static bool count_obj_statement(parser *p, void *target)

@@ -44,7 +44,6 @@ bool mesh_parse_obj_in_parts(mesh *m, const char *text, size_t length,
                              int parts, int threads, parse_error *err);
 
 #define OBJ_MAX_PARTS 1024
-#define OBJ_MAX_THREADS 256
 /* Parts a thread: its lines cost more where its numbers are longer. */
 #define OBJ_PARTS_A_THREAD 8
 /* A part is at least this much text: a thread costs its start. */
