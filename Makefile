@@ -17,7 +17,7 @@
 #                     draws (left) next to what the program draws (right)
 #   make charts       run bench/ (built with link-time optimization, under
 #                     build/rel-lto) and redraw figures/chNN-*.svg; and
-#                     chart-ch10_page: the page's programs against bin/chNN
+#                     chart-ch12_page: the page's programs against bin/chNN
 #   make diagrams     redraw the explanatory figures/chNN-diagram-*.svg
 #   make book         build/book.html          make clean
 #   make wasm         build/wasm/chNN.wasm: each chapter's program for the
@@ -37,7 +37,7 @@
 #   make SAN=1 test   what runs the programs (suites, figures, commands)
 #                     with AddressSanitizer and UBSan
 #   make WERROR=1     warnings are errors (CI)
-#   make SCALAR=1, NATIVE=1   chapter 9's BVH tests in scalar code, or with
+#   make SCALAR=1, NATIVE=1   chapter 10's BVH tests in scalar code, or with
 #                     every instruction of this machine
 
 .DELETE_ON_ERROR:
@@ -64,7 +64,7 @@ LTO_LINK := $(if $(LTO_FLAGS),-Wno-maybe-uninitialized)
 OPT     := $(if $(SAN),$(SANFLAGS),-O2 -g $(LTO_FLAGS))
 CFLAGS  ?=
 LDFLAGS ?=
-# make SCALAR=1: chapter 9's BVH node tests without vector instructions;
+# make SCALAR=1: chapter 10's BVH node tests without vector instructions;
 # make NATIVE=1: the instructions of the machine that builds (not needed
 # for correctness). GCC 12.2 with AVX-512 stores a by-value struct built
 # from a compound literal wrongly (a ray passed to mesh_ray_of, in chapter
@@ -82,7 +82,7 @@ TEST_DEFS := -D_DEFAULT_SOURCE -D_DARWIN_C_SOURCE
 # The packet suite's loops are its work (half a million rays through the
 # filter), and keep -O1.
 TEST_OPT := -O0
-$(B)/obj/%/tests/ch09_packets.o: TEST_OPT := -O1
+$(B)/obj/%/tests/ch10_packets.o: TEST_OPT := -O1
 # The sanitized pass runs each runner's tests in the runner's own process
 # (tests/runner.c), but for those that need a process of their own: a
 # sanitized child takes tens of milliseconds to start and to be checked for
@@ -331,7 +331,7 @@ check-failures: $(patsubst figures/%,$(B)/fig/%,$(FAILURE_FIGS)) $(B)/tools/pngd
 figures/%.png: $(B)/fig/%.png
 	@cmp -s $< $@ || cp $< $@
 
-# Chapter 09 compares chapter 08's kd-tree with Intel Embree 3 where it is installed
+# Chapter 10 compares chapter 08's kd-tree with Intel Embree 3 where it is installed
 # (Debian: libembree-dev); without it that benchmark is not built, and
 # `make charts` draws its chart from this program's rates alone.
 HAVE_EMBREE := $(shell printf '\043include <embree3/rtcore.h>\n' | \
@@ -339,11 +339,11 @@ HAVE_EMBREE := $(shell printf '\043include <embree3/rtcore.h>\n' | \
 ifneq ($(HAVE_EMBREE),yes)
 BENCHES  := $(filter-out %_embree,$(BENCHES))
 endif
-$(B)/bench/ch09_embree: BENCH_LIBS := -lembree3
-# Chapter 09's build chart shows Embree's builds beside ours where it can.
+$(B)/bench/ch10_embree: BENCH_LIBS := -lembree3
+# Chapter 11's build chart shows Embree's builds beside ours where it can.
 ifeq ($(HAVE_EMBREE),yes)
-$(B)/bench/ch09_build: BENCH_LIBS := -lembree3
-$(B)/obj/ch09/bench/ch09_build.o: ALL_CFLAGS += -DHAVE_EMBREE
+$(B)/bench/ch11_build: BENCH_LIBS := -lembree3
+$(B)/obj/ch11/bench/ch11_build.o: ALL_CFLAGS += -DHAVE_EMBREE
 endif
 
 src: $(foreach n,$(NUMS),src-ch$(n))
@@ -385,33 +385,33 @@ check-diagrams: $(DIAGRAM_PROGRAMS)
 $(foreach n,$(NUMS),$(B)/obj/ch$(n)/bench/timing.o): \
   ALL_CFLAGS += '-DBENCH_FLAGS="$(strip $(OPT) $(CFLAGS))"'
 
-# Chapter 9's profile names the functions a ray's time goes to, which
+# Chapter 10's profile names the functions a ray's time goes to, which
 # link-time optimization would inline into one another: its chart is made
-# from the plain build (bench/ch09_profile.c).
-.PHONY: chart-ch09_profile chart-ch09_profile-plain
-chart-ch09_profile: | deps
-	+@$(MAKE) --no-print-directory LTO= chart-ch09_profile-plain
-chart-ch09_profile-plain: $(B)/bench/ch09_profile | deps
-	$< > figures/ch09-profile.csv.tmp
-	mv figures/ch09-profile.csv.tmp figures/ch09-profile.csv
-	gnuplot -e "csv='figures/ch09-profile.csv'; stem='figures/ch09-profile'" bench/ch09_profile.gp
-	@echo "wrote figures/ch09-profile*.svg"
+# from the plain build (bench/ch10_profile.c).
+.PHONY: chart-ch10_profile chart-ch10_profile-plain
+chart-ch10_profile: | deps
+	+@$(MAKE) --no-print-directory LTO= chart-ch10_profile-plain
+chart-ch10_profile-plain: $(B)/bench/ch10_profile | deps
+	$< > figures/ch10-profile.csv.tmp
+	mv figures/ch10-profile.csv.tmp figures/ch10-profile.csv
+	gnuplot -e "csv='figures/ch10-profile.csv'; stem='figures/ch10-profile'" bench/ch10_profile.gp
+	@echo "wrote figures/ch10-profile*.svg"
 
-# Chapter 10's chart of the programs in the page: each chapter's own scene
+# Chapter 12's chart of the programs in the page: each chapter's own scene
 # rendered in the book's page (headless Chromium) and by bin/chNN, the
 # everyday build, on one thread (tools/page_check.sh --speed). It needs
 # Chromium and the programs for the page; make charts draws it where it can.
-.PHONY: chart-ch10_page chart-ch10_page-plain
+.PHONY: chart-ch12_page chart-ch12_page-plain
 PAGE_SPEED_SIZE := 640x480
 PAGE_SPEED_ROUNDS := 11
-chart-ch10_page: | deps
-	+@$(MAKE) --no-print-directory LTO= chart-ch10_page-plain
-chart-ch10_page-plain: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n)) | deps
-	sh tools/page_check.sh --speed figures/ch10-page.csv.tmp $(PAGE_SPEED_ROUNDS) \
+chart-ch12_page: | deps
+	+@$(MAKE) --no-print-directory LTO= chart-ch12_page-plain
+chart-ch12_page-plain: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n)) | deps
+	sh tools/page_check.sh --speed figures/ch12-page.csv.tmp $(PAGE_SPEED_ROUNDS) \
 	  build/book.html $(BIN) $(PAGE_SPEED_SIZE) $(NUMS)
-	mv figures/ch10-page.csv.tmp figures/ch10-page.csv
-	gnuplot -e "csv='figures/ch10-page.csv'; stem='figures/ch10-page'" bench/ch10_page.gp
-	@echo "wrote figures/ch10-page.svg"
+	mv figures/ch12-page.csv.tmp figures/ch12-page.csv
+	gnuplot -e "csv='figures/ch12-page.csv'; stem='figures/ch12-page'" bench/ch12_page.gp
+	@echo "wrote figures/ch12-page.svg"
 
 ifeq ($(LTO_FLAGS)$(SAN),)
 # The charts measure the program built with link-time optimization.
@@ -428,10 +428,10 @@ chart-%: $(B)/bench/% | deps
 
 charts: deps $(BENCHES)
 	@for b in $(notdir $(BENCHES)); do $(MAKE) --no-print-directory chart-$$b || exit 1; done
-	$(if $(filter 09,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
+	$(if $(filter 10,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
 	@if [ -n "$(HAVE_WASM)" ] && . tools/find_chromium.sh && [ -n "$$(find_chromium)" ]; then \
-	  $(MAKE) --no-print-directory chart-ch10_page; \
-	else echo "charts: figures/ch10-page.svg not measured: no Chromium or no programs for the page"; fi
+	  $(MAKE) --no-print-directory chart-ch12_page; \
+	else echo "charts: figures/ch12-page.svg not measured: no Chromium or no programs for the page"; fi
 
 # Can the speed axes be trusted? Every bench run twice: the largest ratio
 # between two runs of a method, and whether an ordering a quoted ratio
@@ -440,15 +440,15 @@ charts-check: deps $(BENCHES)
 	@sh tools/charts_check.sh $(BENCHES)
 endif
 
-# Without Embree, chapter 09's comparison chart shows this program's own
+# Without Embree, chapter 10's comparison chart shows this program's own
 # rates (from chapter 08's kd-tree benchmark) and says that Embree was absent.
 .PHONY: chart-embree-absent
 chart-embree-absent: figures/ch08-kdtree.csv
 	{ grep '^# machine' figures/ch08-kdtree.csv; \
 	  echo 'method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns'; \
 	  grep -E '^kdtree,[^,]*,[^,]*,[^,]*,mrays_per_s(,|$$)|^kdtree-build,' figures/ch08-kdtree.csv; \
-	  echo 'embree,absent,0,0,absent'; } > figures/ch09-embree.csv
-	gnuplot -e "csv='figures/ch09-embree.csv'; stem='figures/ch09-embree'" bench/ch09_embree.gp
+	  echo 'embree,absent,0,0,absent'; } > figures/ch10-embree.csv
+	gnuplot -e "csv='figures/ch10-embree.csv'; stem='figures/ch10-embree'" bench/ch10_embree.gp
 
 .PHONY: charts-check
 
@@ -484,7 +484,7 @@ check-charts: | deps
 WB_DIR   ?= workbook
 WB_TAG   := $(if $(filter build/rel,$(B)),,-$(notdir $(B)))
 WB_BUILD ?= build/workbook$(WB_TAG)
-$(WB_BUILD)/obj/%/tests/ch09_packets.o: TEST_OPT := -O1
+$(WB_BUILD)/obj/%/tests/ch10_packets.o: TEST_OPT := -O1
 WB_FILES := $(patsubst chapters/%,$(WB_DIR)/%,$(CHAPTERS))
 # The reader's code is graded, not linted: a stub leaves parameters unused.
 # The code is compiled as the book's is (the warnings do not change an

@@ -57,7 +57,6 @@ static bool load_scene(const options *opt, scene *s)
     scene_init(s);
     /* <<what the command line tells the scene>> ch09 */
     s->accelerator_option = (mesh_accelerator)opt->accelerator;
-    s->bvh_settings.threads = opt->threads; /* its reading and build too */
     bool ok = opt->scene_path != NULL
                   ? scene_load(s, opt->scene_path, &err)
                   : scene_parse(s, DEFAULT_SCENE, sizeof DEFAULT_SCENE - 1,
@@ -135,7 +134,6 @@ int main(int argc, char **argv)
     if (opt.stats)
         report_mesh_hints(&s);
     /* <<once the scene is loaded>> += ch09 */
-    how.threads = opt.threads;
     if (opt.stats)
         report_bvhs(&s);
     const char *input =

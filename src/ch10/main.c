@@ -46,8 +46,6 @@ static const char DEFAULT_SCENE[] =
         "sphere center -0.08 -0.80 4.67 radius 0.20 color 0.55 0.25 0.90\n"
         "light directional direction 1 -1.5 1.2 intensity 0.5 0.5 0.5\n"
         "light point position -3 3 2 intensity 0.8 0.8 0.8\n"
-    /* <<default scene>> += ch10 */
-    "pixel pattern adaptive\n"
     ;
 
 /* <<loading the scene>> ch01 */
@@ -59,10 +57,6 @@ static bool load_scene(const options *opt, scene *s)
     scene_init(s);
     /* <<what the command line tells the scene>> ch09 */
     s->accelerator_option = (mesh_accelerator)opt->accelerator;
-    s->bvh_settings.threads = opt->threads; /* its reading and build too */
-    /* <<what the command line tells the scene>> += ch10 */
-    s->pixel_option = opt->pixel;
-    s->width_option = opt->width, s->height_option = opt->height;
     bool ok = opt->scene_path != NULL
                   ? scene_load(s, opt->scene_path, &err)
                   : scene_parse(s, DEFAULT_SCENE, sizeof DEFAULT_SCENE - 1,
@@ -140,7 +134,6 @@ int main(int argc, char **argv)
     if (opt.stats)
         report_mesh_hints(&s);
     /* <<once the scene is loaded>> += ch09 */
-    how.threads = opt.threads;
     if (opt.stats)
         report_bvhs(&s);
     const char *input =

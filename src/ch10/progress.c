@@ -11,30 +11,24 @@ progress progress_start(void)
     return (progress){.start = moment_now().wall, .next_line = 1.0};
 }
 
-/* <<show the progress>> ch09 */
-/* "[#####     ]  50%  2.31 Mrays/s  3 s left" on a terminal, once the
- * render has taken a second; elsewhere a line every 10 s at most. */
+/* <<show the progress>> ch01 */
+/* "rendering: row j of h" once the render has taken 1 s: redrawn on a
+ * terminal, elsewhere a line of its own every 10 s at most. */
 void progress_show(void *context, int rows_done, int rows,
                    long long rays_done)
 {
     progress *p = context;
     double elapsed = moment_now().wall - p->start;
-    bool terminal = isatty(STDERR_FILENO);
-    if (elapsed < 1.0 || (!terminal && (elapsed < p->next_line ||
-                                        rows_done == rows)))
+    (void)rays_done; /* chapter 9 gives their rate */
+    if (elapsed < 1.0)
         return;
-    static const char bar[] = "##############################"; /* 30 */
-    int filled = 30 * rows_done / rows;
-    fprintf(stderr, "%s[%.*s%*s] %3d%%  %.2f Mrays/s  ",
-            terminal ? "\r" : "", filled, bar, 30 - filled, "",
-            100 * rows_done / rows, 1e-6 * (double)rays_done / elapsed);
-    if (rows_done > 0) /* the rows to come, at the pace of those done */
-        fprintf(stderr, "%.0f s left", elapsed * (rows - rows_done) /
-                                           rows_done);
-    else
-        fprintf(stderr, "time left not known yet");
-    fputs(terminal ? " " : "\n", stderr);
-    p->next_line = elapsed + 10;
-    if (terminal && rows_done == rows)
-        fputc('\n', stderr);
+    if (isatty(STDERR_FILENO)) {
+        fprintf(stderr, "\rrendering: row %d of %d", rows_done, rows);
+        if (rows_done == rows)
+            fputc('\n', stderr);
+    } else if (elapsed >= p->next_line && rows_done < rows) {
+        fprintf(stderr, "rendering: row %d of %d, %.0f s\n", rows_done, rows,
+                elapsed);
+        p->next_line = elapsed + 10;
+    }
 }

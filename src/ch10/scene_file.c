@@ -14,8 +14,6 @@
 #include "transform_parse.h"
 /* <<scene file includes>> += ch08 */
 #include "trees.h"
-/* <<scene file includes>> += ch10 */
-#include "pixel_statement.h"
 
 /* <<readers of settings>> ch03 */
 
@@ -437,15 +435,15 @@ static bool parse_accelerator(parser *p, scene *s)
                              "statement, found a second (the first is on "
                              "line %d)", s->accelerator_line);
     if (parse_next_token(p))
-        for (int k = MESH_ACCELERATOR_KDTREE; k <= MESH_ACCELERATOR_BVH_FLOAT;
-             k++)
+        for (int k = MESH_ACCELERATOR_KDTREE; k < MESH_ACCELERATORS; k++)
             if (parse_token_is(p, mesh_accelerator_name(k))) {
                 s->accelerator = (mesh_accelerator)k;
                 s->accelerator_line = p->line_number;
                 return true;
             }
-    return parse_expected(p, "expected an accelerator (kdtree, bvh, "
-                             "bvh-float)");
+    /* <<the accelerators in words>> ch10 */
+    const char *words = "kdtree, bvh, bvh-float"; /* for the message */
+    return parse_expected(p, "expected an accelerator (%s)", words);
 }
 
 /* <<the statement loop>> ch01 */
@@ -474,8 +472,6 @@ static const struct {
     {"kdtree", parse_kdtree},
     /* <<scene keywords>> += ch09 */
     {"accelerator", parse_accelerator},
-    /* <<scene keywords>> += ch10 */
-    {"pixel", pixel_statement_parse},
 };
 
 static bool parse_statement(parser *p, void *target)
@@ -568,9 +564,6 @@ bool scene_parse(scene *s, const char *text, size_t length, const char *name,
             s->accelerator_option ? "--accelerator " : "this statement",
             s->accelerator_option ? mesh_accelerator_name(s->accelerator_option)
                                   : "");
-    /* <<finish the scene>> += ch10 */
-    if (!pixel_settings_final(s, name, err))
-        return false;
     return true;
 }
 
