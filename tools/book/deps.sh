@@ -2,8 +2,8 @@
 # Installs what the build needs when it is missing, or says how to.
 # Run by `make` before anything is compiled. Debian and Ubuntu: apt-get,
 # as root or with passwordless sudo; anywhere else it prints the command.
-# Extra packages can be asked for by name: `sh tools/deps.sh clang`.
-# `sh tools/deps.sh --page` asks only for what compiles the programs for
+# Extra packages can be asked for by name: `sh tools/book/deps.sh clang`.
+# `sh tools/book/deps.sh --page` asks only for what compiles the programs for
 # the book's page (WebAssembly: Clang, its linker, wasi-libc and its
 # builtins), wanted rather than needed: the Makefile asks for them before
 # it looks for them, and builds the book without its playground if they
@@ -40,7 +40,7 @@ fi
 command -v pandoc >/dev/null 2>&1 || need pandoc
 command -v gnuplot >/dev/null 2>&1 || need gnuplot-nox
 command -v unzip >/dev/null 2>&1 || need unzip # make test reads the EPUB
-command -v zip >/dev/null 2>&1 || need zip     # tools/epub.sh writes it
+command -v zip >/dev/null 2>&1 || need zip     # tools/editions/epub.sh writes it
 command -v epubcheck >/dev/null 2>&1 || want epubcheck
 failed_wanted=build/deps-wanted.failed
 [ -f "$failed_wanted" ] && [ "$(cat "$failed_wanted")" = "$wanted" ] && wanted=""

@@ -2,7 +2,7 @@
  * doubles built from a compound literal by value correctly? GCC 12.2 with
  * -mavx512f at -O2 does not: its SLP vectorizer stores the literal wrongly.
  * Exits 0 when the struct arrives whole, 1 when it arrives damaged. Run by
- * tools/probe_native.sh for make NATIVE=1. The functions are external so
+ * tools/book/probe_native.sh for make NATIVE=1. The functions are external so
  * that the compiler keeps the by-value calling convention the bug is in. */
 typedef struct {
     double x, y, z;

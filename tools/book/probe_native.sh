@@ -1,6 +1,6 @@
 #!/bin/sh
 # probe_native.sh CC FLAGS...: the flags to add to FLAGS (which hold
-# -march=native) so that CC compiles tools/probe_avx512.c right. Prints
+# -march=native) so that CC compiles tools/book/probe_avx512.c right. Prints
 # nothing for a compiler without the bug; -fno-tree-slp-vectorize for one
 # with it (GCC 12.2 with AVX-512); -mno-avx512f if even that fails. The
 # probe runs here, so it answers for the machine that builds and runs.

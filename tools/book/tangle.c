@@ -35,7 +35,7 @@
  * EXERCISES
  *   The class .exercise marks a block that the book's reader may write
  *   themselves; key="value" pairs such as tests="..." describe it for the
- *   workbook tools (tools/workbook.awk, tools/grade.sh).  To the tangler
+ *   workbook tools (tools/workbook/workbook.awk, tools/workbook/grade.sh).  To the tangler
  *   it means nothing, except with --skip-not-done (above): the workbook's
  *   stub of a chunk is a .replace with .exercise and a line "// NOT DONE",
  *   and it replaces the book's code only once its reader deletes that line.

@@ -4,7 +4,7 @@ literate book as cross-referenced HTML.
 
 Run it on the whole book at once, so references work across chapters:
 
-    pandoc book.md chapters/*.md --lua-filter tools/weave.lua -o book.html
+    pandoc book.md chapters/*.md --lua-filter tools/book/weave.lua -o book.html
 
 A fenced code block is program code when it has chunk="NAME" or file="PATH":
 
@@ -26,7 +26,7 @@ The filter also numbers headers so that chapter "{#ch07}" is "Chapter 7"
 earlier chapters are missing; puts previous/next links at the start and the
 end of every level-1 section; and appends an index: every chunk and file
 with links to all its pieces, and every C function, type, macro and
-enumerator the code defines (found by tools/weave_names.lua) with a link to
+enumerator the code defines (found by tools/book/weave_names.lua) with a link to
 the piece that defines it.
 
 Written for pandoc 2.17 and 3.x (Pandoc:walk, attributes, RawBlock and
@@ -46,7 +46,7 @@ local section_counter = {} -- current section number at each header level
 local current_section = nil -- { number = "1.4" or nil, title, id } of the
                             -- latest header, for the index's piece links
 local defined_names = dofile((PANDOC_SCRIPT_FILE and
-  PANDOC_SCRIPT_FILE:match("^(.*[/\\])") or "tools/") .. "weave_names.lua")
+  PANDOC_SCRIPT_FILE:match("^(.*[/\\])") or "tools/book/") .. "weave_names.lua")
 
 ---------------------------------------------------------------------
 -- Small helpers
@@ -168,7 +168,7 @@ local function piece_language(block)
   return nil
 end
 
--- An exercise (class .exercise, see tools/exercises.awk): "Exercise 2.1",
+-- An exercise (class .exercise, see tools/workbook/exercises.awk): "Exercise 2.1",
 -- numbered from 1 in each chapter, and the tests that grade it.
 local exercises_in = {}   -- chapter number -> exercises so far
 local function exercise_of(block, chapter)
@@ -511,7 +511,7 @@ local function render_exercise_label(exercise)
 end
 
 -- Where the HTML page lets the reader edit a scene and render it with
--- chapter number's program (tools/page/playground.js fills it; it stays
+-- chapter number's program (tools/editions/page/playground.js fills it; it stays
 -- empty, and hidden, in a page without the programs). scene: the file's
 -- name, or nil for an empty scene of the reader's own. Not in the EPUB.
 local function playground_html(number, scene)

@@ -3,14 +3,14 @@
 # (CSS, images and MathML inside; it works offline, no scripts, no CDN).
 #
 # Usage, from the repository root (figures/... paths are relative to it):
-#     tools/weave.sh book.md build/book.html chapters/*.md
+#     tools/book/weave.sh book.md build/book.html chapters/*.md
 #
 # Exits non-zero if pandoc fails or warns that a resource (an image, the
 # CSS) is missing; the output file is only written when all went well.
 #
 # WEAVE_PAGE=FILE: FILE's HTML goes before the page's </body> (the book's
-# scenes rendered in the page: tools/page.sh makes it).
-set -eu  # plain POSIX sh: the Makefile may run it as 'sh tools/weave.sh'
+# scenes rendered in the page: tools/editions/page.sh makes it).
+set -eu  # plain POSIX sh: the Makefile may run it as 'sh tools/book/weave.sh'
 
 if [ "$#" -lt 3 ]; then
     echo "usage: $0 BOOK_MD OUT_HTML CHAPTER..." >&2

@@ -1,6 +1,6 @@
 --[[
 weave_names.lua -- the C names a piece of code defines, for the book's index.
-tools/weave.lua loads it with dofile(); it returns one function:
+tools/book/weave.lua loads it with dofile(); it returns one function:
 
     local names = defined_names(lines)   -- lines: the piece's code lines
     -- names = { { name = "camera_ray", kind = "function" }, ... }

@@ -1,5 +1,5 @@
 /*
- * book_check.js -- measures the woven book in a browser; tools/book_check.sh
+ * book_check.js -- measures the woven book in a browser; tools/checks/book_check.sh
  * puts it at the end of a copy of build/book.html and runs headless Chromium.
  *
  * Once the page has loaded it writes its findings into the page itself, in

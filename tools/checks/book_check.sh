@@ -2,16 +2,16 @@
 # book_check.sh -- look at the woven book in a real browser (headless
 # Chromium) at a 1280 x 900 window, as a reader on a laptop meets it.
 #
-# Usage: sh tools/book_check.sh [--no-install] BOOK.html SCREENSHOT.png
+# Usage: sh tools/checks/book_check.sh [--no-install] BOOK.html SCREENSHOT.png
 #
-# It runs tools/book_check.js in a copy of BOOK.html and prints one line per
+# It runs tools/checks/book_check.js in a copy of BOOK.html and prints one line per
 # element wider than its place: a code box or display formula whose content
 # needs scrolling, or a box, table, image or paragraph whose right edge is
 # beyond the text column. Exits 1 if there is any, 0 if none. It also saves
 # the top of the page as SCREENSHOT.png, to look at.
 #
 # Chromium is installed with apt-get when missing (as root, through
-# tools/deps.sh, with fonts-dejavu-extra for the math font); if it cannot
+# tools/book/deps.sh, with fonts-dejavu-extra for the math font); if it cannot
 # be, or with --no-install (how `make test` calls it), the check says so and
 # is skipped with status 0.
 set -u
@@ -26,11 +26,11 @@ book=$1
 screenshot=$2
 tools_dir=$(cd "$(dirname "$0")" && pwd)
 
-. "$tools_dir/find_chromium.sh"
+. "$tools_dir/../editions/find_chromium.sh"
 
 browser=$(find_chromium)
 if [ -z "$browser" ] && [ "$install" = yes ]; then
-  sh "$tools_dir/deps.sh" chromium fonts-dejavu-extra >&2
+  sh "$tools_dir/../book/deps.sh" chromium fonts-dejavu-extra >&2
   browser=$(find_chromium)
 fi
 if [ -z "$browser" ]; then

@@ -6,7 +6,7 @@
 #   - per chart, the largest ratio between the two runs' median times of the
 #     same method and param (1.00: the runs agree), and the method;
 #   - for every RATIO line of bench/quotes.txt and bench/quotes-ratios.txt
-#     (tools/check_quotes.sh), the ratio in each run and whether it is within
+#     (tools/checks/check_quotes.sh), the ratio in each run and whether it is within
 #     its band in both; and whether an ordering a claim relies on (A faster
 #     than B, or slower) flipped between the runs.
 # Exits 1 if an ordering flipped. make charts-check runs it on every bench.
@@ -45,8 +45,8 @@ done
 
 quotes=""
 for q in bench/quotes.txt bench/quotes-ratios.txt; do [ -f "$q" ] && quotes="$quotes $q"; done
-sh tools/check_quotes.sh --report --csv-dir "$out/run1" $quotes 2>/dev/null | grep '^ratio ' > "$out/ratios1"
-sh tools/check_quotes.sh --report --csv-dir "$out/run2" $quotes 2>/dev/null | grep '^ratio ' > "$out/ratios2"
+sh tools/checks/check_quotes.sh --report --csv-dir "$out/run1" $quotes 2>/dev/null | grep '^ratio ' > "$out/ratios1"
+sh tools/checks/check_quotes.sh --report --csv-dir "$out/run2" $quotes 2>/dev/null | grep '^ratio ' > "$out/ratios2"
 echo
 echo "quoted speed ratios (A/B: run 1 median (quartile interval), run 2; band; verdicts):"
 paste -d' ' "$out/ratios1" "$out/ratios2" | awk '

@@ -1,7 +1,7 @@
 /*
  * check_book.c -- check that the woven HTML book is whole and works offline.
  *
- * Build: gcc -std=c11 -Wall -Wextra -Werror -O2 -o build/check_book tools/check_book.c
+ * Build: gcc -std=c11 -Wall -Wextra -Werror -O2 -o build/check_book tools/checks/check_book.c
  * Run:   build/check_book build/book.html
  *        build/check_book --code-width 80 build/book.html
  *
@@ -16,7 +16,7 @@
  *     or //host), so the page would not work offline.
  * With --code-width N it checks one more thing, alone (`make check-code-width`):
  *   - a line of program code (in a <pre class="chunk-code"> that
- *     tools/weave.lua writes) is wider than N columns: the message names the
+ *     tools/book/weave.lua writes) is wider than N columns: the message names the
  *     chunk (data-chunk, or data-file for a file) and its chapter
  *     (data-chapter), the line's number
  *     in the box and the line itself, e.g.

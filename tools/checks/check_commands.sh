@@ -1,8 +1,8 @@
 #!/bin/sh
 # check_commands.sh -- run every chapter-binary command the book quotes.
 #
-# Usage: sh tools/check_commands.sh [--root DIR] [--bin BINDIR] [FILE...]
-#        sh tools/check_commands.sh --self-test
+# Usage: sh tools/checks/check_commands.sh [--root DIR] [--bin BINDIR] [FILE...]
+#        sh tools/checks/check_commands.sh --self-test
 #
 # FILEs default to chapters/*.md, book.md and README.md. A quoted command is
 # an inline code span (`...`, which may run over a line break) or a line of

@@ -2,12 +2,12 @@
 # check_epub.sh -- the EPUB is a whole zip, its navigation lists every
 # chapter, and epubcheck finds no error in it.
 #
-# Usage: tools/check_epub.sh BOOK.epub CHAPTER.md...   (make check-epub)
+# Usage: tools/checks/check_epub.sh BOOK.epub CHAPTER.md...   (make check-epub)
 # unzip must find no damaged entry, the first entry must be the file
 # "mimetype" holding application/epub+zip (what readers look at first),
 # and the navigation document (EPUB/nav.xhtml) must link to each chapter's
 # id ({#chNN} on its first heading). Then, where epubcheck is installed
-# (make installs it: tools/deps.sh), it must report 0 fatal errors and 0
+# (make installs it: tools/book/deps.sh), it must report 0 fatal errors and 0
 # errors (warnings are shown, not counted); where it is not, the script
 # says it skipped that part. Exits 1 with the reason otherwise.
 set -u

@@ -1,8 +1,8 @@
 #!/bin/sh
 # check_handout.sh -- no line of an exercise's solution is in the handout.
 #
-# Usage: tools/check_handout.sh HANDOUT_DIR   (make check-handout)
-# The solution lines are tools/solution_lines.awk's, but for those that the
+# Usage: tools/checks/check_handout.sh HANDOUT_DIR   (make check-handout)
+# The solution lines are tools/workbook/solution_lines.awk's, but for those that the
 # book's other code, its tests or its tools also hold. Lines are compared
 # normalised, so that a solution respaced, recommented or highlighted is
 # found all the same: an HTML file's tags dropped and its escapes undone, a
@@ -14,7 +14,7 @@
 # Code that restates a solution in lines that are each common (a later
 # chapter's loop written again, its tests written with | for ||, double
 # for real) is found by its runs: every three lines of a solution, compared
-# loosely (tools/code_runs.awk), must not follow one another in the
+# loosely (tools/checks/code_runs.awk), must not follow one another in the
 # handout's code, unless a chapter before the exercise's holds them too
 # (the exercise then repeats the book, not the other way round). The same
 # search in chapters/ must find every run, and a chapter's solutions
@@ -45,10 +45,10 @@ normalise() {
 # Lines that the rest of the book, its tests or its tools also hold give
 # nothing away: they are no exercise's secret.
 {
-    awk -v others=1 -f tools/stub.awk -f tools/solution_lines.awk chapters/[0-9][0-9]-*.md
-    cat tests/*.c tests/*.h tools/*.c tools/diagrams/*.c
+    awk -v others=1 -f tools/workbook/stub.awk -f tools/workbook/solution_lines.awk chapters/[0-9][0-9]-*.md
+    cat tests/*.c tests/*.h tools/*/*.c
 } | normalise | sort -u > "$patterns.common"
-awk -f tools/stub.awk -f tools/solution_lines.awk chapters/[0-9][0-9]-*.md |
+awk -f tools/workbook/stub.awk -f tools/workbook/solution_lines.awk chapters/[0-9][0-9]-*.md |
     normalise | awk 'length($0) >= 12' | sort -u |
     comm -23 - "$patterns.common" > "$patterns"
 count=$(wc -l < "$patterns")
@@ -72,13 +72,13 @@ head -n 1 "$patterns" | sed 's/./& /g; s|$|// mine|' > "$patterns.planted/x.c"
 # The runs: CHAPTER TAB RUN for the solutions' and for the other code's.
 for chapter in chapters/[0-9][0-9]-*.md; do
     number=$(basename "$chapter" | cut -d - -f 1)
-    awk -v runs=1 -f tools/stub.awk -f tools/solution_lines.awk "$chapter" \
+    awk -v runs=1 -f tools/workbook/stub.awk -f tools/workbook/solution_lines.awk "$chapter" \
         > "$patterns.code"
-    awk -f tools/code_runs.awk "$patterns.code" |
+    awk -f tools/checks/code_runs.awk "$patterns.code" |
         sed "s/^[^	]*/$number/" >> "$patterns.solution-runs"
-    awk -v others=1 -f tools/stub.awk -f tools/solution_lines.awk "$chapter" \
+    awk -v others=1 -f tools/workbook/stub.awk -f tools/workbook/solution_lines.awk "$chapter" \
         > "$patterns.code"
-    awk -f tools/code_runs.awk "$patterns.code" |
+    awk -f tools/checks/code_runs.awk "$patterns.code" |
         sed "s/^[^	]*/$number/" >> "$patterns.other-runs"
 done
 # A run stays unless a chapter before its own holds it in other code.
@@ -95,14 +95,14 @@ runs=$(wc -l < "$patterns.run-set")
 # runs_in FILE...: the solutions' runs that the files' code holds, each
 # after its file's name and a tab.
 runs_in() {
-    awk -f tools/code_runs.awk "$@" |
+    awk -f tools/checks/code_runs.awk "$@" |
         awk -F '\t' 'FILENAME == ARGV[1] { want[$0] = 1; next }
             ($2 in want) && !seen[$0]++' "$patterns.run-set" -
 }
 found=$(runs_in chapters/[0-9][0-9]-*.md | cut -f 2 | sort -u | wc -l)
 [ "$found" = "$runs" ] ||
     { echo "check-handout: the search finds $found of $runs runs in chapters/"; exit 1; }
-awk -v runs=1 -f tools/stub.awk -f tools/solution_lines.awk chapters/04-*.md |
+awk -v runs=1 -f tools/workbook/stub.awk -f tools/workbook/solution_lines.awk chapters/04-*.md |
     sed -E 's/(^|[^A-Za-z0-9_])real([^A-Za-z0-9_]|$)/\1double\2/g;
             s/[|][|]/|/g; s/&&/\&/g; s/[(]/((/g; s/[)]/))/g; s/ /   /g;
             s|$| // mine|' > "$patterns.planted/disguised.c"

@@ -1,8 +1,8 @@
 #!/bin/sh
 # check_map.sh: chapters/README.md's map must be true of the program.
 #
-# usage: sh tools/check_map.sh MAP SRC_DIR CHAPTER.md...
-#        sh tools/check_map.sh --self-test
+# usage: sh tools/checks/check_map.sh MAP SRC_DIR CHAPTER.md...
+#        sh tools/checks/check_map.sh --self-test
 #
 # MAP is chapters/README.md; SRC_DIR the plain tangle of the last chapter
 # (src/chNN); the chapters are every chapter's Markdown, in order.
@@ -221,7 +221,7 @@ if [ "${1:-}" = --self-test ]; then
     self_test
     exit $?
 fi
-[ $# -ge 3 ] || { echo "usage: sh tools/check_map.sh MAP SRC_DIR CHAPTER.md..." >&2; exit 2; }
+[ $# -ge 3 ] || { echo "usage: sh tools/checks/check_map.sh MAP SRC_DIR CHAPTER.md..." >&2; exit 2; }
 map=$1 src=$2
 shift 2
 if check "$map" "$src" "$@"; then

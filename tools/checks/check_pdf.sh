@@ -1,7 +1,7 @@
 #!/bin/sh
 # check_pdf.sh -- every chapter of the printed book starts a page.
 #
-# Usage: tools/check_pdf.sh BOOK.pdf CHAPTER.md...   (make check-pdf)
+# Usage: tools/checks/check_pdf.sh BOOK.pdf CHAPTER.md...   (make check-pdf)
 # With pdftotext (poppler-utils), looks for each chapter N a page whose
 # first line of text is "CHAPTER N" and whose next is the chapter's title
 # (its first "# " line). Prints the chapters that do not, and exits 1.

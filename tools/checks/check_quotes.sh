@@ -34,7 +34,7 @@
 #                    interval must lie inside [LO, HI]. No order is claimed.
 #     same           A and B are indistinguishable: the interval contains 1.
 #   An ordered claim (LO..HI) whose interval contains 1 fails: the chapter
-#   must say that the two cannot be told apart. tools/charts_check.sh
+#   must say that the two cannot be told apart. tools/checks/charts_check.sh
 #   reports whether the order of an ordered claim flips between runs.
 #
 # Absolute times, true only of the machine named on the CSV's first line:
@@ -54,7 +54,7 @@
 # `make charts-check` checks its reruns. --report prints, for each RATIO
 # line, "ratio QUOTES:LINE A/B MEDIAN LO HI BAND VERDICT" on standard output
 # (VERDICT: ok, or what is wrong with the numbers; the text is not looked
-# at), for tools/charts_check.sh.
+# at), for tools/checks/charts_check.sh.
 csv_dir=""
 report=""
 while [ $# -gt 0 ]; do

@@ -1,5 +1,5 @@
 #!/bin/sh
-# check_reuse.sh REUSE_OBJECT CC -- tools/reuse_object's own test (make
+# check_reuse.sh REUSE_OBJECT CC -- tools/book/reuse_object's own test (make
 # check-reuse, in make test). In a scratch folder, two "chapters" p/ and n/
 # of a file a.c that includes a.h, compiled with -MMD -MP as the Makefile
 # does. Checks that the object of p/ is copied when n/ holds the same text

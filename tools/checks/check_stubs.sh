@@ -1,7 +1,7 @@
 #!/bin/sh
 # check_stubs.sh -- each exercise's stub, alone, fails one of its tests.
 #
-# Usage: MAKE=make tools/check_stubs.sh   (make check-stubs; not in make test:
+# Usage: MAKE=make tools/checks/check_stubs.sh   (make check-stubs; not in make test:
 # it grades once per exercise, several minutes)
 # make check-workbook starts every stub at once, so a stub that passes its
 # own tests could hide behind another's failure. Here a SOLVED=1 workbook
@@ -15,7 +15,7 @@ rm -rf "$t/solved" "$t/stubs" "$t/wb"
 $MAKE -s --no-print-directory workbook WB_DIR="$t/solved" SOLVED=1 > /dev/null || exit 1
 $MAKE -s --no-print-directory workbook WB_DIR="$t/stubs" > /dev/null || exit 1
 bad=0
-awk -f tools/exercises.awk chapters/[0-9][0-9]-*.md | cut -f1,2 |
+awk -f tools/workbook/exercises.awk chapters/[0-9][0-9]-*.md | cut -f1,2 |
 while read -r id chapter; do
     name=$(basename "$chapter")
     rm -rf "$t/wb" && cp -R "$t/solved" "$t/wb"

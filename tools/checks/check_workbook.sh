@@ -1,7 +1,7 @@
 #!/bin/sh
 # check_workbook.sh -- the workbook's own tests (make check-workbook, in make test).
 #
-# Usage: MAKE=make [WB_CHECK_DIR=DIR] tools/check_workbook.sh
+# Usage: MAKE=make [WB_CHECK_DIR=DIR] tools/checks/check_workbook.sh
 # Works in DIR (default build/wbcheck/): each check below has a folder of its own there
 # (NAME/wb, the workbook; NAME/build, where make grade builds it,
 # incrementally from one run to the next), and checks 2, 3 and 5 run side
@@ -90,7 +90,7 @@ answer() {
 }
 
 list=$top/list
-awk -f tools/exercises.awk chapters/[0-9][0-9]-*.md > "$list" || exit 1
+awk -f tools/workbook/exercises.awk chapters/[0-9][0-9]-*.md > "$list" || exit 1
 n=$(wc -l < "$list")
 [ "$n" -ge 36 ] || { echo "check-workbook: only $n exercises, fewer than 36"; exit 1; }
 for c in chapters/[0-9][0-9]-*.md; do

@@ -1,6 +1,6 @@
 # code_runs.awk -- runs of three lines of code, compared loosely.
 #
-#   awk -f tools/code_runs.awk FILE...
+#   awk -f tools/checks/code_runs.awk FILE...
 #
 # prints, for every three lines of code that follow one another in a FILE,
 # the file's name, a tab and the three lines joined by blanks (and once
@@ -11,10 +11,10 @@
 # (real, float, double) written T; a line that is then shorter than 6
 # characters, part of a block comment or a <<chunk>> line is skipped. So a
 # solution restated by other code, with other spacing, comments, types or
-# forms of its tests, is found by its runs (tools/check_handout.sh). Code
+# forms of its tests, is found by its runs (tools/checks/check_handout.sh). Code
 # is what is in a Markdown file's fenced blocks and all of any other file
 # (an HTML file's markup dropped and its escapes undone). A line "<<>>"
-# (tools/solution_lines.awk's, where a stub keeps a line) ends a run.
+# (tools/workbook/solution_lines.awk's, where a stub keeps a line) ends a run.
 
 function loose(line,    out) {
     sub(/\/\/.*$/, "", line)

@@ -1,9 +1,9 @@
 /*
  * page_check.js -- the book's scenes rendered in its own page, in headless
  * Chromium driven through the DevTools protocol on a pipe (no npm module,
- * no network port): tools/page_check.sh runs it.
+ * no network port): tools/checks/page_check.sh runs it.
  *
- *   node tools/page_check.js BROWSER BOOK.html CASES.json
+ *   node tools/checks/page_check.js BROWSER BOOK.html CASES.json
  *
  * CASES.json: { "renders": [ { "chapter", "scene", "size", "reference" }
  * ...], "mistake": { "chapter", "text", "expected" }, "long": { "chapter",

@@ -1,8 +1,8 @@
 #!/bin/sh
 # page_check.sh -- the book's scenes rendered in the book's own page, in
-# headless Chromium, against the programs' PNGs (tools/page_check.js):
+# headless Chromium, against the programs' PNGs (tools/checks/page_check.js):
 #
-#     sh tools/page_check.sh BOOK.html BIN_DIR SIZE NN...
+#     sh tools/checks/page_check.sh BOOK.html BIN_DIR SIZE NN...
 #
 # For each chapter NN: every scene the chapter shows, and its empty scene,
 # drawn by BIN_DIR/chNN at --size SIZE as references; then, in the page,
@@ -11,7 +11,7 @@
 # cancelled, and no request outside the file. Skipped, with status 0,
 # when Chromium or node is not installed, or the page has no programs.
 #
-#     sh tools/page_check.sh --speed CSV ROUNDS BOOK.html BIN_DIR SIZE NN...
+#     sh tools/checks/page_check.sh --speed CSV ROUNDS BOOK.html BIN_DIR SIZE NN...
 #
 # measures instead: each chapter's own scene at --size SIZE, its render on
 # one thread by BIN_DIR/chNN and in the page, ROUNDS times, into CSV (make
@@ -26,7 +26,7 @@ fi
 book=$1 bin=$2 size=$3
 shift 3
 tools_dir=$(cd "$(dirname "$0")" && pwd)
-. "$tools_dir/find_chromium.sh"
+. "$tools_dir/../editions/find_chromium.sh"
 browser=$(find_chromium)
 # skip WHY: the check cannot run here; a measurement must.
 skip() {

@@ -10,7 +10,7 @@
 # runner on two cores: 9.1 s with two shards, 6.6 s with eight).
 # With RUN_LOG=FILE, every test's result line (Check's log, one line a
 # test, passes too) is kept in FILE when all passed, and FILE is removed
-# when one did not (make grade reads it: tools/grade.sh).
+# when one did not (make grade reads it: tools/workbook/grade.sh).
 set -u
 runner=$1
 cores=$(nproc 2>/dev/null || sysctl -n hw.ncpu 2>/dev/null || echo 2)

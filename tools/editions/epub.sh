@@ -1,17 +1,17 @@
 #!/bin/sh
 # epub.sh -- the book as an EPUB 3 for tablets and readers.
 #
-# Usage: tools/epub.sh BOOK_MD OUT_EPUB CHAPTER...   (make epub)
-# pandoc with the book's filter (tools/weave.lua: chunk boxes, exercise
+# Usage: tools/editions/epub.sh BOOK_MD OUT_EPUB CHAPTER...   (make epub)
+# pandoc with the book's filter (tools/book/weave.lua: chunk boxes, exercise
 # labels, cross-references) and stylesheet, math as MathML, one EPUB
 # chapter per chapter of the book, figures embedded. Then, in the EPUB's
 # own copies, what pandoc leaves for an EPUB reader to refuse:
-# tools/epub_links.awk points the weaver's links at the chapter file that
-# holds their target, tools/epub_svg.awk makes each SVG figure valid SVG
+# tools/editions/epub_links.awk points the weaver's links at the chapter file that
+# holds their target, tools/editions/epub_svg.awk makes each SVG figure valid SVG
 # 1.1 (the figures themselves are not changed). The parts are zipped again
 # (zip), mimetype first and stored, as EPUB asks. The file is written only
 # when all of this succeeded; make test checks it with epubcheck
-# (tools/check_epub.sh).
+# (tools/checks/check_epub.sh).
 set -eu
 if [ "$#" -lt 3 ]; then
     echo "usage: $0 BOOK_MD OUT_EPUB CHAPTER..." >&2
@@ -26,8 +26,8 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 pandoc "$book" "$@" --from markdown --to epub3 --mathml --toc --toc-depth=2 \
     --number-sections --epub-chapter-level=1 --resource-path=. \
-    --metadata lang=en --css="$tools_dir/book.css" \
-    --lua-filter="$tools_dir/weave.lua" --output="$work/pandoc.epub" 2> "$work/log" ||
+    --metadata lang=en --css="$tools_dir/../book/book.css" \
+    --lua-filter="$tools_dir/../book/weave.lua" --output="$work/pandoc.epub" 2> "$work/log" ||
     { cat "$work/log" >&2; exit 1; }
 cat "$work/log" >&2
 

@@ -1,6 +1,6 @@
 # epub_links.awk -- points every link to an id at the file that holds it.
 #
-# Usage: awk -f tools/epub_links.awk A.xhtml B.xhtml ...   (tools/epub.sh)
+# Usage: awk -f tools/editions/epub_links.awk A.xhtml B.xhtml ...   (tools/editions/epub.sh)
 # The weaver writes its links as raw HTML, href="#id" (chunk references,
 # "used in", the index, the chapter navigation): right in the one-page
 # book, wrong in an EPUB split into one file per chapter, where pandoc

@@ -1,6 +1,6 @@
 # epub_svg.awk -- an SVG figure as EPUB's SVG 1.1 allows it, drawn the same.
 #
-# Usage: awk -f tools/epub_svg.awk FIGURE.svg > COPY.svg   (tools/epub.sh)
+# Usage: awk -f tools/editions/epub_svg.awk FIGURE.svg > COPY.svg   (tools/editions/epub.sh)
 # Two things that browsers draw but EPUB's schema refuses, changed in the
 # EPUB's copy only (the figures and the HTML book keep theirs):
 #   paint-order="V"  (tools/diagrams: text on a white halo) becomes the

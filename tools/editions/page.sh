@@ -1,13 +1,13 @@
 #!/bin/sh
 # page.sh -- what the book's page needs to render its scenes, as HTML to
-# put before its </body> (tools/weave.sh does, given WEAVE_PAGE):
+# put before its </body> (tools/book/weave.sh does, given WEAVE_PAGE):
 #
-#     sh tools/page.sh OUT.html chNN.wasm.b64... -- MESH.obj.b64...
+#     sh tools/editions/page.sh OUT.html chNN.wasm.b64... -- MESH.obj.b64...
 #
 # Each program (build/wasm/chNN.wasm) and each mesh, gzip'd and in base64
 # (the Makefile makes the .b64 files), goes in a script element that the
 # browser does not run; then the worker's code, the style and
-# tools/page/playground.js.
+# tools/editions/page/playground.js.
 # Everything is in the one file: the page fetches nothing.
 set -eu
 if [ "$#" -lt 2 ]; then

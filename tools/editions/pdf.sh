@@ -1,12 +1,12 @@
 #!/bin/sh
 # pdf.sh -- the book for printing: headless Chromium's print of the page.
 #
-# Usage: tools/pdf.sh BOOK.html OUT.pdf   (make pdf)
-# Prints BOOK.html with its print stylesheet (tools/book.css, @media print:
+# Usage: tools/editions/pdf.sh BOOK.html OUT.pdf   (make pdf)
+# Prints BOOK.html with its print stylesheet (tools/book/book.css, @media print:
 # a page break before every chapter, no side bar, code boxes and figures
 # kept whole) to OUT.pdf, A4, without the browser's headers and footers.
 # Chromium is installed with apt-get when missing (as root, through
-# tools/deps.sh); without it the script says so and exits 1.
+# tools/book/deps.sh); without it the script says so and exits 1.
 set -u
 if [ "$#" -ne 2 ]; then
     echo "usage: $0 BOOK.html OUT.pdf" >&2
@@ -17,7 +17,7 @@ tools_dir=$(cd "$(dirname "$0")" && pwd)
 
 . "$tools_dir/find_chromium.sh"
 browser=$(find_chromium)
-[ -n "$browser" ] || { sh "$tools_dir/deps.sh" chromium fonts-dejavu-extra >&2; browser=$(find_chromium); }
+[ -n "$browser" ] || { sh "$tools_dir/../book/deps.sh" chromium fonts-dejavu-extra >&2; browser=$(find_chromium); }
 [ -n "$browser" ] || { echo "pdf: no chromium: run make pdf as root to install it" >&2; exit 1; }
 
 work=$(mktemp -d)

@@ -1,9 +1,9 @@
 #!/bin/sh
 # chart_yours.sh -- a chapter's chart with the reader's methods as "yours".
 #
-# Usage (make chart-chNN WORKBOOK=1 runs it, after tools/grade.sh has
+# Usage (make chart-chNN WORKBOOK=1 runs it, after tools/workbook/grade.sh has
 # tangled the workbook and make has compiled the workbook's objects):
-#   tools/chart_yours.sh BENCH STATE.tsv OUTDIR "ID=MACRO..." "OBJECT..."
+#   tools/workbook/chart_yours.sh BENCH STATE.tsv OUTDIR "ID=MACRO..." "OBJECT..."
 #                        "SYMBOL..." CC "CFLAGS" LINK_OBJECT...
 # For each exercise ID the reader has started (in the grader's STATE.tsv)
 # the benchmark bench/BENCH.c is compiled with -DMACRO. Every SYMBOL is

@@ -1,7 +1,7 @@
 # exercises.awk -- the workbook's exercises, read from the chapters.
 #
-#   awk -f tools/exercises.awk chapters/*.md            one line per exercise
-#   awk -v hint=02.1 -f tools/exercises.awk chapters/*.md   that one's hint
+#   awk -f tools/workbook/exercises.awk chapters/*.md            one line per exercise
+#   awk -v hint=02.1 -f tools/workbook/exercises.awk chapters/*.md   that one's hint
 #
 # An exercise is a code block of the book whose fence carries the class
 # .exercise and the tests that grade it, followed (after blank lines) by a

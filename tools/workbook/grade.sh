@@ -2,7 +2,7 @@
 # grade.sh -- grade the reader's workbook against the chapters' tests.
 #
 # Usage (the Makefile's grade and grade-chNN targets run it):
-#     tools/grade.sh NN CHAPTER.md...     (the chapters 01..NN, in order)
+#     tools/workbook/grade.sh NN CHAPTER.md...     (the chapters 01..NN, in order)
 # Environment: TANGLE (the tangler), MAKE, WB_DIR (the workbook, default
 # workbook), WB_BUILD (where it is built, default build/workbook),
 # GRADE_TIMEOUT (seconds a test may take, default 10; a quarter of its own
@@ -30,7 +30,7 @@
 # exercise follows: done, failing (its first failing test, in the order the
 # exercise names them, and the test's message), timed out, crashed (signal
 # N), not started, or "its tests pass, but" when other tests fail; then
-# the failing tests that no started exercise names (tools/grade_report.awk)
+# the failing tests that no started exercise names (tools/workbook/grade_report.awk)
 # and "Progress: D of N exercises". The exit status is 0 only when every
 # started exercise is done, no test fails and every workbook file is good.
 set -u
@@ -41,7 +41,7 @@ if [ "$#" -lt 2 ]; then
 fi
 target=$1
 shift
-TANGLE=${TANGLE:-build/rel/tools/tangle}
+TANGLE=${TANGLE:-build/rel/tools/book/tangle}
 MAKE=${MAKE:-make}
 WB_DIR=${WB_DIR:-workbook}
 WB_BUILD=${WB_BUILD:-build/workbook}
@@ -207,7 +207,7 @@ run_suites() {
     CK_FORK=yes CK_VERBOSITY=verbose CK_TIMEOUT_MULTIPLIER=0.25 \
     CK_DEFAULT_TIMEOUT=$((GRADE_TIMEOUT * 4)) \
     CHAPTER_BIN=$WB_BUILD/bin/ch$target \
-        timeout 900 sh "$tools_dir/run_shards.sh" "$WB_BUILD/test/ch$target" \
+        timeout 900 sh "$tools_dir/../checks/run_shards.sh" "$WB_BUILD/test/ch$target" \
         > "$work/tests.log" 2>&1
 }
 
@@ -219,7 +219,7 @@ run_suites() {
 # that then passes is not the exercise's fault, and it is cleared of it (a
 # line "ID<tab>TEST" in $work/cleared.tsv). A test that fails and that no
 # exercise keeps is the reader's code elsewhere, or of two together
-# (tools/grade_report.awk).
+# (tools/workbook/grade_report.awk).
 cleared=$work/cleared.tsv
 alone=$WB_BUILD/alone
 

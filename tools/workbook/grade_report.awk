@@ -1,10 +1,10 @@
 # grade_report.awk -- the grader's verdict, one line per exercise.
 #
 #   awk -v built=yes|no -v bad_files=FILE [-v cleared=FILE -v later=FILE] \
-#       -f tools/grade_report.awk \
+#       -f tools/workbook/grade_report.awk \
 #       EXERCISES.tsv STATE.tsv TESTS.log
 #
-# EXERCISES.tsv is tools/exercises.awk's listing, STATE.tsv tools/grade.sh's
+# EXERCISES.tsv is tools/workbook/exercises.awk's listing, STATE.tsv tools/workbook/grade.sh's
 # (ID, state, workbook file, first and last line of its chunk), TESTS.log
 # what the suites printed in Check's verbose mode, one line per test:
 #   FILE:LINE:P|F|E:TCASE:TEST:ITERATION: MESSAGE
@@ -15,7 +15,7 @@
 # did not pass says why: failing with the test's message, timed out, or
 # crashed (signal N). A failing test that the exercise passes alone, the
 # book's code in every other exercise (-v cleared=FILE: lines "ID<tab>
-# TEST", tools/grade.sh), does not count against it, nor does a test of a
+# TEST", tools/workbook/grade.sh), does not count against it, nor does a test of a
 # later chapter's suites, which did not run (-v later=FILE: one name a
 # line). A failing test that no started exercise names, or none that
 # fails it alone, is listed after the exercises, as the reader's code

@@ -1,11 +1,11 @@
 # handout.awk -- a chapter as a student's handout prints it: every exercise's
 # code replaced by its stub.
 #
-#   awk -f tools/stub.awk -f tools/handout.awk CHAPTER.md > HANDOUT/CHAPTER.md
+#   awk -f tools/workbook/stub.awk -f tools/workbook/handout.awk CHAPTER.md > HANDOUT/CHAPTER.md
 #
 # Copies CHAPTER.md line for line, except the body of each code block whose
-# fence carries .exercise (see tools/exercises.awk), which becomes
-# tools/stub.awk's stub of it: the same declarations, every function body a
+# fence carries .exercise (see tools/workbook/exercises.awk), which becomes
+# tools/workbook/stub.awk's stub of it: the same declarations, every function body a
 # return of zero. The tangle of the handout's chapters builds (and fails the
 # exercises' tests) until the student's workbook replaces the stubs.
 

@@ -1,17 +1,17 @@
 # solution_lines.awk -- the lines of the exercises' solutions.
 #
-#   awk -f tools/stub.awk -f tools/solution_lines.awk CHAPTER.md...
+#   awk -f tools/workbook/stub.awk -f tools/workbook/solution_lines.awk CHAPTER.md...
 #
 # prints every line of an exercise's code (a block whose fence carries
-# .exercise) that its stub (tools/stub.awk) leaves out, without its blanks
+# .exercise) that its stub (tools/workbook/stub.awk) leaves out, without its blanks
 # in front and behind, if that leaves at least 20 characters and is not a
 # <<chunk>> reference (the book names those in its tasks): the lines a
-# handout must not hold (tools/check_handout.sh). With -v others=1 it
+# handout must not hold (tools/checks/check_handout.sh). With -v others=1 it
 # prints instead every line of the other code blocks, trimmed: lines such
 # as "return false;" that are no one exercise's secret. With -v runs=1 it
 # prints every line that the stub leaves out, whatever its length, and a
 # line "<<>>" where the stub keeps lines and where an exercise ends: the
-# solutions' runs of lines (tools/code_runs.awk).
+# solutions' runs of lines (tools/checks/code_runs.awk).
 
 function emit(    n, i, stub_lines, body_lines, kept, line) {
     n = split(stub_of(body), stub_lines, "\n")

@@ -1,6 +1,6 @@
 # stub.awk -- turn the code of an exercise into a stub that compiles.
 #
-# A library for other awk programs (awk -f tools/stub.awk -f PROGRAM):
+# A library for other awk programs (awk -f tools/workbook/stub.awk -f PROGRAM):
 # stub_of(CODE) returns CODE, lines separated by "\n", with the body of
 # every function replaced by a comment and a return of zero: what is not a
 # function body (comments, #include, types, prototypes, tables, <<chunk>>

@@ -1,7 +1,7 @@
 #!/bin/sh
 # watch.sh -- run a command again whenever a workbook file changes.
 #
-# Usage: WB_DIR=workbook tools/watch.sh COMMAND...   (make watch runs it)
+# Usage: WB_DIR=workbook tools/workbook/watch.sh COMMAND...   (make watch runs it)
 # Clears the screen and runs COMMAND, then waits for a file of WB_DIR to
 # change: with inotifywait where it is installed, else by looking at the
 # files' times and sizes once a second. When a chapter's file changed, that

@@ -1,14 +1,14 @@
 # workbook.awk -- write a chapter's workbook file: its exercises to do.
 #
-#   awk -f tools/stub.awk -f tools/workbook.awk [-v solved=1] CHAPTER.md CHAPTER.md
+#   awk -f tools/workbook/stub.awk -f tools/workbook/workbook.awk [-v solved=1] CHAPTER.md CHAPTER.md
 #
 # (the chapter twice: the first reading collects every chunk's pieces)
-# prints, for the exercises of CHAPTER.md (see tools/exercises.awk for how
+# prints, for the exercises of CHAPTER.md (see tools/workbook/exercises.awk for how
 # a chapter marks them), a Markdown file in the book's chunk syntax: for
 # each exercise its task, the tests that grade it, its hint, and a chunk
-# that replaces the book's (.replace) holding a stub from tools/stub.awk
+# that replaces the book's (.replace) holding a stub from tools/workbook/stub.awk
 # and the line "// NOT DONE". The tangler leaves such a chunk out until its
-# reader deletes that line (tangle --skip-not-done); tools/grade.sh grades
+# reader deletes that line (tangle --skip-not-done); tools/workbook/grade.sh grades
 # it then. With solved=1 the chunk holds the book's own code instead, and
 # no "// NOT DONE" line: a workbook with every exercise done.
 #

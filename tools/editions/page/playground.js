@@ -1,21 +1,21 @@
 /*
  * playground.js -- "edit and render" under the book's scenes.
  *
- * tools/weave.lua leaves an empty <div class="playground"> after every
+ * tools/book/weave.lua leaves an empty <div class="playground"> after every
  * scenes/*.scene file the chapters show (data-scene: its name) and one at
  * the end of every chapter (no data-scene: an empty scene to write), with
- * the chapter's number in data-chapter. tools/page.sh puts this script in
+ * the chapter's number in data-chapter. tools/editions/page.sh puts this script in
  * the page with the programs, gzip and base64, in
  * <script type="application/octet-stream" id="rt-program-NN">, the meshes
  * in <script ... class="rt-mesh" data-name="NAME">, and the worker's code
- * (tools/page/worker.js) in <script type="text/plain" id="rt-worker">.
+ * (tools/editions/page/worker.js) in <script type="text/plain" id="rt-worker">.
  *
  * Each playground whose chapter has a program gets an editor, the --size
  * and --pixel settings (the latter from chapter 10, which adds it), Render
  * and Cancel buttons, a status line, the picture and the --stats counts.
  * A render runs in a new worker, which Cancel ends. The playground's
  * data-state says where it is: idle, rendering, done, error, cancelled
- * (the browser checks, tools/page_check.js, read it).
+ * (the browser checks, tools/checks/page_check.js, read it).
  */
 (function () {
   "use strict";

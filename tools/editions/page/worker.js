@@ -1,6 +1,6 @@
 /*
  * worker.js -- runs one chapter's program (WebAssembly, WASI preview 1) on
- * one scene, in a Web Worker of the book's page (tools/page/playground.js
+ * one scene, in a Web Worker of the book's page (tools/editions/page/playground.js
  * starts it from a Blob URL, so that the book works from file://).
  *
  * Message in:  { program, scene, sceneName, meshes, args }
