@@ -943,10 +943,12 @@ check-build-speed:
 	done < figures/build-speed.md
 	@echo "check-build-speed: README.md quotes figures/build-speed.md"
 
-# chapters/README.md's map of layers and hooks is that of the last chapter.
+# chapters/README.md's map of layers and hooks is that of the last chapter,
+# and every file of tools/ is in a folder whose README.md names it.
 check-map: check-src
 	@sh tools/checks/check_map.sh --self-test
 	@sh tools/checks/check_map.sh chapters/README.md src/ch$(lastword $(NUMS)) $(CHAPTERS)
+	@sh tools/checks/check_map.sh --tools tools
 
 # Every allocation of the last chapter's program goes through memory.h.
 check-allocations: check-src

@@ -2,6 +2,7 @@
 # check_map.sh: chapters/README.md's map must be true of the program.
 #
 # usage: sh tools/checks/check_map.sh MAP SRC_DIR CHAPTER.md...
+#        sh tools/checks/check_map.sh --tools TOOLS_DIR
 #        sh tools/checks/check_map.sh --self-test
 #
 # MAP is chapters/README.md; SRC_DIR the plain tangle of the last chapter
@@ -21,8 +22,16 @@
 #    "filled by" appends to or replaces at least one hook of its row; each
 #    hook of the row is filled somewhere; and each hook that holds code in
 #    the last chapter starts in one of the files of the "file" column.
-# The self-test runs the check on a small map that is wrong in each of
-# these ways and fails unless every mistake is reported.
+# With --tools it checks the folders of TOOLS_DIR (tools/) instead, and
+# prints each failure as "TOOLS_DIR: error: ...": at most eight files at
+# its top, one of them README.md, which gives each folder a row of its
+# table ("| `NAME/` | its job |") and each other file at the top a line
+# of its list ("- `FILE`: its job"); every other file in a folder of its
+# own, whose README.md gives it a line of its list ("- `FILE`: its job",
+# "- `SUB/FILE`: ..." for a file in a folder below); and no such row or
+# line for a file or folder that is not there.
+# The self-test runs both checks on small examples that are wrong in each
+# of these ways and fails unless every mistake is reported.
 set -u
 
 check() {
@@ -165,6 +174,63 @@ check() {
     ' "$map" "$@" $(ls "$src"/*.c "$src"/*.h)
 }
 
+# check_tools DIR: the folders of DIR against their README.md files.
+check_tools() {
+    dir=$1
+    (cd "$dir" && find . -type f | sed 's#^\./##' | LC_ALL=C sort) | awk -v dir="$dir" '
+    function fail(msg) { printf "%s: error: %s\n", dir, msg; bad = 1 }
+    # The names README.md gives a line of their own ("- `FILE`: its job"
+    # or a table row "| `NAME/` | ..."), into named[].
+    function read_readme(readme, folder,   line) {
+        while ((getline line < readme) > 0) {
+            if (line !~ /^(- |\| )`[^`]+`/) continue
+            sub(/^(- |\| )`/, "", line); sub(/`.*/, "", line)
+            named[folder, line] = 1
+        }
+        close(readme)
+    }
+    {
+        if (index($0, "/") == 0) {
+            top++; there["", $0] = 1
+            if ($0 == "README.md") top_readme = 1; else top_files[$0] = 1
+            next
+        }
+        folder = $0; sub(/\/.*/, "", folder)
+        file = substr($0, length(folder) + 2)
+        folders[folder] = 1
+        there[folder, file] = 1
+        if (file ~ /\//) { sub_dir = file; sub(/\/[^\/]*$/, "/", sub_dir); there[folder, sub_dir] = 1 }
+        if (file == "README.md") has_readme[folder] = 1
+        else files[++nfiles] = folder SUBSEP file
+    }
+    END {
+        if (top > 8) fail(top " files at the top, more than eight: give each a folder of its job")
+        if (!top_readme) fail("no README.md at the top")
+        else read_readme(dir "/README.md", "")
+        for (f in folders) {
+            if (top_readme && !(("", f "/") in named)) fail("README.md does not name " f "/")
+            if (!(f in has_readme)) fail(f "/ has no README.md")
+            else read_readme(dir "/" f "/README.md", f)
+        }
+        for (f in top_files)
+            if (top_readme && !(("", f) in named)) fail("README.md does not name " f)
+        for (k = 1; k <= nfiles; k++) {
+            split(files[k], part, SUBSEP)
+            if ((part[1] in has_readme) && !((part[1], part[2]) in named))
+                fail(part[1] "/README.md does not name " part[2])
+        }
+        for (key in named) {
+            split(key, part, SUBSEP)
+            if (part[1] == "" && part[2] ~ /\/$/) {
+                if (!(substr(part[2], 1, length(part[2]) - 1) in folders))
+                    fail("README.md names " part[2] ", which is not there")
+            } else if (!((part[1], part[2]) in there))
+                fail((part[1] == "" ? "" : part[1] "/") "README.md names " part[2] ", which is not there")
+        }
+        exit bad
+    }'
+}
+
 self_test() {
     dir=$(mktemp -d) || exit 1
     trap 'rm -rf "$dir"' EXIT
@@ -213,6 +279,36 @@ EOF
         *) echo "check_map.sh: self-test: not reported: $expected"; status=1 ;;
         esac
     done
+    # A tools/ folder wrong in each way, beside a folder that is right.
+    t=$dir/tools
+    mkdir -p "$t/good/sub" "$t/bare" "$t/hidden" "$t/gone"
+    for k in 1 2 3 4 5 6 7 8; do : >"$t/loose$k.sh"; done
+    printf '| `good/` | fine |\n| `bare/` | |\n| `gone/` | |\n| `lost/` | |\n' >"$t/README.md"
+    printf -- '- `loose1.sh`: named\n- `loose9.sh`: not there\n' >>"$t/README.md"
+    : >"$t/good/a.sh"; : >"$t/good/sub/b.js"
+    printf -- '- `a.sh`: one\n- `sub/b.js`: two\n' >"$t/good/README.md"
+    : >"$t/bare/c.sh"
+    : >"$t/hidden/d.awk"; : >"$t/hidden/e.awk"
+    printf -- '- `d.awk`: named\n' >"$t/hidden/README.md"
+    : >"$t/gone/f.c"
+    printf -- '- `f.c`: here\n- `g.c`: no longer\n' >"$t/gone/README.md"
+    out=$(check_tools "$t")
+    for expected in "9 files at the top, more than eight" \
+                    "README.md does not name hidden/" "bare/ has no README.md" \
+                    "hidden/README.md does not name e.awk" \
+                    "gone/README.md names g.c, which is not there" \
+                    "README.md names lost/, which is not there" \
+                    "README.md does not name loose2.sh" \
+                    "README.md names loose9.sh, which is not there"; do
+        case $out in
+        *"$expected"*) ;;
+        *) echo "check_map.sh: self-test: not reported: $expected"; status=1 ;;
+        esac
+    done
+    case $out in
+    *good/*|*"name loose1.sh"*)
+        echo "check_map.sh: self-test: a right file reported: $out"; status=1 ;;
+    esac
     [ $status = 0 ] && echo "check_map.sh: self-test passed"
     return $status
 }
@@ -220,6 +316,13 @@ EOF
 if [ "${1:-}" = --self-test ]; then
     self_test
     exit $?
+fi
+if [ "${1:-}" = --tools ] && [ $# = 2 ]; then
+    if check_tools "$2"; then
+        echo "$2: every file is in a folder whose README.md names it: ok"
+        exit 0
+    fi
+    exit 1
 fi
 [ $# -ge 3 ] || { echo "usage: sh tools/checks/check_map.sh MAP SRC_DIR CHAPTER.md..." >&2; exit 2; }
 map=$1 src=$2
