@@ -1,5 +1,5 @@
 # ch12_page.gp: the chart of the programs in the book's page (make
-# chart-ch12_page, tools/page_check.sh --speed).
+# chart-ch12_page, tools/checks/page_check.sh --speed).
 #   gnuplot -e "csv='figures/ch12-page.csv'; stem='figures/ch12-page'" bench/ch12_page.gp
 # stem.svg: for each chapter, the render of its own scene in the page
 # (WebAssembly, one thread) over the same render by bin/chNN on one

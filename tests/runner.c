@@ -9,8 +9,8 @@
  * every suite in the list's order, leaves K when divided by N (tests/
  * shard.h): N runners, one a shard, run the tests on N cores at once.
  *
- * RUNNER_ONLY=NAME runs the test of that name alone (tools/grade.sh, to
- * grade one exercise apart from the others that name the same test).
+ * RUNNER_ONLY=NAME runs the test of that name alone (tools/workbook/grade.sh,
+ * to grade one exercise apart from the others that name the same test).
  *
  * RUNNER_FORKLESS=1 runs in a process of its own (forked, Check's way)
  * only the tests that expect a signal or an exit status or that say they
