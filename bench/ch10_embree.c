@@ -341,7 +341,7 @@ static void run_build(void *ctx, long reps)
         copy.tree = (kdtree){0}, copy.leaf_corners = NULL;
         copy.bvh = (bvh){0}, copy.bvh_packets = NULL;
         kdtree_params kp = kdtree_default_params();
-        bvh_params bp = {.threads = 1}; /* zeros: the mesh's defaults */
+        bvh_params bp = {0}; /* zeros: the mesh's defaults, on one thread */
         if (!(c->kind == KDTREE ? mesh_build_tree(&copy, &kp) : mesh_build_bvh(&copy, &bp)))
             exit(1);
         bench_sink += copy.triangle_count;
