@@ -453,10 +453,10 @@ static int best_bin(const bvh_builder *bd, const bvh_bin *bins, double area,
         sweep = box_union(sweep, bins[k - 1].b), left += bins[k - 1].count;
         if (left == 0 || right_count[k] == 0)
             continue;
+        double tests = box_area(&sweep) * groups(bd, left) +
+                       right_area[k] * groups(bd, right_count[k]);
         double c = bd->p.traversal_cost +
-                   bd->p.intersection_cost *
-                       (box_area(&sweep) * groups(bd, left) +
-                        right_area[k] * groups(bd, right_count[k])) / area;
+                   bd->p.intersection_cost * tests / area; /* C(split) */
         if (c < *cost)
             *cost = c, best = k;
     }
