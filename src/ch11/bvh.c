@@ -618,6 +618,7 @@ static double float_box_area(const float b[6])
     return x * y + y * z + z * x;
 }
 
+/* <<opening a node's children>> ch10 */
 /* The children of binary node k, opened until there are width of them or
  * leaves only: the interior child with the largest box first. */
 static int open_children(const bvh_node *nodes, int k, int width,

@@ -248,6 +248,7 @@ static inline unsigned bvh_mask4(bvh_i4 hit)
 #endif
 }
 
+/* <<the slab test in four lanes>> ch10 */
 /* The slab of axis a narrows [*t0, *t1], lane by lane. */
 static inline void bvh_slab4(const float *box, int stride, const bvh_ray *r,
                              int a, bvh_f4 *t0, bvh_f4 *t1)
