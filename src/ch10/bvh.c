@@ -339,10 +339,10 @@ static int open_children(const bvh_node *nodes, int k, int width,
     while (n < width) {
         int widest = -1;
         double most = -1;
-        for (int c = 0; c < n; c++)
-            if (nodes[kids[c]].count == 0 &&
-                float_box_area(nodes[kids[c]].box) > most)
-                most = float_box_area(nodes[kids[c]].box), widest = c;
+        for (int j = 0; j < n; j++)
+            if (nodes[kids[j]].count == 0 &&
+                float_box_area(nodes[kids[j]].box) > most)
+                most = float_box_area(nodes[kids[j]].box), widest = j;
         if (widest < 0)
             break;
         int open = kids[widest];
