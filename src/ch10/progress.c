@@ -19,7 +19,7 @@ void progress_show(void *context, int rows_done, int rows,
 {
     progress *p = context;
     double elapsed = moment_now().wall - p->start;
-    (void)rays_done; /* chapter 9 gives their rate */
+    (void)rays_done; /* chapter 11 gives their rate */
     if (elapsed < 1.0)
         return;
     if (isatty(STDERR_FILENO)) {
