@@ -55,6 +55,7 @@ static bool parse_image(parser *p, scene *s)
                               IMAGE_MAX_PIXELS, w, h, w * h);
     s->cam.width = (int)w;
     s->cam.height = (int)h;
+    s->image_line = p->line_number;
     return true;
 }
 
@@ -186,6 +187,7 @@ static bool parse_statement(parser *p, void *target)
 bool scene_parse(scene *s, const char *text, size_t length, const char *name,
                  scene_error *err)
 {
+    scene_phase(s, "reading the scene");
     if (!parse_lines(text, length, name, err, parse_statement, s))
         return false;
     return true;

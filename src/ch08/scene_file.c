@@ -121,6 +121,7 @@ static bool parse_image(parser *p, scene *s)
                               IMAGE_MAX_PIXELS, w, h, w * h);
     s->cam.width = (int)w;
     s->cam.height = (int)h;
+    s->image_line = p->line_number;
     return true;
 }
 
@@ -519,6 +520,7 @@ static bool tree_error(const scene *s, const char *name,
 bool scene_parse(scene *s, const char *text, size_t length, const char *name,
                  scene_error *err)
 {
+    scene_phase(s, "reading the scene");
     if (!parse_lines(text, length, name, err, parse_statement, s))
         return false;
     /* <<finish the scene>> ch05 */
@@ -529,6 +531,7 @@ bool scene_parse(scene *s, const char *text, size_t length, const char *name,
     fit_shadow_budget(s);
     /* <<finish the scene>> += ch08 */
     scene_tree_failure why;
+    scene_phase(s, "building the trees");
     if (!scene_build_trees(s, &why))
         return tree_error(s, name, &why, err);
     return true;

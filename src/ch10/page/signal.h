@@ -9,7 +9,9 @@ struct sigaction {
     sigset_t sa_mask;
     int sa_flags;
 };
-enum { SIGHUP = 1, SIGINT = 2, SIGTERM = 15 };
+enum { SIGHUP = 1, SIGINT = 2, SIGQUIT = 3, SIGUSR1 = 10, SIGUSR2 = 12,
+       SIGPIPE = 13, SIGALRM = 14, SIGTERM = 15, SIGXCPU = 24,
+       SIGXFSZ = 25, SIGVTALRM = 26, SIGPROF = 27 }; /* Linux's numbers */
 enum { SA_RESETHAND = 1, SIG_BLOCK = 0, SIG_SETMASK = 2 };
 #define SIG_IGN ((void (*)(int))1)
 
