@@ -308,7 +308,7 @@ async function main() {
   // line while it runs, and none of it left in the statistics.
   const g = cases.progress;
   const gr = await run({ chapter: g.chapter, scene: "", size: g.size, pixel: g.pixel, text: g.text });
-  const stale = gr.stderr.split("\n").filter((line) => /rays\/s  |\r|, [0-9]+ s$/.test(line));
+  const stale = gr.stderr.split("\n").filter((line) => /\] +[0-9]+%|\r|, [0-9]+ s$/.test(line));
   report(gr.state === "done" && gr.progress !== "" && stale.length === 0 &&
          /^primary rays /m.test(gr.stderr),
          "a render's progress: " + (gr.progress ? "\"" + gr.progress + "\" while it ran" : "none shown") +

@@ -134,11 +134,12 @@ function makeSystem(files, args, out) {
     },
     fd_write: function (fd, iovs, count, writtenPtr) {
       if (fd !== 1 && fd !== 2) return ERRNO.BADF;
+      var pieces = out.stderr.length;
       var n = eachBuffer(iovs, count, function (ptr, len) {
         (fd === 1 ? out.stdout : out.stderr).push(bytes().slice(ptr, ptr + len));
         return len;
       });
-      if (fd === 2) out.onError();
+      if (fd === 2) out.onError(out.stderr.slice(pieces));
       view().setUint32(writtenPtr, n, true);
       return 0;
     },
@@ -281,8 +282,8 @@ async function run(job) {
   var module = await WebAssembly.compile(await gunzip(job.program));
   var out = { stdout: [], stderr: [] };
   var said = "", posted = 0, decoder = new TextDecoder();
-  out.onError = function () { // the progress, ten times a second at most
-    said += decoder.decode(out.stderr[out.stderr.length - 1], { stream: true });
+  out.onError = function (pieces) { // the progress, ten a second at most
+    pieces.forEach(function (p) { said += decoder.decode(p, { stream: true }); });
     var line = progressOf(said), now = performance.now();
     if (line && now - posted >= 100) {
       posted = now;
