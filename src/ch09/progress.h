@@ -6,6 +6,7 @@
 #include <stdbool.h>
 /* <<progress includes>> ch09 */
 #include <pthread.h>
+#include <signal.h>
 
 typedef struct {
     double start;       /* when the program began, on the monotonic clock */

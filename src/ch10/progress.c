@@ -78,7 +78,11 @@ void progress_begin(progress *p)
     /* <<start watching>> ch09 */
     pthread_mutex_init(&p->lock, NULL);
     moment_condition_init(&p->wake);
+    sigset_t all, before; /* the watcher starts with every signal held */
+    sigfillset(&all);
+    pthread_sigmask(SIG_BLOCK, &all, &before);
     p->watching = pthread_create(&p->watcher, NULL, watch, p) == 0;
+    pthread_sigmask(SIG_SETMASK, &before, NULL);
 }
 
 void progress_phase(void *context, const char *what)
