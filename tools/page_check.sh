@@ -98,7 +98,7 @@ case_json() {
   expected=$(cd "$work/mistake" && "$root/$bin/ch$last" scenes/good.scene --pixel 'samples 3' -o out.png 2>&1 >/dev/null)
   printf '"pixelMistake": {"chapter": "%s", "text": "sphere center 0 0 5 radius 1\\n", "pixel": "samples 3", "expected": "%s"},\n' "$last" "$expected"
   # Seconds of work on one thread, its progress shown while it runs.
-  printf '"progress": {"chapter": "%s", "size": "800x600", "pixel": "pattern grid samples 16", "text": "sphere center 0 0 5 radius 1\\n"},\n' "$last"
+  printf '"progress": {"chapter": "%s", "size": "1200x900", "pixel": "pattern grid samples 16", "text": "sphere center 0 0 5 radius 1\\n"},\n' "$last"
   # Minutes of work on one thread: 4000 x 3000 pixels, 16 rays each.
   printf '"long": {"chapter": "%s", "size": "4000x3000", "pixel": "pattern grid samples 16", "text": "sphere center 0 0 5 radius 1\\n"}}\n' "$last"
 } > "$work/cases.json" || exit 1
