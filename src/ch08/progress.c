@@ -47,11 +47,17 @@ static void end_line(progress *p)
 }
 
 /* <<the progress of a phase>> ch01 */
-/* "reading the scene, 3 s", if a line is due. */
+/* "reading the scene, 3 s" (only the name as the phase begins), if a
+ * line is due. */
 static void draw_phase(progress *p, double now)
 {
-    if (p->phase != NULL && line_due(p, now))
-        draw_line(p, now, "%s, %.0f s", p->phase, now - p->phase_start);
+    double taken = now - p->phase_start;
+    if (p->phase == NULL || !line_due(p, now))
+        return;
+    if (taken < 0.5)
+        draw_line(p, now, "%s", p->phase);
+    else
+        draw_line(p, now, "%s, %.0f s", p->phase, taken);
 }
 
 
