@@ -364,11 +364,10 @@ static double stats_value(const char *text, const char *name)
 
 /* A picture whose upper half is sky, one ray a pixel, and whose lower
  * half a floor lit through 256 shadow rays a point: its lower bands cost
- * a hundred times its upper ones, and the render seconds. Drawn on one thread with stderr a
- * terminal, each bar that comes after the first tenth of the render must
- * give the time left within a factor of two (and a second, for the
- * rounding to whole seconds and the quarter second between bars), and
- * the rate of rays within a factor of two of the render's mean. */
+ * a hundred times its upper ones, and the render seconds. Drawn on one
+ * thread with stderr a terminal, each bar from the first tenth of the
+ * work on must give the time left within a factor of two, and the rate
+ * of rays within a factor of two (below, what "truly" means). */
 START_TEST(test_the_time_left_holds_when_bands_cost_differently)
 {
     int master = posix_openpt(O_RDWR | O_NOCTTY);

@@ -965,7 +965,8 @@ Suite *ch10_antialiasing_suite(void)
     tcase_add_test(bad, test_a_tree_keeps_to_its_share_of_the_image);
     tcase_add_test(bad, test_the_budget_follows_size_and_pixel);
     tcase_add_test(bad, test_a_budget_error_points_at_its_cause);
-    tcase_add_test(bad, test_rays_per_pixel_mean_and_largest_count_the_same_rays);
+    tcase_add_test(bad,
+                   test_rays_per_pixel_mean_and_largest_count_the_same_rays);
     tcase_add_test(bad, test_bad_pixel_options_are_usage_errors);
     suite_add_tcase(s, bad);
     return s;
