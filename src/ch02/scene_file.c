@@ -139,7 +139,6 @@ static bool parse_statement(parser *p, void *target)
 bool scene_parse(scene *s, const char *text, size_t length, const char *name,
                  scene_error *err)
 {
-    scene_phase(s, "reading the scene");
     if (!parse_lines(text, length, name, err, parse_statement, s))
         return false;
     return true;
@@ -149,6 +148,7 @@ bool scene_load(scene *s, const char *path, scene_error *err)
 {
     char *text;
     size_t length;
+    scene_phase(s, "reading the scene"); /* its meshes too, from chapter 4 */
     if (!parse_read_file(path, SCENE_MAX_BYTES, &text, &length, err))
         return false;
     bool ok = scene_parse(s, text, length, path, err);

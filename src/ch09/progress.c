@@ -60,6 +60,21 @@ static void draw_phase(progress *p, double now)
         draw_line(p, now, "%s, %.0f s", p->phase, taken);
 }
 
+/* One thread at a time: from chapter 9, which has others, a lock. */
+static void hold(progress *p)
+{
+    (void)p;
+    /* <<hold the progress>> ch09 */
+    pthread_mutex_lock(&p->lock);
+}
+
+static void release(progress *p)
+{
+    (void)p;
+    /* <<release the progress>> ch09 */
+    pthread_mutex_unlock(&p->lock);
+}
+
 /* <<the watcher>> ch09 */
 /* The watcher's life: the phase in hand four times a second, until the
  * program ends. */
@@ -95,24 +110,20 @@ void progress_phase(void *context, const char *what)
 {
     progress *p = context;
     double now = moment_now().wall;
-    /* <<hold the progress>> ch09 */
-    pthread_mutex_lock(&p->lock);
+    hold(p);
     p->phase = what, p->phase_start = now;
     if (what == NULL)
         end_line(p);
     draw_phase(p, now);
-    /* <<release the progress>> ch09 */
-    pthread_mutex_unlock(&p->lock);
+    release(p);
 }
 
 void progress_render(progress *p)
 {
     progress_phase(p, NULL);
-    /* <<hold the progress>> ch09 */
-    pthread_mutex_lock(&p->lock);
+    hold(p);
     p->phase_start = moment_now().wall;
-    /* <<release the progress>> ch09 */
-    pthread_mutex_unlock(&p->lock);
+    release(p);
 }
 
 void progress_end(progress *p)
@@ -147,8 +158,7 @@ void progress_show(void *context, int rows_done, int rows,
                    long long rays_done)
 {
     progress *p = context;
-    /* <<hold the progress>> ch09 */
-    pthread_mutex_lock(&p->lock);
+    hold(p);
     double now = moment_now().wall, elapsed = now - p->phase_start;
     if (line_due(p, now) && (rows_done < rows || p->drawn > 0)) {
         static const char bar[] = "##############################"; /* 30 */
@@ -163,6 +173,5 @@ void progress_show(void *context, int rows_done, int rows,
     }
     if (rows_done == rows)
         end_line(p); /* on a terminal: the whole image's bar stays */
-    /* <<release the progress>> ch09 */
-    pthread_mutex_unlock(&p->lock);
+    release(p);
 }
