@@ -167,6 +167,22 @@ bool pixel_settings_parse(scene *s, const char *text, const char *name,
     return parse_lines(text, strlen(text), name, err, pixel_option_line, s);
 }
 
+/* What asked for the rays that pass a budget, and its line (0 for an
+ * option): the command line before the file, as it replaces the file's
+ * settings; the pixel settings where they ask for more than a ray a
+ * pixel, the size otherwise. */
+static const char *who_asked(const scene *s, const char *name,
+                             bool many_rays, int *line)
+{
+    *line = 0;
+    if (many_rays && s->pixel_option != NULL)
+        return "--pixel";
+    if (s->width_option > 0)
+        return "--size";
+    *line = many_rays && s->pixel_line > 0 ? s->pixel_line : s->image_line;
+    return name;
+}
+
 bool pixel_settings_final(scene *s, const char *name, parse_error *err)
 {
     if (s->pixel_option != NULL &&
@@ -176,21 +192,25 @@ bool pixel_settings_final(scene *s, const char *name, parse_error *err)
     int width = sized ? s->width_option : s->cam.width;
     int height = sized ? s->height_option : s->cam.height;
     long long worst = pixel_worst_rays(&s->pixels, width, height);
+    long long pixels = (long long)width * height;
+    long shadows = scene_shadow_rays(s);
     if (worst <= PIXEL_RAY_BUDGET) /* the rays besides each primary ray */
         s->ray_budget = IMAGE_RAY_BUDGET / worst - 1;
-    if (worst <= PIXEL_RAY_BUDGET && s->ray_budget >= scene_shadow_rays(s))
+    if (worst <= PIXEL_RAY_BUDGET && s->ray_budget >= shadows)
         return true;
-    /* the option that set the settings, or the size; else the statement */
-    const char *who = s->pixel_option ? "--pixel" : sized ? "--size" : name;
+    int line;
+    const char *who = who_asked(s, name, worst > pixels, &line);
+    long long each = (worst + pixels - 1) / pixels; /* a pixel, at most */
     if (worst <= PIXEL_RAY_BUDGET) /* the rays fit, their shadow rays not */
         return parse_fail_on_line(
-            err, who, who == name ? s->pixel_line : 0, PARSE_OVER_BUDGET,
-            "up to %lld primary rays for %dx%d pixels, each with the "
-            "shadow rays of its hit, would pass the budget of %lld rays "
-            "an image", worst, width, height, IMAGE_RAY_BUDGET);
-    return parse_fail_on_line(err, who, who == name ? s->pixel_line : 0,
-                              PARSE_OVER_BUDGET,
-                              "up to %lld primary rays for %dx%d pixels "
-                              "would pass the budget of %lld an image",
-                              worst, width, height, PIXEL_RAY_BUDGET);
+            err, who, line, PARSE_OVER_BUDGET,
+            "%dx%d pixels of up to %lld primary rays each, and the lights' "
+            "%ld shadow rays for each primary ray, would pass the budget "
+            "of %lld rays an image", width, height, each, shadows,
+            IMAGE_RAY_BUDGET);
+    return parse_fail_on_line(err, who, line, PARSE_OVER_BUDGET,
+                              "%dx%d pixels of up to %lld primary rays "
+                              "each would pass the budget of %lld primary "
+                              "rays an image", width, height, each,
+                              PIXEL_RAY_BUDGET);
 }

@@ -11,9 +11,9 @@
 #include <stdatomic.h>
 #include <stdlib.h>
 #include <string.h>
-#include <time.h>
 #include <unistd.h>
 #include "memory.h"
+#include "moment.h"
 /* <<render includes>> += ch12 */
 #include "antialias.h"
 
@@ -265,6 +265,27 @@ static int rows_per_band(int height)
     return rows < 1 ? 1 : rows < BAND_ROWS ? rows : BAND_ROWS;
 }
 
+static long long greatest_common_divisor(long long a, long long b)
+{
+    while (b != 0) {
+        long long r = a % b;
+        a = b, b = r;
+    }
+    return a;
+}
+
+/* The band drawn at turn t of n: each turn steps about 0.618 of the image
+ * down from the last, wrapping around (a step that shares no factor with
+ * n, so that n turns draw every band once), which spreads the bands done
+ * at any moment evenly over the image. */
+static int band_of_turn(int t, int n)
+{
+    long long step = (long long)(0.6180339887 * n);
+    while (greatest_common_divisor(step, n) != 1)
+        step++; /* 1 and n share none: it ends */
+    return (int)((long long)t * step % n);
+}
+
 /* Every ray a render has traced: primary, shadow and secondary. */
 static long long rays_of(const render_stats *st)
 {
@@ -289,10 +310,11 @@ static int cores_online(void)
 /* The next band of rows [*first, *last); false when none is left. */
 static bool take_band(band_queue *q, int *first, int *last)
 {
-    int band = atomic_fetch_add(&q->next_band, 1);
-    if (band >= (q->img->height + q->band_rows - 1) / q->band_rows)
+    int turn = atomic_fetch_add(&q->next_band, 1);
+    int bands = (q->img->height + q->band_rows - 1) / q->band_rows;
+    if (turn >= bands)
         return false;
-    *first = band * q->band_rows;
+    *first = band_of_turn(turn, bands) * q->band_rows;
     *last = *first + q->band_rows < q->img->height ? *first + q->band_rows
                                                    : q->img->height;
     return true;
@@ -332,11 +354,7 @@ static void *report_thread(void *queue)
     band_queue *q = queue;
     pthread_mutex_lock(&q->lock);
     while (!q->finished) {
-        struct timespec until;
-        clock_gettime(CLOCK_REALTIME, &until); /* the condition's clock */
-        until.tv_nsec += 250000000;
-        if (until.tv_nsec >= 1000000000)
-            until.tv_sec++, until.tv_nsec -= 1000000000;
+        struct timespec until = moment_deadline(0.25);
         pthread_cond_timedwait(&q->wake, &q->lock, &until);
         if (!q->finished && atomic_load(&q->rows_done) < q->img->height)
             q->how->progress(q->how->progress_context,
@@ -380,7 +398,7 @@ void render_in_bands(const scene *s, image *img, const render_settings *how,
                     .band_rows = rows_per_band(img->height)};
     atomic_init(&q.next_band, 0), atomic_init(&q.rows_done, 0);
     atomic_init(&q.rays_done, 0);
-    pthread_mutex_init(&q.lock, NULL), pthread_cond_init(&q.wake, NULL);
+    pthread_mutex_init(&q.lock, NULL), moment_condition_init(&q.wake);
     band_worker one, *w = NULL;
     int n = how->threads > 0 ? how->threads : cores_online();
     int started = 1, first, last;

@@ -120,14 +120,19 @@ void report_bvhs(const scene *s)
 
 void report_pixels(const render_stats *st)
 {
-    long long pixels = 0, largest = 0, divided = 0;
+    long long pixels = 0, rays = 0, largest = 0, divided = 0;
     for (int n = 0; n <= PIXEL_MAX_RAYS; n++)
         if (st->pixel_rays[n] > 0)
-            pixels += st->pixel_rays[n], largest = n;
+            pixels += st->pixel_rays[n], rays += n * st->pixel_rays[n],
+                largest = n;
     if (pixels == 0)
         return; /* one ray through each centre: nothing to tell */
-    fprintf(stderr, "rays per pixel     %.2f mean, %lld largest\n",
-            (double)st->primary_rays / (double)pixels, largest);
+    fprintf(stderr, "rays per pixel     %.2f mean, %lld largest",
+            (double)rays / (double)pixels, largest);
+    if (st->primary_rays > rays)
+        fprintf(stderr, ", and %lld at corners no pixel owns",
+                st->primary_rays - rays);
+    fputc('\n', stderr);
     int deepest = 0;
     for (int d = 0; d <= PIXEL_MAX_DEPTH; d++)
         if (st->pixel_depths[d] > 0)

@@ -6,14 +6,20 @@
  *   node tools/checks/page_check.js BROWSER BOOK.html CASES.json
  *
  * CASES.json: { "renders": [ { "chapter", "scene", "size", "reference" }
- * ...], "mistake": { "chapter", "text", "expected" }, "long": { "chapter",
- * "size", "pixel" } }: every render is made in the page (the playground of
+ * ...], "mistake": { "chapter", "text", "expected" }, "pixelMistake": {
+ * "chapter", "text", "pixel", "expected" }, "progress": { "chapter", "size",
+ * "pixel", "text" }, "long": { "chapter", "size", "pixel" } }: every render
+ * is made in the page (the playground of
  * that chapter and scene, at --size size) and compared with reference, a
  * PNG that bin/chNN drew (base64): each channel within 1 code, and how
  * many pixels differ at all is printed. The mistake's text, in the
  * chapter's empty scene, must give the program's own error line expected
  * (as bin/chNN wrote it for the same file name) and select that line and
- * column in the editor. The long render must be cancelled within a second
+ * column in the editor; the pixel mistake, bin/chNN's line for the same
+ * --pixel, shown as the option's, selected in the --pixel box and not in
+ * the editor. The render of "progress" must show its progress line in the
+ * status while it runs, and leave none in the statistics under it
+ * (--stats). The long render must be cancelled within a second
  * of Cancel, and the playground must render again afterwards. The network
  * is off for the whole page (offline, and no request but file:, data: and
  * blob: may be made). "control" is a render whose reference is another
@@ -133,13 +139,21 @@ function renderInPage(c) {
       return { before: before, state: state, after: div.dataset.state,
                ms: performance.now() - t };
     }
+    var progress = "", seen = new MutationObserver(function () {
+      var now = div.querySelector(".playground-status").textContent;
+      if (/rays\/s/.test(now)) progress = now;
+    });
+    seen.observe(div.querySelector(".playground-status"), { childList: true, characterData: true, subtree: true });
     var state = await settled(div, 120000);
+    seen.disconnect();
     var out = { state: state, status: div.querySelector(".playground-status").textContent,
-                stderr: div.querySelector(".playground-stats").textContent };
+                stderr: div.querySelector(".playground-stats").textContent, progress: progress };
     if (c.text !== undefined) {
       var editor = div.querySelector("textarea");
       out.selection = [editor.selectionStart, editor.selectionEnd];
+      out.textLength = editor.value.length;
     }
+    if (pixel) out.pixelSelection = [pixel.selectionStart, pixel.selectionEnd];
     if (state !== "done" || !c.reference) return out;
     var canvas = div.querySelector("canvas");
     var image = new Image();
@@ -276,6 +290,30 @@ async function main() {
          "a mistake (the playground's state: " + r.state + "): \"" + r.status + "\", the program's line " +
          (r.stderr.trim() === expected ? "as bin/ch" + m.chapter + " wrote it" : JSON.stringify(r.stderr)) +
          ", selected from " + r.selection[0] + " (its column: " + want + ")");
+
+  // A mistake in --pixel is the option's: said so, and selected in its
+  // box, not in the scene's text.
+  const px = cases.pixelMistake;
+  const pr = await run({ chapter: px.chapter, scene: "", size: "", text: px.text, pixel: px.pixel });
+  const pwhere = /^--pixel:1:(\d+): error: (.*)$/.exec(px.expected.trim());
+  const pcol = pwhere ? +pwhere[1] : -1;
+  report(pr.state === "error" && pr.stderr.trim() === px.expected.trim() &&
+         pr.status === "--pixel, column " + pcol + ": " + (pwhere ? pwhere[2] : "") &&
+         pr.selection[0] === pr.selection[1] && pr.pixelSelection[0] === pcol - 1,
+         "a --pixel mistake: \"" + pr.status + "\", the scene's text selected from " +
+         pr.selection[0] + " to " + pr.selection[1] + ", the --pixel box from " +
+         pr.pixelSelection[0] + " (its column: " + pcol + ")");
+
+  // A render of a few seconds, with --stats: its progress in the status
+  // line while it runs, and none of it left in the statistics.
+  const g = cases.progress;
+  const gr = await run({ chapter: g.chapter, scene: "", size: g.size, pixel: g.pixel, text: g.text });
+  const stale = gr.stderr.split("\n").filter((line) => /\] +[0-9]+%|\r|, [0-9]+ s$/.test(line));
+  report(gr.state === "done" && gr.progress !== "" && stale.length === 0 &&
+         /^primary rays /m.test(gr.stderr),
+         "a render's progress: " + (gr.progress ? "\"" + gr.progress + "\" while it ran" : "none shown") +
+         "; in the statistics: " + (stale.length ? JSON.stringify(stale) : "no progress line") +
+         " (" + gr.state + ": " + gr.status + ")");
 
   const l = cases.long;
   const cancelled = await run({ chapter: l.chapter, scene: "", size: l.size, pixel: l.pixel,

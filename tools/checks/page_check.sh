@@ -7,7 +7,9 @@
 # For each chapter NN: every scene the chapter shows, and its empty scene,
 # drawn by BIN_DIR/chNN at --size SIZE as references; then, in the page,
 # the same renders (each within 1 code a channel), a scene with a mistake
-# (the program's own located error, as bin/chNN wrote it), a long render
+# (the program's own located error, as bin/chNN wrote it), a mistake in
+# --pixel (the option's, not the scene's), a render of some seconds (its
+# progress shown while it runs, none left under it), a long render
 # cancelled, and no request outside the file. Skipped, with status 0,
 # when Chromium or node is not installed, or the page has no programs.
 #
@@ -89,8 +91,16 @@ case_json() {
   printf 'camera fov 60\nsphere center 0 0 5 radius banana\n' > "$work/mistake/scenes/yours.scene"
   expected=$(cd "$work/mistake" && "$root/$bin/ch02" scenes/yours.scene -o out.png 2>&1 >/dev/null)
   printf '"mistake": {"chapter": "02", "text": "camera fov 60\\nsphere center 0 0 5 radius banana\\n", "expected": "%s"},\n' "$expected"
+  last=$(echo "$@" | tr ' ' '\n' | tail -n 1)
+  # A mistake in the last chapter's --pixel, the program's line as it
+  # writes it, for a scene with none.
+  printf 'sphere center 0 0 5 radius 1\n' > "$work/mistake/scenes/good.scene"
+  expected=$(cd "$work/mistake" && "$root/$bin/ch$last" scenes/good.scene --pixel 'samples 3' -o out.png 2>&1 >/dev/null)
+  printf '"pixelMistake": {"chapter": "%s", "text": "sphere center 0 0 5 radius 1\\n", "pixel": "samples 3", "expected": "%s"},\n' "$last" "$expected"
+  # Seconds of work on one thread, its progress shown while it runs.
+  printf '"progress": {"chapter": "%s", "size": "1200x900", "pixel": "pattern grid samples 16", "text": "sphere center 0 0 5 radius 1\\n"},\n' "$last"
   # Minutes of work on one thread: 4000 x 3000 pixels, 16 rays each.
-  printf '"long": {"chapter": "%s", "size": "4000x3000", "pixel": "pattern grid samples 16", "text": "sphere center 0 0 5 radius 1\\n"}}\n' "$(echo "$@" | tr ' ' '\n' | tail -n 1)"
+  printf '"long": {"chapter": "%s", "size": "4000x3000", "pixel": "pattern grid samples 16", "text": "sphere center 0 0 5 radius 1\\n"}}\n' "$last"
 } > "$work/cases.json" || exit 1
 
 node "$tools_dir/page_check.js" "$browser" "$book" "$work/cases.json"

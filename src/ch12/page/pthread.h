@@ -39,6 +39,19 @@ static inline int pthread_cond_init(pthread_cond_t *c, const void *a)
 {
     return (void)c, (void)a, 0;
 }
+static inline int pthread_condattr_init(pthread_condattr_t *a)
+{
+    return (void)a, 0;
+}
+static inline int pthread_condattr_setclock(pthread_condattr_t *a,
+                                            clockid_t clock)
+{
+    return (void)a, (void)clock, 0;
+}
+static inline int pthread_condattr_destroy(pthread_condattr_t *a)
+{
+    return (void)a, 0;
+}
 static inline int pthread_cond_signal(pthread_cond_t *c) { return (void)c, 0; }
 static inline int pthread_cond_destroy(pthread_cond_t *c) { return (void)c, 0; }
 static inline int pthread_cond_timedwait(pthread_cond_t *c,

@@ -13,7 +13,9 @@
  * Each playground whose chapter has a program gets an editor, the --size
  * and --pixel settings (the latter from chapter 10, which adds it), Render
  * and Cancel buttons, a status line, the picture and the --stats counts.
- * A render runs in a new worker, which Cancel ends. The playground's
+ * A render runs in a new worker, which Cancel ends; the status line shows
+ * the time and the program's progress line while it runs, and an error
+ * where it is (in the editor, or in the --pixel box). The playground's
  * data-state says where it is: idle, rendering, done, error, cancelled
  * (the browser checks, tools/checks/page_check.js, read it).
  */
@@ -63,10 +65,11 @@
     return meshes;
   }
 
-  // "scenes/x.scene:3:7: error: what": the line, the column and the message.
+  // "scenes/x.scene:3:7: error: what": the name (the scene's file, a
+  // mesh's, or an option: --pixel), the line, the column and the message.
   function located(stderr) {
-    var m = /^[^\n]*?:(\d+):(\d+): error: ([^\n]*)$/m.exec(stderr);
-    return m ? { line: +m[1], column: +m[2], message: m[3], text: m[0] } : null;
+    var m = /^([^\n]*?):(\d+):(\d+): error: ([^\n]*)$/m.exec(stderr);
+    return m ? { name: m[1], line: +m[2], column: +m[3], message: m[4], text: m[0] } : null;
   }
 
   function selectAt(editor, line, column) {
@@ -168,31 +171,48 @@
     ui.status.className = "playground-status";
     ui.status.textContent = "rendering…";
     ui.cancel.disabled = false;
+    job.progress = "";
     job.timer = setInterval(function () {
-      ui.status.textContent = "rendering… " + seconds(performance.now() - job.started);
+      ui.status.textContent = "rendering… " + seconds(performance.now() - job.started) +
+        (job.progress ? " — " + job.progress : "");
     }, 250);
     worker.onmessage = function (event) {
       if (job.worker !== worker) return;
+      if (event.data.progress !== undefined) { job.progress = event.data.progress; return; }
       stop(job);
       ui.cancel.disabled = true;
-      show(div, ui, event.data);
+      show(div, ui, event.data, sceneName);
     };
     worker.postMessage({ program: program.textContent.trim(), scene: ui.editor.value,
                          sceneName: sceneName, meshes: meshesOf(ui.editor.value),
                          args: argumentsOf(ui, sceneName) });
   }
 
-  function show(div, ui, result) {
+  // Where an error is: in the scene's text, a line and a column selected
+  // in the editor; in the --pixel box (one line), its column there; in
+  // another file (a mesh), only said.
+  function showError(ui, error, sceneName) {
+    if (error.name === sceneName) {
+      selectAt(ui.editor, error.line, error.column);
+      return "line " + error.line + ", column " + error.column + ": " + error.message;
+    }
+    if (error.name === "--pixel" && ui.pixel) {
+      ui.pixel.focus();
+      ui.pixel.setSelectionRange(Math.max(error.column - 1, 0), ui.pixel.value.length);
+      return "--pixel, column " + error.column + ": " + error.message;
+    }
+    return error.name + ", line " + error.line + ", column " + error.column + ": " + error.message;
+  }
+
+  function show(div, ui, result, sceneName) {
     var error = result.status !== 0 ? located(result.stderr) : null;
     ui.stats.textContent = result.stderr;
     ui.stats.hidden = result.stderr === "";
     if (result.status !== 0) {
       div.dataset.state = "error";
       ui.status.className = "playground-status playground-error";
-      ui.status.textContent = error
-        ? "line " + error.line + ", column " + error.column + ": " + error.message
+      ui.status.textContent = error ? showError(ui, error, sceneName)
         : (result.stderr.trim().split("\n")[0] || "the program stopped (status " + result.status + ")");
-      if (error) selectAt(ui.editor, error.line, error.column);
       return;
     }
     div.dataset.state = "done";

@@ -9,12 +9,19 @@
  *              held here in memory ("." is its one preopened folder)
  *   meshes     [[name, gzip base64], ...]: files under meshes/ beside it
  *   args       the command line after the program's name
- * Message out: { status, ms, stderr, picture }
+ * Messages out, while it runs: { progress }, the program's progress line
+ * as it is redrawn (at most ten a second); at the end:
+ *              { status, ms, stderr, picture }
  *   status     the program's exit status (-1: it trapped)
  *   ms         the run's wall time, load, build and render
- *   stderr     what it wrote there: --stats, or its located error
+ *   stderr     what it wrote there, without its progress lines: --stats,
+ *              or its located error
  *   picture    { width, height, rgba } from standard output (the page's
  *              png.h writes the width, the height, then RGBA), or null
+ *
+ * Standard error is a terminal to the program: it redraws its progress
+ * line in place, starting it with a carriage return, and such a line is
+ * the progress, shown while it runs and not kept in stderr.
  *
  * The system is the least the programs need: arguments, clocks, reading
  * the in-memory files, writing standard output and error, exit. Every
@@ -23,7 +30,8 @@
 "use strict";
 
 var ERRNO = { BADF: 8, INVAL: 28, NOENT: 44, NOSYS: 52, NOTDIR: 54, NOTSUP: 58 };
-var FILETYPE = { UNKNOWN: 0, DIRECTORY: 3, REGULAR: 4 };
+var FILETYPE = { UNKNOWN: 0, CHARACTER_DEVICE: 2, DIRECTORY: 3, REGULAR: 4 };
+var RIGHT = { FD_SEEK: 1n << 2n, FD_TELL: 1n << 5n };
 var ALL_RIGHTS = 0xffffffffffffffffn;
 var PREOPEN_FD = 3;
 
@@ -126,10 +134,12 @@ function makeSystem(files, args, out) {
     },
     fd_write: function (fd, iovs, count, writtenPtr) {
       if (fd !== 1 && fd !== 2) return ERRNO.BADF;
+      var pieces = out.stderr.length;
       var n = eachBuffer(iovs, count, function (ptr, len) {
         (fd === 1 ? out.stdout : out.stderr).push(bytes().slice(ptr, ptr + len));
         return len;
       });
+      if (fd === 2) out.onError(out.stderr.slice(pieces));
       view().setUint32(writtenPtr, n, true);
       return 0;
     },
@@ -157,18 +167,23 @@ function makeSystem(files, args, out) {
       return 0;
     },
     fd_close: function (fd) { return open.delete(fd) ? 0 : ERRNO.BADF; },
-    // Standard input, output and error are of no known type: not a
-    // terminal, so the program shows no progress bar and writes its picture.
+    // Standard input and output are of no known type: not a terminal, so
+    // that the program writes its picture. Standard error is a terminal
+    // (a character device that cannot seek), where the program redraws
+    // its progress line in place.
     fd_fdstat_get: function (fd, ptr) {
       var f = fd === PREOPEN_FD ? { folder: true } : open.get(fd);
       if (fd > 2 && !f) return ERRNO.BADF;
-      var type = fd <= 2 ? FILETYPE.UNKNOWN
+      var type = fd === 2 ? FILETYPE.CHARACTER_DEVICE
+               : fd <= 2 ? FILETYPE.UNKNOWN
                : f.folder ? FILETYPE.DIRECTORY : FILETYPE.REGULAR;
+      var rights = fd === 2 ? ALL_RIGHTS & ~(RIGHT.FD_SEEK | RIGHT.FD_TELL)
+                            : ALL_RIGHTS;
       var v = view();
       v.setUint8(ptr, type);
       v.setUint16(ptr + 2, 0, true);
-      v.setBigUint64(ptr + 8, ALL_RIGHTS, true);
-      v.setBigUint64(ptr + 16, ALL_RIGHTS, true);
+      v.setBigUint64(ptr + 8, rights, true);
+      v.setBigUint64(ptr + 16, rights, true);
       return 0;
     },
     fd_fdstat_set_flags: function () { return 0; },
@@ -246,10 +261,35 @@ async function filesOf(job) {
   return files;
 }
 
+// Standard error as a terminal leaves it: a line that was redrawn in
+// place (it holds a carriage return) was the progress, and goes.
+function withoutProgress(text) {
+  return text.split("\n").filter(function (line) {
+    return line.indexOf("\r") < 0;
+  }).join("\n");
+}
+
+// The progress line being drawn now: what follows the last carriage
+// return of the last line, if that line has one.
+function progressOf(text) {
+  var line = text.slice(text.lastIndexOf("\n") + 1);
+  var at = line.lastIndexOf("\r");
+  return at < 0 ? null : line.slice(at + 1).trim();
+}
+
 async function run(job) {
   var files = await filesOf(job);
   var module = await WebAssembly.compile(await gunzip(job.program));
   var out = { stdout: [], stderr: [] };
+  var said = "", posted = 0, decoder = new TextDecoder();
+  out.onError = function (pieces) { // the progress, ten a second at most
+    pieces.forEach(function (p) { said += decoder.decode(p, { stream: true }); });
+    var line = progressOf(said), now = performance.now();
+    if (line && now - posted >= 100) {
+      posted = now;
+      postMessage({ progress: line });
+    }
+  };
   var system = makeSystem(files, ["program"].concat(job.args), out);
   var instance = await WebAssembly.instantiate(module, { wasi_snapshot_preview1: system.imports });
   system.setMemory(instance.exports.memory);
@@ -262,7 +302,7 @@ async function run(job) {
   }
   var ms = performance.now() - start;
   var picture = status === 0 ? pictureOf(concat(out.stdout)) : null;
-  var stderr = new TextDecoder().decode(concat(out.stderr));
+  var stderr = withoutProgress(new TextDecoder().decode(concat(out.stderr)));
   postMessage({ status: status, ms: ms, stderr: stderr, picture: picture },
               picture ? [picture.rgba.buffer] : []);
 }
