@@ -10,6 +10,7 @@ struct sigaction {
     int sa_flags;
 };
 enum { SIGHUP = 1, SIGINT = 2, SIGTERM = 15 };
+enum { SIGILL = 4, SIGBUS = 7, SIGFPE = 8, SIGSEGV = 11 }; /* faults */
 enum { SA_RESETHAND = 1, SIG_BLOCK = 0, SIG_SETMASK = 2 };
 #define SIG_IGN ((void (*)(int))1)
 
@@ -22,6 +23,15 @@ static inline int sigprocmask(int how, const sigset_t *s, sigset_t *was)
 {
     (void)how, (void)s;
     return was != NULL ? *was = 0, 0 : 0;
+}
+static inline int sigfillset(sigset_t *s) { return *s = ~0u, 0; }
+static inline int sigdelset(sigset_t *s, int sig)
+{
+    return *s &= ~(1u << sig), 0;
+}
+static inline int pthread_sigmask(int how, const sigset_t *s, sigset_t *was)
+{
+    return sigprocmask(how, s, was);
 }
 /* Every signal is ignored already: output.c then leaves it so. */
 static inline int sigaction(int sig, const struct sigaction *a,
