@@ -31,9 +31,8 @@ static atomic_bool busy;
 
 int pool_threads(int threads)
 {
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    long n = threads > 0 ? threads : cores > 0 ? cores : 1;
-    return n < POOL_MAX_THREADS ? (int)n : POOL_MAX_THREADS;
+    long n = threads > 0 ? threads : sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n < POOL_MAX_THREADS ? (int)n : POOL_MAX_THREADS;
 }
 
 int pool_started(void)
@@ -99,7 +98,7 @@ static void start_helper(void)
 int pool_for(int count, int threads, void (*job)(void *, int),
              void *context)
 {
-    int n = pool_threads(threads);
+    int n = count > 1 ? pool_threads(threads) : 1; /* asks the system */
     n = n < count ? n : count;
     if (n <= 1 || atomic_exchange(&busy, true)) { /* here, at once */
         for (int k = 0; k < count; k++)
