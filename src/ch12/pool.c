@@ -95,16 +95,11 @@ static void start_helper(void)
 }
 
 /* <<a loop on the pool>> ch11 */
-int pool_for(int count, int threads, void (*job)(void *, int),
-             void *context)
+/* Sets out a loop of count jobs for at most n - 1 helpers, starting the
+ * helpers it lacks, and wakes them; how many seats it offered. */
+static int offer_seats(int n, void (*job)(void *, int), void *context,
+                       int count)
 {
-    int n = count > 1 ? pool_threads(threads) : 1; /* asks the system */
-    n = n < count ? n : count;
-    if (n <= 1 || atomic_exchange(&busy, true)) { /* here, at once */
-        for (int k = 0; k < count; k++)
-            job(context, k);
-        return 1;
-    }
     pthread_mutex_lock(&pool.lock);
     while (pool.started < n - 1 && !pool.cannot_start)
         start_helper();
@@ -115,12 +110,33 @@ int pool_for(int count, int threads, void (*job)(void *, int),
     for (int k = 0; k < helpers; k++)
         pthread_cond_signal(&pool.work);
     pthread_mutex_unlock(&pool.lock);
-    take_jobs(job, context, count); /* this thread is a worker too */
+    return helpers;
+}
+
+/* Once no job is left to take: withdraws the seats not taken, and waits
+ * until the helpers in the loop have left it. */
+static void wait_for_helpers(void)
+{
     pthread_mutex_lock(&pool.lock);
-    pool.seats = 0; /* no job is left to take */
+    pool.seats = 0;
     while (pool.helping > 0)
         pthread_cond_wait(&pool.done, &pool.lock);
     pthread_mutex_unlock(&pool.lock);
+}
+
+int pool_for(int count, int threads, void (*job)(void *, int),
+             void *context)
+{
+    int n = count > 1 ? pool_threads(threads) : 1; /* asks the system */
+    n = n < count ? n : count;
+    if (n <= 1 || atomic_exchange(&busy, true)) { /* here, at once */
+        for (int k = 0; k < count; k++)
+            job(context, k);
+        return 1;
+    }
+    int helpers = offer_seats(n, job, context, count);
+    take_jobs(job, context, count); /* this thread is a worker too */
+    wait_for_helpers();
     atomic_store(&busy, false);
     return 1 + helpers;
 }
