@@ -143,6 +143,28 @@ START_TEST(test_the_kd_trees_line_holds_no_bvh_build_time)
 }
 END_TEST
 
+/* --stats says how the scene's OBJ file was read (the teapot's 124,599
+ * bytes: two parts of OBJ_MIN_PART_BYTES at most, on any number of
+ * threads above one) and how many helpers the pool started: one fewer
+ * than the threads asked for, the bands being more than the threads. */
+START_TEST(test_stats_count_the_parts_read_and_the_threads_started)
+{
+    char errors[4096], scene_path[192];
+    snprintf(scene_path, sizeof scene_path, "%s", teapot_scene());
+    const char *args[] = {scene_path, "--threads", "3",
+                          "--stats",  "-o",        tmp_path("s.png"),
+                          NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
+    ck_assert_msg(strstr(errors, "\nmeshes read        1 in parts "
+                                 "(2 parts), 0 by one thread\n"),
+                  "%s", errors);
+    ck_assert_msg(strstr(errors, "\npool threads       2 started for the "
+                                 "run\n"),
+                  "%s", errors);
+    ck_assert_ptr_nonnull(strstr(errors, "\none-thread time    file read "));
+}
+END_TEST
+
 START_TEST(test_bad_thread_counts_are_usage_errors)
 {
     const char *bad[] = {"0", "-1", "abc", "2x", "257", "", "1e3"};
@@ -248,6 +270,8 @@ Suite *ch11_speed_suite(void)
     tcase_add_test(threads, test_statistics_add_up_whatever_the_thread_count);
     tcase_add_test(threads, test_bad_thread_counts_are_usage_errors);
     tcase_add_test(threads, test_the_kd_trees_line_holds_no_bvh_build_time);
+    tcase_add_test(threads,
+                   test_stats_count_the_parts_read_and_the_threads_started);
     tcase_add_test(threads, test_bands_on_threads_draw_what_one_render_draws);
     tcase_add_test(threads, test_the_threads_counts_add_up_to_one_renders);
     suite_add_tcase(s, threads);
