@@ -7,6 +7,8 @@
 #include "memory.h"
 /* <<mesh.c includes>> ch06 */
 #include "offset.h"
+/* <<mesh.c includes>> += ch11 */
+#include "pool.h"
 
 /* <<mesh storage>> ch04 */
 void mesh_free(mesh *m)
@@ -518,9 +520,9 @@ static int pack_leaves(mesh *m, triangle_packet *packets, int from, int to,
 }
 
 /* <<making a mesh's packets>> ch11 */
-/* The work around a mesh's build, in pieces for the build's threads:
- * pieces of its triangles for their boxes, then of the tree's nodes for
- * their packets. */
+/* The work around a mesh's build, in pieces for the pool: pieces of its
+ * triangles for their boxes, then of the tree's nodes for their
+ * packets. */
 typedef struct {
     mesh *m;
     box *bounds;
@@ -555,7 +557,7 @@ static void triangles_boxed(mesh *m, box *bounds, int threads)
 {
     mesh_pieces w = {.m = m, .bounds = bounds,
                      .pieces = pieces_of(m->triangle_count)};
-    bvh_run_jobs(w.pieces, threads, box_piece, &w);
+    pool_for(w.pieces, threads, box_piece, &w);
 }
 
 static void pack_piece(void *pieces, int piece)
@@ -581,7 +583,7 @@ static bool make_packets(mesh *m)
                                      sizeof(triangle_packet));
     if (w.packets == NULL)
         return false;
-    bvh_run_jobs(w.pieces, m->bvh.build_threads, pack_piece, &w);
+    pool_for(w.pieces, m->bvh.build_threads, pack_piece, &w);
     m->bvh_packets = w.packets;
     m->bvh_packet_count = w.first[w.pieces];
     return true;

@@ -52,6 +52,9 @@ typedef struct {
     triangle_packet *bvh_packets; /* the BVH's leaves' triangles, leaf by leaf */
     int bvh_packet_count;
     bool bvh_in_float; /* its leaves decided in float alone (bvh-float) */
+    /* <<mesh members>> += ch11 */
+    int parts; /* of chapter 11's reader; 0: chapter 4's read it */
+    double file_seconds, arrays_seconds; /* its reading on one thread */
 } mesh;
 
 void mesh_free(mesh *m);
@@ -193,8 +196,8 @@ int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
 #define MESH_BVH_MAX_BYTES_PER_TRIANGLE 100
 /* <<mesh intersection declarations>> += ch11 */
 
-/* The build's threads make a large mesh's boxes and packets in up to
- * this many pieces, of about BVH_SHARED_ITEMS triangles. */
+/* A large mesh's boxes and packets are made in up to this many pieces,
+ * of about BVH_SHARED_ITEMS triangles. */
 #define MESH_BVH_PIECES 64
 
 #endif
