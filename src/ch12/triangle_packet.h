@@ -1,18 +1,18 @@
 /* triangle_packet.h: triangles TRIANGLE_PACKET_WIDTH at a time, in float
  * (chapter 10).
  *
- * A triangle_packet holds W triangles of a mesh in structure of arrays:
- * their corners rounded to float, lane by lane, and their indices in the
- * mesh (-1: an empty lane, which is never hit). The float test is a filter
- * that keeps every lane chapter 4's double test could hit; the lanes it
- * keeps are decided by that double test on the triangles' double corners
- * (a leaf's, as chapter 8 copies them), so
- * every answer is the double test's to the last bit, ties included.
+ * A triangle_packet holds PACKET_W triangles of a mesh in structure of
+ * arrays: their corners rounded to float, lane by lane, and their indices
+ * in the mesh (-1: an empty lane, which is never hit). The float test is
+ * a filter that keeps every lane chapter 4's double test could hit; the
+ * lanes it keeps are decided by that double test on the mesh's own
+ * corners, so every answer is the double test's to the last bit, ties
+ * included.
  *
  *   triangle_packets_fill     packs triangles (indices into a mesh)
  *   packet_ray_of             a ray's constants, rounded to float
- *   triangle_packets_nearest  the nearest hit, keeping the tie rule
- *   triangle_packets_any      any hit, for a shadow ray
+ *   triangle_packets_nearest_in_mesh   the nearest hit, by the tie rule
+ *   triangle_packets_any_in_mesh       any hit, for a shadow ray
  *   triangle_packets_nearest_float, triangle_packets_any_float
  *                             the same decided in float alone: faster,
  *                             and float's answers, not chapter 4's
@@ -92,34 +92,21 @@ unsigned triangle_packet_candidates_scalar(const triangle_packet *p,
 bool triangle_packet_stops_at_edges(const triangle_packet *p,
                                     const packet_ray *r);
 
-/* The nearest triangle of count packets that r hits in (t_min, t_max],
- * chapter 4's test deciding on corners, whose element p * W + k holds the
- * double corners of packet p's lane k (chapter 8's leaf_corners, for
- * packets filled from the same items), and keeping the tie rule of
- * triangle_nearest_of_leaf: a hit at t_max itself wins when its index is
- * below best (-1: nothing found yet, t_max excluded). Returns its index in
- * the mesh and fills *out; or -1. Adds the double tests to *decided (not
- * NULL). */
-int triangle_packets_nearest(const packet_ray *r,
-                             const triangle_packet *packets, int count,
-                             const triangle_corners *corners, double t_min,
-                             double t_max, int best, triangle_hit *out,
-                             long long *decided);
-
-/* Does r hit any triangle of count packets in (t_min, t_max)? corners
- * and decided as for triangle_packets_nearest. */
-bool triangle_packets_any(const packet_ray *r, const triangle_packet *packets,
-                          int count, const triangle_corners *corners,
-                          double t_min, double t_max, long long *decided);
-
-/* The same two, deciding on the mesh's own corners, read through each
- * kept lane's index: no copy of the corners beside the packets. */
+/* The nearest triangle of count packets, filled from the mesh (vertices,
+ * triangles), that r hits in (t_min, t_max], chapter 4's test deciding
+ * on the mesh's corners, by the tie rule of triangle_nearest_of_leaf: a
+ * hit at t_max itself wins when its index is below best (-1: nothing
+ * found yet, t_max excluded). Returns its index in the mesh and fills
+ * *out; or -1. Adds the double tests to *decided (not NULL). */
 int triangle_packets_nearest_in_mesh(const packet_ray *r,
                                      const triangle_packet *packets,
                                      int count, const vec3 *vertices,
                                      const mesh_triangle *triangles,
                                      double t_min, double t_max, int best,
                                      triangle_hit *out, long long *decided);
+
+/* Does r hit any triangle of count packets in (t_min, t_max)? As
+ * triangle_packets_nearest_in_mesh. */
 bool triangle_packets_any_in_mesh(const packet_ray *r,
                                   const triangle_packet *packets, int count,
                                   const vec3 *vertices,
