@@ -310,8 +310,9 @@ static void check_filter(packet_tally *tally, const little_mesh *m, ray r,
     packet_ray pr = packet_ray_of(&w);
     for (int p = 0; p < m->packet_count; p++) {
         const triangle_packet *q = &m->packets[p];
-        unsigned simd = triangle_packet_candidates_simd(q, &pr, t_min, t_max);
-        unsigned one = triangle_packet_candidates_scalar(q, &pr, t_min, t_max);
+        unsigned simd = triangle_packet_candidates(q, &pr, t_min, t_max,
+                                                   false);
+        unsigned one = triangle_packet_candidates(q, &pr, t_min, t_max, true);
         tally->disagreements += simd != one;
         for (int k = 0; k < TRIANGLE_PACKET_WIDTH; k++) {
             int i = q->triangle[k];
@@ -538,9 +539,10 @@ START_TEST(test_empty_lanes_are_never_kept)
         packet_ray pr = packet_ray_of(&w);
         unsigned full = (1u << 3) - 1;
         ck_assert_uint_eq(
-            triangle_packet_candidates_simd(q, &pr, 0, INFINITY) & ~full, 0);
+            triangle_packet_candidates(q, &pr, 0, INFINITY, false) & ~full,
+            0);
         ck_assert_uint_eq(
-            triangle_packet_candidates_scalar(q, &pr, 0, INFINITY) & ~full,
+            triangle_packet_candidates(q, &pr, 0, INFINITY, true) & ~full,
             0);
     }
     free(m.packets);
@@ -564,7 +566,8 @@ START_TEST(test_an_empty_lane_lets_the_edges_stop_the_filter)
         watertight_ray w = watertight_ray_of(r);
         packet_ray pr = packet_ray_of(&w);
         ck_assert_uint_eq(
-            triangle_packet_candidates_simd(&m.packets[0], &pr, 0, INFINITY),
+            triangle_packet_candidates(&m.packets[0], &pr, 0, INFINITY,
+                                       false),
             0);
         stopped += triangle_packet_stops_at_edges(&m.packets[0], &pr);
     }
@@ -671,10 +674,10 @@ START_TEST(test_the_filter_rejects_rays_just_past_an_edge_alone)
         watertight_ray w = watertight_ray_of(r);
         packet_ray pr = packet_ray_of(&w);
         rays++;
-        kept += triangle_packet_candidates_simd(m.packets, &pr, 0,
-                                                INFINITY) != 0;
-        kept += triangle_packet_candidates_scalar(m.packets, &pr, 0,
-                                                  INFINITY) != 0;
+        kept += triangle_packet_candidates(m.packets, &pr, 0, INFINITY,
+                                           false) != 0;
+        kept += triangle_packet_candidates(m.packets, &pr, 0, INFINITY,
+                                           true) != 0;
         free(m.packets);
     }
     ck_assert_int_gt(rays, 1000);
@@ -694,11 +697,11 @@ static void check_float_hits(packet_tally *tally, const little_mesh *m,
     packet_ray pr = packet_ray_of(&w);
     for (int p = 0; p < m->packet_count; p++) {
         const triangle_packet *q = &m->packets[p];
-        unsigned simd = triangle_packet_float_hits_simd(q, &pr, t_min, t_max);
-        unsigned one = triangle_packet_float_hits_scalar(q, &pr, t_min,
-                                                         t_max);
-        unsigned kept = triangle_packet_candidates_simd(q, &pr, t_min,
-                                                        t_max);
+        unsigned simd = triangle_packet_float_hits(q, &pr, t_min, t_max,
+                                                   false);
+        unsigned one = triangle_packet_float_hits(q, &pr, t_min, t_max, true);
+        unsigned kept = triangle_packet_candidates(q, &pr, t_min, t_max,
+                                                   false);
         tally->disagreements += simd != one;
         tally->lost_hits += __builtin_popcount(simd & ~kept);
         tally->kept_hits += __builtin_popcount(simd);

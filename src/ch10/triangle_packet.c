@@ -268,48 +268,35 @@ static float_interval float_interval_of(double t_min, double t_max)
     return (float_interval){up, t_min >= 0 ? -1 : 0};
 }
 
-static unsigned candidates_simd(const triangle_packet *p,
-                                const packet_ray *r, float_interval in)
+/* The program's filter and decision: in vectors, unless built with
+ * -DRT_SCALAR. */
+#ifdef RT_SCALAR
+#define LANE_BY_LANE true
+#else
+#define LANE_BY_LANE false
+#endif
+
+/* The lanes of p that the filter keeps, lane k in bit k. */
+static unsigned candidates(const triangle_packet *p, const packet_ray *r,
+                           float_interval in, bool alone)
 {
-    packet_int kept = kept_in_vectors(p, r, in.t_max, in.t_filter);
     unsigned bits = 0;
+    if (alone) {
+        for (int k = 0; k < PACKET_W; k++)
+            bits |= (unsigned)kept_alone(p, k, r, in.t_max, in.t_filter) << k;
+        return bits;
+    }
+    packet_int kept = kept_in_vectors(p, r, in.t_max, in.t_filter);
     for (int k = 0; k < PACKET_W; k++)
         bits |= (unsigned)(kept[k] & 1) << k;
     return bits;
 }
 
-static unsigned candidates_scalar(const triangle_packet *p,
-                                  const packet_ray *r, float_interval in)
+unsigned triangle_packet_candidates(const triangle_packet *p,
+                                    const packet_ray *r, double t_min,
+                                    double t_max, bool alone)
 {
-    unsigned bits = 0;
-    for (int k = 0; k < PACKET_W; k++)
-        bits |= (unsigned)kept_alone(p, k, r, in.t_max, in.t_filter) << k;
-    return bits;
-}
-
-/* The program's filter: in vectors, unless built with -DRT_SCALAR. */
-static inline unsigned candidates(const triangle_packet *p,
-                                  const packet_ray *r, float_interval in)
-{
-#ifdef RT_SCALAR
-    return candidates_scalar(p, r, in);
-#else
-    return candidates_simd(p, r, in);
-#endif
-}
-
-unsigned triangle_packet_candidates_simd(const triangle_packet *p,
-                                         const packet_ray *r, double t_min,
-                                         double t_max)
-{
-    return candidates_simd(p, r, float_interval_of(t_min, t_max));
-}
-
-unsigned triangle_packet_candidates_scalar(const triangle_packet *p,
-                                           const packet_ray *r, double t_min,
-                                           double t_max)
-{
-    return candidates_scalar(p, r, float_interval_of(t_min, t_max));
+    return candidates(p, r, float_interval_of(t_min, t_max), alone);
 }
 
 /* Chapter 4's test, tightened, of triangle i of the mesh (vertices,
@@ -332,19 +319,20 @@ int triangle_packets_nearest_in_mesh(const packet_ray *r,
                                      triangle_hit *out, long long *decided)
 {
     int nearest = -1;
-    double reach = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
-    float_interval in = float_interval_of(t_min, reach);
+    double t_upto = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
+    float_interval in = float_interval_of(t_min, t_upto);
     for (int p = 0; p < count; p++)
-        for (unsigned bits = candidates(&packets[p], r, in); bits != 0;
+        for (unsigned bits = candidates(&packets[p], r, in, LANE_BY_LANE);
+             bits != 0;
              bits &= bits - 1) {
             int i = packets[p].triangle[__builtin_ctz(bits)];
             triangle_hit th;
             ++*decided;
-            if (hit_in_mesh(r, vertices, triangles, i, t_min, reach, &th) &&
+            if (hit_in_mesh(r, vertices, triangles, i, t_min, t_upto, &th) &&
                 (th.t < t_max || i < best)) { /* a tie: the lower index */
                 *out = th, t_max = th.t, best = i, nearest = i;
-                reach = nextafter(t_max, INFINITY);
-                in = float_interval_of(t_min, reach);
+                t_upto = nextafter(t_max, INFINITY);
+                in = float_interval_of(t_min, t_upto);
             }
         }
     return nearest;
@@ -360,7 +348,8 @@ bool triangle_packets_any_in_mesh(const packet_ray *r,
     float_interval in = float_interval_of(t_min, t_max);
     triangle_hit unused;
     for (int p = 0; p < count; p++)
-        for (unsigned bits = candidates(&packets[p], r, in); bits != 0;
+        for (unsigned bits = candidates(&packets[p], r, in, LANE_BY_LANE);
+             bits != 0;
              bits &= bits - 1) {
             int i = packets[p].triangle[__builtin_ctz(bits)];
             ++*decided;
@@ -445,53 +434,30 @@ static inline int float_hit_alone(const triangle_packet *p, int k,
     return hit;
 }
 
-static unsigned float_hit_bits_simd(const triangle_packet *p,
-                                    const packet_ray *r, float t_min,
-                                    float t_max, float_hits *h)
+/* The lanes of p hit in float alone, lane k in bit k; their numbers in
+ * *h. */
+static unsigned float_hit_bits(const triangle_packet *p, const packet_ray *r,
+                               float t_min, float t_max, float_hits *h,
+                               bool alone)
 {
-    packet_int hit = float_hits_in_vectors(p, r, t_min, t_max, h);
     unsigned bits = 0;
+    if (alone) {
+        for (int k = 0; k < PACKET_W; k++)
+            bits |= (unsigned)float_hit_alone(p, k, r, t_min, t_max, h) << k;
+        return bits;
+    }
+    packet_int hit = float_hits_in_vectors(p, r, t_min, t_max, h);
     for (int k = 0; k < PACKET_W; k++)
         bits |= (unsigned)(hit[k] & 1) << k;
     return bits;
 }
 
-static unsigned float_hit_bits_scalar(const triangle_packet *p,
-                                      const packet_ray *r, float t_min,
-                                      float t_max, float_hits *h)
-{
-    unsigned bits = 0;
-    for (int k = 0; k < PACKET_W; k++)
-        bits |= (unsigned)float_hit_alone(p, k, r, t_min, t_max, h) << k;
-    return bits;
-}
-
-/* The program's decision: in vectors, unless built with -DRT_SCALAR. */
-static inline unsigned float_hit_bits(const triangle_packet *p,
-                                      const packet_ray *r, float t_min,
-                                      float t_max, float_hits *h)
-{
-#ifdef RT_SCALAR
-    return float_hit_bits_scalar(p, r, t_min, t_max, h);
-#else
-    return float_hit_bits_simd(p, r, t_min, t_max, h);
-#endif
-}
-
-unsigned triangle_packet_float_hits_simd(const triangle_packet *p,
-                                         const packet_ray *r, double t_min,
-                                         double t_max)
+unsigned triangle_packet_float_hits(const triangle_packet *p,
+                                    const packet_ray *r, double t_min,
+                                    double t_max, bool alone)
 {
     float_hits h;
-    return float_hit_bits_simd(p, r, (float)t_min, (float)t_max, &h);
-}
-
-unsigned triangle_packet_float_hits_scalar(const triangle_packet *p,
-                                           const packet_ray *r,
-                                           double t_min, double t_max)
-{
-    float_hits h;
-    return float_hit_bits_scalar(p, r, (float)t_min, (float)t_max, &h);
+    return float_hit_bits(p, r, (float)t_min, (float)t_max, &h, alone);
 }
 
 int triangle_packets_nearest_float(const packet_ray *r,
@@ -503,7 +469,7 @@ int triangle_packets_nearest_float(const packet_ray *r,
     int nearest = -1;
     for (const triangle_packet *q = packets; q < packets + count; q++) {
         float_hits h;
-        unsigned bits = float_hit_bits(q, r, lo, nearest_t, &h);
+        unsigned bits = float_hit_bits(q, r, lo, nearest_t, &h, LANE_BY_LANE);
         for (; bits != 0; bits &= bits - 1) {
             int k = __builtin_ctz(bits), i = q->triangle[k];
             float t = h.n[k] / h.det[k];
@@ -526,7 +492,7 @@ bool triangle_packets_any_float(const packet_ray *r,
     float lo = (float)t_min, hi = (float)t_max;
     for (const triangle_packet *q = packets; q < packets + count; q++) {
         float_hits h;
-        unsigned bits = float_hit_bits(q, r, lo, hi, &h);
+        unsigned bits = float_hit_bits(q, r, lo, hi, &h, LANE_BY_LANE);
         for (; bits != 0; bits &= bits - 1) {
             int k = __builtin_ctz(bits);
             float t = h.n[k] / h.det[k];

@@ -17,9 +17,9 @@
  *                             the same decided in float alone: faster,
  *                             and float's answers, not chapter 4's
  *
- * The filter is compiled twice, with vectors (_simd) and lane by lane
- * (_scalar); the program uses the first, or the second when built with
- * -DRT_SCALAR. Both give the same lanes, bit for bit. */
+ * The filter is compiled twice, in vectors and lane by lane; the program
+ * uses the first, or the second when built with -DRT_SCALAR. Both give
+ * the same lanes, bit for bit. */
 #ifndef TRIANGLE_PACKET_H
 #define TRIANGLE_PACKET_H
 
@@ -79,13 +79,11 @@ packet_ray packet_ray_of(const watertight_ray *w);
 
 /* <<the tests of packets>> ch10 */
 /* The lanes of p that chapter 4's test could hit in (t_min, t_max), lane
- * k in bit k; in vectors, and lane by lane. The two are equal. */
-unsigned triangle_packet_candidates_simd(const triangle_packet *p,
-                                         const packet_ray *r, double t_min,
-                                         double t_max);
-unsigned triangle_packet_candidates_scalar(const triangle_packet *p,
-                                           const packet_ray *r, double t_min,
-                                           double t_max);
+ * k in bit k: computed in vectors, or (alone) lane by lane, which gives
+ * the same bits. */
+unsigned triangle_packet_candidates(const triangle_packet *p,
+                                    const packet_ray *r, double t_min,
+                                    double t_max, bool alone);
 
 /* Does the filter stop at the edge functions: does an edge, or the lack
  * of a triangle, rule out every lane of p for r? */
@@ -115,18 +113,15 @@ bool triangle_packets_any_in_mesh(const packet_ray *r,
                                   long long *decided);
 
 /* Chapter 4's test in float alone, with no bound and no second test:
- * the lanes of p that r hits in (t_min, t_max], lane k in bit k; in
- * vectors, and lane by lane. The two are equal. */
-unsigned triangle_packet_float_hits_simd(const triangle_packet *p,
-                                         const packet_ray *r, double t_min,
-                                         double t_max);
-unsigned triangle_packet_float_hits_scalar(const triangle_packet *p,
-                                           const packet_ray *r,
-                                           double t_min, double t_max);
+ * the lanes of p that r hits in (t_min, t_max], lane k in bit k, in
+ * vectors or (alone) lane by lane, as triangle_packet_candidates. */
+unsigned triangle_packet_float_hits(const triangle_packet *p,
+                                    const packet_ray *r, double t_min,
+                                    double t_max, bool alone);
 
 /* The nearest triangle of count packets hit in float alone in (t_min,
  * t_max], a hit at t_max itself only when its index is below best (the
- * tie rule of triangle_packets_nearest): its index, its hit in *out; or
+ * tie rule of triangle_packets_nearest_in_mesh): its index, its hit in *out; or
  * -1. The hit is float's, t and barycentric coordinates. */
 int triangle_packets_nearest_float(const packet_ray *r,
                                    const triangle_packet *packets, int count,
