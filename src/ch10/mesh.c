@@ -685,7 +685,7 @@ void mesh_refine_hit(const mesh *m, int k, const double w[3], hit *h)
 {
     const int *v = m->triangles[k].v;
     vec3 a = m->vertices[v[0]], b = m->vertices[v[1]], c = m->vertices[v[2]];
-    /* <<a mesh hit's bound, for another test>> ch10 */
+    /* <<a mesh hit's bound for another test>> ch10 */
     if (m->bvh_in_float) { /* its rays meet it again in float */
         triangle_refine_float_hit(a, b, c, w, h);
         return;
