@@ -39,7 +39,7 @@ typedef int32_t packet_int
     __attribute__((vector_size(4 * PACKET_W), aligned(4 * PACKET_W)));
 
 typedef struct {
-    packet_float corner[3][3]; /* [corner][axis], W lanes each */
+    packet_float corner[3][3]; /* [corner][axis], a lane each */
     packet_float reach;        /* each lane's largest |coordinate| */
     packet_int triangle;       /* index in the mesh; -1: an empty lane */
 } triangle_packet;
@@ -49,17 +49,17 @@ _Static_assert(sizeof(triangle_packet) == 11 * 4 * PACKET_W,
 _Static_assert(_Alignof(triangle_packet) == 4 * PACKET_W,
                "a packet starts where a vector may");
 
-/* The packets that count triangles fill: ceil(count / W). */
+/* The packets that count triangles fill: ceil(count / PACKET_W). */
 int triangle_packets_needed(int count);
 
 /* The bytes a packet spends on each of its lanes' triangles. */
 #define TRIANGLE_PACKET_BYTES_PER_TRIANGLE (sizeof(triangle_packet) / PACKET_W)
 
 /* Packs the count triangles items[0..count) of a mesh (vertices,
- * triangles; items NULL: 0..count-1) into packets, W to a packet, in
- * order; the last packet's spare lanes empty. packets must have room for
- * triangle_packets_needed(count) packets, aligned as triangle_packet is
- * (memory_alloc_aligned). Returns the number of packets filled. */
+ * triangles; items NULL: 0..count-1) into packets, PACKET_W to a packet,
+ * in order; the last packet's spare lanes empty. packets must have room
+ * for triangle_packets_needed(count) packets, aligned as triangle_packet
+ * is (memory_alloc_aligned). Returns the number of packets filled. */
 int triangle_packets_fill(triangle_packet *packets, const vec3 *vertices,
                           const mesh_triangle *triangles, const int *items,
                           int count);
