@@ -1,25 +1,14 @@
-/* triangle_packet.h: triangles TRIANGLE_PACKET_WIDTH at a time, in float
- * (chapter 10).
+/* triangle_packet.h: triangles PACKET_W at a time, in float (chapter 10).
  *
- * A triangle_packet holds PACKET_W triangles of a mesh in structure of
- * arrays: their corners rounded to float, lane by lane, and their indices
- * in the mesh (-1: an empty lane, which is never hit). The float test is
- * a filter that keeps every lane chapter 4's double test could hit; the
- * lanes it keeps are decided by that double test on the mesh's own
- * corners, so every answer is the double test's to the last bit, ties
- * included.
- *
- *   triangle_packets_fill     packs triangles (indices into a mesh)
- *   packet_ray_of             a ray's constants, rounded to float
- *   triangle_packets_nearest_in_mesh   the nearest hit, by the tie rule
- *   triangle_packets_any_in_mesh       any hit, for a shadow ray
- *   triangle_packets_nearest_float, triangle_packets_any_float
- *                             the same decided in float alone: faster,
- *                             and float's answers, not chapter 4's
- *
- * The filter is compiled twice, in vectors and lane by lane; the program
- * uses the first, or the second when built with -DRT_SCALAR. Both give
- * the same lanes, bit for bit. */
+ * A triangle_packet holds PACKET_W triangles of a mesh, lane by lane:
+ * their corners rounded to float, and their indices in the mesh (-1: an
+ * empty lane, never hit). A filter in float keeps every lane that chapter
+ * 4's test in double could hit, and that test decides the lanes kept, on
+ * the mesh's own corners: every answer is chapter 4's, ties included
+ * (triangle_packets_nearest_in_mesh, _any_in_mesh). The same test decided
+ * in float alone is faster, and gives float's answers
+ * (triangle_packets_nearest_float, _any_float). Both are compiled in
+ * vectors and lane by lane (-DRT_SCALAR), which agree bit for bit. */
 #ifndef TRIANGLE_PACKET_H
 #define TRIANGLE_PACKET_H
 
