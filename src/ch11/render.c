@@ -208,6 +208,7 @@ void render_in_bands(const scene *s, image *img, const render_settings *how,
         q.counts = &one, q.band_rows = img->height, bands = 1;
     pthread_t reporter; /* none: the bands show the progress */
     q.reporting = how->progress != NULL &&
+                  !how->progress_redrawn &&
                   pthread_create(&reporter, NULL, report_thread, &q) == 0;
     pool_for(bands, how->threads, draw_band, &q);
     if (q.reporting)
