@@ -74,8 +74,10 @@ LDFLAGS ?=
 NATIVE_FIX := $(if $(NATIVE),$(shell sh tools/probe_native.sh "$(CC)" $(CSTD) $(OPT) -march=native))
 ARCH    := $(if $(SCALAR),-DRT_SCALAR) $(if $(NATIVE),-march=native $(NATIVE_FIX))
 # The suites (not the book's program) may use wait4, BSD's and Linux's, to
-# read what a child process did.
-TEST_DEFS := -D_DEFAULT_SOURCE -D_DARWIN_C_SOURCE
+# read what a child process did. Check prints the doubles of a failed
+# comparison with CK_FLOATING_DIG digits, 6 unless told: 17 tell any two
+# doubles apart ("1 == 1" would be a length of 1.0000001 failing).
+TEST_DEFS := -D_DEFAULT_SOURCE -D_DARWIN_C_SOURCE -DCK_FLOATING_DIG=17
 # The suites' own code is compiled at -O0 (after the program's -O2, the
 # last wins): it checks, the program computes, and -O0 compiles the large
 # suite files in under half the time of -O1 (a third, with the sanitizers).

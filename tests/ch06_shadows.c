@@ -338,23 +338,35 @@ END_TEST
 
 /* ------------------------------------------------------------ area light */
 
-/* Cell k of n as the task describes it: m = floor(sqrt(n)) rows, the
- * first n % m of them one cell wider, each row as tall as its share of
- * the cells: [x0, x0 + w) x [y0, y0 + h). */
+/* The cells of the counts the tests use, as the task describes them and
+ * worked out by hand: floor(sqrt(n)) rows, the first n % rows of them one
+ * cell wider; here, how many cells each row holds, top row first (0
+ * ends the list). Each row is as tall as its share of the cells. */
+static const struct {
+    int n, row_cells[9];
+} CELLS[] = {{1, {1, 0}},          {2, {2, 0}},
+             {3, {3, 0}},          {8, {4, 4, 0}},
+             {37, {7, 6, 6, 6, 6, 6, 0}},
+             {64, {8, 8, 8, 8, 8, 8, 8, 8, 0}}};
+
+/* Cell k of n from the table: [x0, x0 + w) x [y0, y0 + h). */
 static void described_cell(int k, int n, double *x0, double *y0, double *w,
                            double *h)
 {
-    int m = (int)floor(sqrt((double)n)), before = 0;
-    for (int row = 0; row < m; row++) {
-        int cols = n / m + (row < n % m);
-        if (k < before + cols) {
-            *w = 1.0 / cols, *h = (double)cols / n;
-            *x0 = (k - before) * *w, *y0 = (double)before / n;
-            return;
+    for (size_t c = 0; c < sizeof CELLS / sizeof CELLS[0]; c++) {
+        if (CELLS[c].n != n)
+            continue;
+        int before = 0;
+        for (const int *cols = CELLS[c].row_cells; *cols > 0; cols++) {
+            if (k < before + *cols) {
+                *w = 1.0 / *cols, *h = (double)*cols / n;
+                *x0 = (k - before) * *w, *y0 = (double)before / n;
+                return;
+            }
+            before += *cols;
         }
-        before += cols;
     }
-    ck_abort_msg("no cell %d of %d", k, n);
+    ck_abort_msg("no cell %d of %d in the table", k, n);
 }
 
 /* Sample k of n lies in cell k: one in each cell, none left empty. */

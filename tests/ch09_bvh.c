@@ -832,7 +832,7 @@ Suite *ch09_bvh_suite(void)
                    test_the_walk_takes_the_nearest_child_and_stacks_the_rest);
     tcase_add_test(nodes, test_float_boxes_hold_their_items);
     tcase_add_test(nodes, test_wide_nodes_hold_their_leaves_items);
-    tcase_add_test(nodes, test_thread_counts_build_the_same_tree);
+    tcase_add_threaded_test(nodes, test_thread_counts_build_the_same_tree);
     tcase_add_test(nodes,
                    test_thread_counts_build_the_same_tree_over_many_items);
     tcase_add_test(nodes, test_a_build_starts_no_more_threads_than_tasks);

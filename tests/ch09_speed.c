@@ -247,8 +247,10 @@ Suite *ch09_speed_suite(void)
     tcase_add_test(threads, test_statistics_add_up_whatever_the_thread_count);
     tcase_add_test(threads, test_bad_thread_counts_are_usage_errors);
     tcase_add_test(threads, test_the_kd_trees_line_holds_no_bvh_build_time);
-    tcase_add_test(threads, test_bands_on_threads_draw_what_one_render_draws);
-    tcase_add_test(threads, test_the_threads_counts_add_up_to_one_renders);
+    tcase_add_threaded_test(threads,
+                            test_bands_on_threads_draw_what_one_render_draws);
+    tcase_add_threaded_test(threads,
+                            test_the_threads_counts_add_up_to_one_renders);
     suite_add_tcase(s, threads);
     return s;
 }
