@@ -503,7 +503,9 @@ workbook: $(WB_FILES)
 # Order-only: a workbook file is the reader's, never remade once it exists.
 $(WB_DIR)/%.md: | chapters/%.md
 	@$(dir_of_target)
-	awk -v solved=$(if $(SOLVED),1,0) -f tools/stub.awk -f tools/workbook.awk chapters/$*.md chapters/$*.md > $@
+	awk -f tools/types.awk $(CHAPTERS) > $@.types
+	awk -v solved=$(if $(SOLVED),1,0) -v types=$@.types -f tools/stub.awk -f tools/workbook.awk \
+	  chapters/$*.md chapters/$*.md > $@.tmp && mv $@.tmp $@; s=$$?; rm -f $@.types; exit $$s
 
 grade: grade-ch$(LAST)
 

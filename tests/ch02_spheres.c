@@ -135,10 +135,18 @@ START_TEST(test_origin_inside_sees_the_far_side)
     double t;
     ck_assert(sphere_hit_t(&sp, r, 0, INFINITY, &t));
     ck_assert(t == 2); /* roots -2 and 2: the one in front */
-    hit h;
+    hit h = {.inside = false};
     sphere_fill_hit(&sp, r, t, &h);
     ck_assert(h.normal.x == 0 && h.normal.y == 0 &&
               h.normal.z == 1); /* outward */
+    ck_assert_msg(h.inside, "a ray from the centre hits the sphere from "
+                            "inside: the hit must say so (inside)");
+    /* and a ray from outside, the other way */
+    ray from_outside = {{0, 0, -5}, PLUS_Z};
+    ck_assert(sphere_hit_t(&sp, from_outside, 0, INFINITY, &t));
+    h.inside = true;
+    sphere_fill_hit(&sp, from_outside, t, &h);
+    ck_assert_msg(!h.inside, "a ray from outside: inside must be false");
 }
 END_TEST
 

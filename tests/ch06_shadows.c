@@ -387,6 +387,28 @@ static void expect_one_sample_a_cell(int pattern, int n, sample_stream *g)
     }
 }
 
+/* Every one of the six coordinates seeds the stream: two pairs of points
+ * that differ in one coordinate only, by one bit, start different
+ * streams (the same pixel's points seed it; its neighbour's differ in
+ * any coordinate). */
+START_TEST(test_every_coordinate_seeds_the_stream)
+{
+    double xs[6] = {1, 2, 3, 4, 5, 6};
+    sample_stream g = sample_stream_at((vec3){1, 2, 3}, (vec3){4, 5, 6});
+    double first = sample_next(&g);
+    for (int k = 0; k < 6; k++) {
+        double ys[6];
+        memcpy(ys, xs, sizeof ys);
+        ys[k] = nextafter(ys[k], INFINITY);
+        sample_stream h = sample_stream_at((vec3){ys[0], ys[1], ys[2]},
+                                           (vec3){ys[3], ys[4], ys[5]});
+        ck_assert_msg(sample_next(&h) != first,
+                      "coordinate %d of the six changed, and the stream did "
+                      "not: every coordinate's bits must seed it", k + 1);
+    }
+}
+END_TEST
+
 /* The stream of one pair of points repeats, another pair's differs, and
  * its numbers lie in [0, 1) with the mean of a uniform variable, 1/2, to
  * within 5 standard errors, 1 / sqrt(12 n). */
@@ -691,6 +713,7 @@ Suite *ch06_shadows_suite(void)
     TCase *formulas = tcase_create("formulas");
     tcase_add_test(formulas, test_the_sample_stream_repeats_and_spreads);
     tcase_add_test(formulas, test_square_samples_fall_one_a_cell);
+    tcase_add_test(formulas, test_every_coordinate_seeds_the_stream);
     tcase_add_test(formulas, test_disc_points_cover_the_disc_area_for_area);
     tcase_add_test(formulas, test_area_light_samples_cover_the_disc_evenly);
     tcase_add_test(formulas,

@@ -1,6 +1,7 @@
 # workbook.awk -- write a chapter's workbook file: its exercises to do.
 #
-#   awk -f tools/stub.awk -f tools/workbook.awk [-v solved=1] CHAPTER.md CHAPTER.md
+#   awk -f tools/stub.awk -f tools/workbook.awk [-v solved=1] \
+#       [-v types=TYPES.tsv] CHAPTER.md CHAPTER.md
 #
 # (the chapter twice: the first reading collects every chunk's pieces)
 # prints, for the exercises of CHAPTER.md (see tools/exercises.awk for how
@@ -10,7 +11,10 @@
 # and the line "// NOT DONE". The tangler leaves such a chunk out until its
 # reader deletes that line (tangle --skip-not-done); tools/grade.sh grades
 # it then. With solved=1 the chunk holds the book's own code instead, and
-# no "// NOT DONE" line: a workbook with every exercise done.
+# no "// NOT DONE" line: a workbook with every exercise done. After each
+# task come the <<chunk>> lines its code must keep (later chapters put
+# their code there) and, with types=TYPES.tsv (tools/types.awk's listing),
+# where the types its code uses are defined.
 #
 # An exercise may mark an .append piece of a chunk that the chapter builds
 # in several pieces (and that no other chapter writes to): the workbook's
@@ -96,13 +100,100 @@ function check_stub_keeps_chunks(    book, stub) {
     stub_errors++
 }
 
-function write_exercise(    code, tests_list, fence_attr) {
+# "Keep ..." for the <<chunk>> lines of the exercise's code, or "".
+function keep_note(    lines, n, i, list) {
+    n = split(chunk_lines(body), lines, "\n")
+    list = ""
+    for (i = 1; i <= n; i++)
+        if (lines[i] != "")
+            list = list (list == "" ? "" : ", ") "`" lines[i] "`"
+    if (list == "")
+        return ""
+    return "Keep the line" (n > 2 ? "s " : " ") list " of the stub where " \
+           (n > 2 ? "they stand" : "it stands") ": the book's other " \
+           "chunks and later chapters put their code there, and the " \
+           "grade fails an exercise that loses one."
+}
+
+# "Its types: ..." for the book's types that the exercise's code uses
+# (those it defines itself aside), in the order they first appear.
+function types_note(    rest, word, list, mine, done) {
+    rest = stub_code_part_all(body)
+    while (match(rest, /\}[ \t]*[A-Za-z_][A-Za-z_0-9]*[ \t]*;/)) {
+        word = substr(rest, RSTART + 1, RLENGTH - 2)
+        gsub(/[ \t]/, "", word)
+        mine[word] = 1
+        rest = substr(rest, RSTART + RLENGTH)
+    }
+    list = ""
+    rest = stub_code_part_all(body)
+    while (match(rest, /[A-Za-z_][A-Za-z_0-9]*/)) {
+        word = substr(rest, RSTART, RLENGTH)
+        rest = substr(rest, RSTART + RLENGTH)
+        if (!(word in type_chapter) || (word in mine) || (word in done))
+            continue
+        done[word] = 1
+        list = list (list == "" ? "" : ", ") "`" word "` (" \
+               (type_where[word] ~ /^</ ? "" : type_where[word] ", ") \
+               "chapter " type_chapter[word] \
+               (type_where[word] ~ /^</ ? ", " chunk_shown(type_where[word]) : "") ")"
+    }
+    return list == "" ? "" : "Its types are defined in the book: " list "."
+}
+
+# <name> as the book shows a chunk's name, in angle brackets.
+function chunk_shown(where) {
+    sub(/^</, "\342\237\250", where)
+    sub(/>$/, "\342\237\251", where)
+    return where
+}
+
+# TEXT without its comments and strings, line by line.
+function stub_code_part_all(text,    lines, n, i, out, in_comment, line) {
+    n = split(text, lines, "\n")
+    out = ""
+    for (i = 1; i <= n; i++) {
+        line = lines[i]
+        if (in_comment) {
+            if (!sub(/^([^*]|\*[^\/])*\*\//, "", line))
+                continue
+            in_comment = 0
+        }
+        line = stub_code_part(line)
+        if (sub(/\/\*.*/, "", line))
+            in_comment = 1
+        out = out line "\n"
+    }
+    return out
+}
+
+# TEXT in lines of at most 75 columns, broken at blanks.
+function wrapped(text,    words, n, i, out, line) {
+    n = split(text, words, " ")
+    out = line = ""
+    for (i = 1; i <= n; i++) {
+        if (line != "" && length(line) + 1 + length(words[i]) > 75) {
+            out = out line "\n"
+            line = ""
+        }
+        line = line (line == "" ? "" : " ") words[i]
+    }
+    return out line
+}
+
+function write_exercise(    code, tests_list, fence_attr, note) {
     if (!solved)
         check_stub_keeps_chunks()
     tests_list = tests
     gsub(/ +/, "`\n- `", tests_list)
     printf "## Exercise %s: %s \"%s\"\n\n", id, kind, key
     printf "%s\n\n", trim_end(task)
+    note = keep_note()
+    if (note != "")
+        printf "%s\n\n", wrapped(note)
+    note = types_note()
+    if (note != "")
+        printf "%s\n\n", wrapped(note)
     printf "Graded by `make grade-ch%02d`, with the tests:\n\n- `%s`\n\n", \
         number, tests_list
     printf "<details><summary>Hint (also: make hint EX=%s)</summary>\n\n", id
@@ -149,6 +240,14 @@ function exercise_code(k,    i, code) {
     return code
 }
 
+BEGIN {
+    while (types != "" && (getline line < types) > 0) {
+        split(line, f, "\t")
+        type_chapter[f[1]] = f[2]
+        type_where[f[1]] = f[3]
+    }
+}
+
 FNR == 1 {
     number = chapter_number(FILENAME)
     k = 0
@@ -164,8 +263,11 @@ FNR == 1 {
     print "workbook` never overwrites it). Each exercise holds a stub of one of"
     print "the chapter's chunks. Write your own code in its place, then delete"
     print "its line `// NOT DONE` to have it graded; until then the book's code"
-    printf "stands in for it. `make grade-ch%02d` grades chapters 1 to %d.\n\n", \
-        number, number
+    if (number == 1)
+        printf "stands in for it. `make grade-ch01` grades chapter 1.\n\n"
+    else
+        printf "stands in for it. `make grade-ch%02d` grades chapters 1 to %d.\n\n", \
+            number, number
 }
 
 in_code && $0 ~ "^" fence "[`~]*[ \t]*$" {
