@@ -91,7 +91,9 @@ $(B)/obj/%/tests/ch09_packets.o: TEST_OPT := -O1
 # leaks as it exits, a minute of the pass over some three thousand tests.
 # The first pass, forked and with time limits, has stopped any test that hangs.
 RUNNER_ENV := $(if $(SAN),RUNNER_FORKLESS=1)
-ALL_CFLAGS = $(CSTD) $(WARN) $(OPT) $(ARCH) -pthread $(CFLAGS) -MMD -MP
+# In a handout (below) the static helpers that only an exercise's code
+# calls go unused until the student writes it.
+ALL_CFLAGS = $(CSTD) $(WARN) $(if $(HANDOUT),-Wno-unused-function) $(OPT) $(ARCH) -pthread $(CFLAGS) -MMD -MP
 
 # Parallel by default, one job a core; make -jN still chooses, and a make
 # run by a recipe shares its parent's jobs.
@@ -148,11 +150,37 @@ suites_upto = $(foreach n,$(filter $(call nums_upto,$(1)),$(NUMS)),$(wildcard te
 # previous NN: the chapter before NN, empty for the first
 previous = $(lastword $(filter-out $(1),$(filter $(call nums_upto,$(1)),$(NUMS))))
 
+# A handout (make handout) holds no exercise's code: its chapters hold the
+# stubs, and the book's code of the exercises comes compiled, book/chNN.o,
+# linked into every program of chapter NN, which calls it through
+# book/forward/ and lets it call the student's code through book/export/
+# (tools/book_code.sh, tools/book_code.awk): an exercise not started
+# behaves as the book's code does. Each file is compiled with its name,
+# -DRT_TU=NAME, which the names of those calls hold. On another machine
+# than the one book/MACHINE names, the objects cannot serve: the stubs
+# stand in for the exercises not started (BOOK_CODE is empty).
+HANDOUT   := $(if $(wildcard book/MACHINE),yes)
+BOOK_CODE := $(if $(HANDOUT),$(shell sh tools/book_code.sh machine book/MACHINE '$(CC)' && echo yes))
+book_forms_upto = $(if $(BOOK_CODE),$(foreach k,forward export,$(foreach c,$(call chapters_upto,$(1)),book/$(k)/$(notdir $(c)))))
+book_obj = $(if $(BOOK_CODE),book/ch$(1).o)
+RT_TU = $(if $(HANDOUT),-DRT_TU=$(subst /,_,$*))
+# where make book-code builds it for the handout (below)
+BC := build/bookcode
+
 .PHONY: all test deps src figures charts book clean check-src check-figures check-map check-stray check-allocations check-test-width \
         check-book check-lines check-quotes test-tangle tools benches \
         book-check check-book-browser check-page check-code-width check-commands
 
+ifeq ($(HANDOUT),)
 all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures wasm book
+else
+# A handout's book comes woven (book.html), its figures made: make builds
+# the programs, which draw as the book's do, and the workbook.
+all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) workbook
+	$(if $(BOOK_CODE),,@echo "make: book/ holds the book's code compiled for $$(head -n 1 book/MACHINE), \
+	  not for this machine: the exercises you have not started are stubs here, and the \
+	  tests that use them wait for you to write them (README.md)")
+endif
 
 deps:
 	@sh tools/deps.sh
@@ -182,9 +210,9 @@ SUITES$(1) := $$(call suites_upto,$(1))
 FIGS$(1) := figures/ch$(1)-default.png $$(patsubst scenes/%.scene,figures/%.png,$$(call scene_files,$(1)))
 
 # The --line tangle is what gets compiled: errors point at the chapter.
-$$(T$(1))/.stamp: $$(call chapters_upto,$(1)) tools/tangle.c | $(TANGLE)
+$$(T$(1))/.stamp: $$(call chapters_upto,$(1)) $$(call book_forms_upto,$(1)) tools/tangle.c | $(TANGLE)
 	@$$(dir_of_target)
-	$(TANGLE) --line --strict -o $$(@D) $$(call chapters_upto,$(1))
+	$(TANGLE) --line --strict -o $$(@D) $$(call chapters_upto,$(1)) $$(call book_forms_upto,$(1))
 	@$$(call link_meshes,$$(@D),../../../../)
 	@touch $$@
 
@@ -192,9 +220,9 @@ $$(T$(1))/%.c $$(T$(1))/%.h $$(T$(1))/%.scene: $$(T$(1))/.stamp ;
 
 $$(O$(1))/%.o: $$(T$(1))/%.c | deps $(REUSE)
 	@$$(dir_of_target)
-	$(call reuse_from,$(1),$$*.o)$$(CC) $$(ALL_CFLAGS) $$(PNG_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
+	$(call reuse_from,$(1),$$*.o)$$(CC) $$(ALL_CFLAGS) $$(RT_TU) $$(PNG_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
 
-$(BIN)/ch$(1): $$(OBJ$(1))
+$(BIN)/ch$(1): $$(OBJ$(1)) $$(call book_obj,$(1))
 	@$$(dir_of_target)
 	$$(CC) $$(ALL_CFLAGS) $$(LTO_LINK) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
 
@@ -219,7 +247,7 @@ $$(O$(1))/tests/runner.o: tests/runner.c $$(SUITES$(1)) | deps
 	$$(CC) $$(ALL_CFLAGS) $$(CHECK_CFLAGS) \
 	  '-DSUITE_LIST=$$(foreach s,$$(SUITES$(1)),X($$(basename $$(notdir $$(s)))))' -c -o $$@ $$<
 
-$(B)/test/ch$(1): $$(O$(1))/tests/runner.o $$(patsubst tests/%.c,$$(O$(1))/tests/%.o,$$(SUITES$(1))) $$(LIB$(1))
+$(B)/test/ch$(1): $$(O$(1))/tests/runner.o $$(patsubst tests/%.c,$$(O$(1))/tests/%.o,$$(SUITES$(1))) $$(LIB$(1)) $$(call book_obj,$(1))
 	@$$(dir_of_target)
 	$$(CC) $$(ALL_CFLAGS) $$(LTO_LINK) -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
 
@@ -504,7 +532,7 @@ workbook: $(WB_FILES)
 $(WB_DIR)/%.md: | chapters/%.md
 	@$(dir_of_target)
 	awk -f tools/types.awk $(CHAPTERS) > $@.types
-	awk -v solved=$(if $(SOLVED),1,0) -v types=$@.types -f tools/stub.awk -f tools/workbook.awk \
+	awk -v solved=$(if $(SOLVED),1,0) -v types=$@.types -f tools/stub.awk -f tools/book_code.awk -f tools/workbook.awk \
 	  chapters/$*.md chapters/$*.md > $@.tmp && mv $@.tmp $@; s=$$?; rm -f $@.types; exit $$s
 
 # make grade EX=2.1: exercise 2.1's chapter graded, and the exit status is
@@ -515,7 +543,8 @@ grade: $(if $(EX),grade-ch$(EX_CHAPTER),grade-ch$(LAST))
 
 $(foreach n,$(NUMS),grade-ch$(n)): grade-ch%: $(TANGLE)
 	+@TANGLE=$(TANGLE) WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) MAKE="$(MAKE)" CC="$(CC)" \
-	  GRADE_EX=$(EX) BOOK_BUILD=$(B) BOOK_BIN=$(BIN) sh tools/grade.sh $* $(call chapters_upto,$*)
+	  GRADE_EX=$(EX) GRADE_BOOK_CODE=$(if $(HANDOUT),$(if $(BOOK_CODE),yes,no)) \
+	  BOOK_BUILD=$(B) BOOK_BIN=$(BIN) sh tools/grade.sh $* $(call chapters_upto,$*)
 
 hint:
 	@if [ -z "$(EX)" ]; then \
@@ -603,8 +632,8 @@ HANDOUT_NEW := $(filter-out $(wildcard $(HANDOUT_EDITIONS)),$(HANDOUT_EDITIONS))
 .PHONY: handout-editions-new
 handout: build/handout.tar.gz
 
-build/handout/book.html: $(HANDOUT_FROM) | deps
-	+sh tools/handout.sh build/handout
+build/handout/book.html: $(HANDOUT_FROM) $(BC)/.forms $(foreach n,$(NUMS),$(BC)/ch$(n).o) | deps
+	+CC="$(CC)" sh tools/handout.sh build/handout
 	sh tools/check_handout.sh build/handout
 
 build/handout.tar.gz: build/handout/book.html $(HANDOUT_EDITIONS) $(if $(HANDOUT_NEW),handout-editions-new)
@@ -612,7 +641,41 @@ build/handout.tar.gz: build/handout/book.html $(HANDOUT_EDITIONS) $(if $(HANDOUT
 	@echo "wrote build/handout/ and build/handout.tar.gz:" \
 	  $$(cd build/handout && ls book.html book.pdf book.epub 2> /dev/null)
 
-check-handout:
+# The book's code of the exercises, compiled, for the handout (tools/
+# book_code.sh): build/bookcode/forward/ and export/ (how the handout's
+# programs call it, and it them), and build/bookcode/chNN.o, built from
+# the chapters with each exercise's code in the book form of tools/
+# book_code.awk, without debugging information.
+BC_CFLAGS = $(CSTD) -O2 $(ARCH) -pthread -w -MMD -MP
+.PHONY: book-code
+book-code: $(foreach n,$(NUMS),$(BC)/ch$(n).o)
+$(BC)/.forms: $(CHAPTERS) tools/stub.awk tools/book_code.awk tools/workbook.awk \
+              tools/book_code.sh tools/exercises.awk $(T$(LAST))/.stamp
+	@mkdir -p $(BC)
+	sh tools/book_code.sh forms $(BC) $(T$(LAST)) $(CHAPTERS)
+	@touch $@
+
+define bookcode_rules
+$(BC)/tangle/ch$(1)/.stamp: $(BC)/.forms | $(TANGLE)
+	@$$(dir_of_target)
+	$(TANGLE) --strict -o $$(@D) $$(call chapters_upto,$(1)) \
+	  $$(foreach c,$$(call chapters_upto,$(1)),$(BC)/book/$$(notdir $$(c)))
+	@touch $$@
+$(BC)/tangle/ch$(1)/%.c $(BC)/tangle/ch$(1)/%.h: $(BC)/tangle/ch$(1)/.stamp ;
+$(BC)/obj/ch$(1)/%.o: $(BC)/tangle/ch$(1)/%.c | deps $(REUSE)
+	@$$(dir_of_target)
+	$$(if $$(call previous,$(1)),$(REUSE) $(BC)/obj/ch$$(call previous,$(1))/$$*.o $(BC)/tangle/ch$$(call previous,$(1)) $(BC)/tangle/ch$(1) -- )$$(CC) $$(BC_CFLAGS) -DRT_TU=$$* $$(PNG_CFLAGS) -I$(BC)/tangle/ch$(1) -c -o $$@ $$<
+ifneq ($(call previous,$(1)),)
+$$(patsubst %.c,$(BC)/obj/ch$(1)/%.o,$$(filter $$(SRC$(call previous,$(1))),$$(SRC$(1)))): \
+  $(BC)/obj/ch$(1)/%.o: | $(BC)/obj/ch$(call previous,$(1))/%.o
+endif
+$(BC)/ch$(1).o: $$(patsubst %.c,$(BC)/obj/ch$(1)/%.o,$$(SRC$(1))) tools/book_code.sh
+	sh tools/book_code.sh link $$@ $$(filter %.o,$$^)
+-include $$(wildcard $(BC)/obj/ch$(1)/*.d)
+endef
+$(if $(HANDOUT),,$(foreach n,$(NUMS),$(eval $(call bookcode_rules,$(n)))))
+
+check-handout: $(BC)/.forms
 	+@sh tools/handout.sh build/handoutcheck --no-book > /dev/null
 	@sh tools/check_handout.sh build/handoutcheck
 	@! sh tools/check_handout.sh src > /dev/null || \
@@ -687,7 +750,7 @@ WLIB$(1) := $$(filter-out $$(WO$(1))/main.o,$$(WOBJ$(1)))
 
 $$(WO$(1))/%.o: $$(WT$(1))/%.c $$(O$(1))/%.o | deps $(REUSE)
 	@$$(dir_of_target)
-	$$(call wb_reuse_book,$(1),$$*.o) $$(call wb_reuse_from,$(1),$$*.o)$$(CC) $$(WB_CFLAGS) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
+	$$(call wb_reuse_book,$(1),$$*.o) $$(call wb_reuse_from,$(1),$$*.o)$$(CC) $$(WB_CFLAGS) $$(RT_TU) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
 
 $$(WO$(1))/tests/%.o: tests/%.c $$(O$(1))/tests/%.o | deps $(REUSE)
 	@$$(dir_of_target)
@@ -699,11 +762,12 @@ $$(WO$(1))/tests/runner.o: tests/runner.c $$(SUITES$(1)) | deps
 	  '-DSUITE_LIST=$$(foreach s,$$(SUITES$(1)),X($$(basename $$(notdir $$(s)))))' -c -o $$@ $$<
 
 $(WB_BUILD)/test/ch$(1): $$(WO$(1))/tests/runner.o \
-                      $$(patsubst tests/%.c,$$(WO$(1))/tests/%.o,$$(SUITES$(1))) $$(WLIB$(1))
+                      $$(patsubst tests/%.c,$$(WO$(1))/tests/%.o,$$(SUITES$(1))) $$(WLIB$(1)) \
+                      $$(call book_obj,$(1))
 	@$$(dir_of_target)
 	$$(CC) $$(WB_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
 
-$(WB_BUILD)/bin/ch$(1): $$(WOBJ$(1))
+$(WB_BUILD)/bin/ch$(1): $$(WOBJ$(1)) $$(call book_obj,$(1))
 	@$$(dir_of_target)
 	$$(CC) $$(WB_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
 
@@ -712,11 +776,12 @@ $(WB_BUILD)/bin/ch$(1): $$(WOBJ$(1))
 # rest as they are: the tests that start threads run in it.
 $(WB_BUILD)/tsan/obj/ch$(1)/%.o: $$(WT$(1))/%.c | deps
 	@$$(dir_of_target)
-	$$(CC) $$(WB_CFLAGS) -fsanitize=thread $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
+	$$(CC) $$(WB_CFLAGS) -fsanitize=thread $$(RT_TU) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
 
 $(WB_BUILD)/tsan/test/ch$(1): $$(WO$(1))/tests/runner.o \
                       $$(patsubst tests/%.c,$$(WO$(1))/tests/%.o,$$(SUITES$(1))) \
-                      $$(foreach o,$$(WLIB$(1)),$$(if $$(filter $$(basename $$(notdir $$(o))),$$(WB_TSAN_FILES)),$(WB_BUILD)/tsan/obj/ch$(1)/$$(notdir $$(o)),$$(o)))
+                      $$(foreach o,$$(WLIB$(1)),$$(if $$(filter $$(basename $$(notdir $$(o))),$$(WB_TSAN_FILES)),$(WB_BUILD)/tsan/obj/ch$(1)/$$(notdir $$(o)),$$(o))) \
+                      $$(call book_obj,$(1))
 	@$$(dir_of_target)
 	$$(CC) $$(WB_CFLAGS) -fsanitize=thread -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
 
@@ -823,7 +888,7 @@ WASM_CC   := clang --target=wasm32-wasi
 PAGE_DIR  := build/tangle/ch$(LAST)/page
 # Asked once, by the first make: its sub-makes get the answer from it.
 ifndef PAGE_PROBED
-HAVE_WASM := $(if $(filter clean,$(MAKECMDGOALS)),,$(shell sh tools/deps.sh --page >&2; \
+HAVE_WASM := $(if $(filter clean,$(MAKECMDGOALS))$(HANDOUT),,$(shell sh tools/deps.sh --page >&2; \
                printf 'int main(void) { return 0; }\n' | \
                $(WASM_CC) -x c - -o /dev/null >/dev/null 2>&1 && echo yes))
 export HAVE_WASM
@@ -1003,10 +1068,16 @@ BOOK_TESTS := benches check-src check-charts check-book check-map check-stray \
               check-allocations check-test-width check-quotes check-workbook \
               check-handout check-epub check-pdf check-book-browser check-page check-build-speed \
               check-brackets check-weave-errors check-reuse
+ifeq ($(HANDOUT),)
 test: deps $(PROGRAM_TESTS) $(if $(SAN),,$(BOOK_TESTS))
 	@# the book is up to date by now (check-book): -o keeps it so
 	$(if $(SAN),,@$(MAKE) --no-print-directory -o build/book.html check-code-width)
 	@echo "make test: all passed"
+else
+# A handout's tests: every chapter's suites against its program.
+test: deps $(foreach n,$(NUMS),test-ch$(n))
+	@echo "make test: all passed"
+endif
 
 clean:
 	rm -rf build bin

@@ -92,7 +92,7 @@ workbook_of() { echo "$WB_DIR/$(basename "$1")"; }
 book_code() {
     kind=$1
     shift
-    [ -d book/$kind ] || return 0
+    [ -d book/$kind ] && [ "${GRADE_BOOK_CODE:-}" != no ] || return 0
     for chapter in "$@"; do
         [ -f "book/$kind/$(basename "$chapter")" ] &&
             echo "book/$kind/$(basename "$chapter")"

@@ -1,7 +1,8 @@
 # workbook.awk -- write a chapter's workbook file: its exercises to do.
 #
-#   awk -f tools/stub.awk -f tools/workbook.awk [-v solved=1] \
-#       [-v types=TYPES.tsv] CHAPTER.md CHAPTER.md
+#   awk -f tools/stub.awk -f tools/book_code.awk -f tools/workbook.awk \
+#       [-v solved=1] [-v types=TYPES.tsv] CHAPTER.md CHAPTER.md
+#   awk ... -v mode=forward|export|book [-v headers=" ID..."] CHAPTER.md CHAPTER.md
 #
 # (the chapter twice: the first reading collects every chunk's pieces)
 # prints, for the exercises of CHAPTER.md (see tools/exercises.awk for how
@@ -15,6 +16,11 @@
 # task come the <<chunk>> lines its code must keep (later chapters put
 # their code there) and, with types=TYPES.tsv (tools/types.awk's listing),
 # where the types its code uses are defined.
+#
+# With mode=forward, export or book it prints instead, for each exercise,
+# only a chunk that replaces the book's (forward, book) or adds to it
+# (export), in the form tools/book_code.awk makes for a handout; headers
+# lists the exercises whose code lands in a header.
 #
 # An exercise may mark an .append piece of a chunk that the chapter builds
 # in several pieces (and that no other chapter writes to): the workbook's
@@ -182,7 +188,7 @@ function wrapped(text,    words, n, i, out, line) {
 }
 
 function write_exercise(    code, tests_list, fence_attr, note) {
-    if (!solved)
+    if (!solved && mode == "")
         check_stub_keeps_chunks()
     tests_list = tests
     gsub(/ +/, "`\n- `", tests_list)
@@ -210,7 +216,7 @@ function write_exercise(    code, tests_list, fence_attr, note) {
 NR == FNR && in_code && $0 ~ "^" fence "[`~]*[ \t]*$" {
     in_code = 0
     if (name != "")
-        piece[name, pieces[name]] = stubbing ? stub_of(text) : text
+        piece[name, pieces[name]] = stubbing ? exercise_form(text, first_id) : text
     next
 }
 NR == FNR && in_code { text = (text_lines++ ? text "\n" : "") $0; next }
@@ -218,7 +224,9 @@ NR == FNR && /^(```|~~~)/ {
     in_code = 1
     fence = substr($0, 1, 3)
     name = attribute($0, "chunk")
-    stubbing = !solved && $0 ~ /[{ ]\.exercise[ }]/
+    stubbing = (!solved || mode != "") && $0 ~ /[{ ]\.exercise[ }]/
+    if ($0 ~ /[{ ]\.exercise[ }]/)
+        first_id = chapter_number(FILENAME) "." ++first_count
     text = ""
     text_lines = 0 # a first line that is blank is kept
     if (name != "")
@@ -227,17 +235,32 @@ NR == FNR && /^(```|~~~)/ {
 }
 NR == FNR { next }
 
+# An exercise's code TEXT as the workbook or the mode shows it: the
+# book's (solved), its stub, or the handout's form of exercise ID.
+function exercise_form(text, id) {
+    if (mode != "")
+        return book_form(text, mode, index(headers " ", " " id " ") > 0)
+    return solved ? text : stub_of(text)
+}
+
 # The code of an exercise's chunk K: all its pieces, or the file's one.
-function exercise_code(k,    i, code) {
-    if (kind == "file" || pieces[k] < 2)
-        return solved ? body : stub_of(body)
+function exercise_code(k,    i, code, joined) {
+    if (kind == "file" || pieces[k] < 2 || mode == "export")
+        return exercise_form(body, id)
     code = ""
     # the book's code joined as the tangler joins it (a piece brings its
     # own blank line), the stubs a blank line apart
+    joined = solved || mode != ""
     for (i = 1; i <= pieces[k]; i++)
         if (piece[k, i] != "")
-            code = code (code == "" ? "" : solved ? "\n" : "\n\n") piece[k, i]
+            code = code (code == "" ? "" : joined ? "\n" : "\n\n") piece[k, i]
     return code
+}
+
+# The chunk of the handout's form (mode) of the exercise just read.
+function write_form(    attr) {
+    attr = kind "=\"" key "\" ." (mode == "export" ? "append" : "replace")
+    printf "```{.c %s}\n%s\n```\n\n", attr, exercise_code(key)
 }
 
 BEGIN {
@@ -254,6 +277,12 @@ FNR == 1 {
     in_code = 0
 }
 
+!title && mode != "" && /^# / {
+    title = $0
+    printf "# The exercises of %s, %s\n\n", FILENAME, mode
+    print "Made by tools/book_code.sh for a handout (see tools/book_code.awk):"
+    print "no exercise's code, only its functions' names and arguments.\n"
+}
 !title && /^# / {
     title = $0
     sub(/^# */, "", title)
@@ -298,7 +327,14 @@ in_code { next }
 }
 
 want_notes && /^:::+ *\{\.exercise-notes\}/ { in_notes = 1; want_notes = 0; next }
-in_notes && /^:::+[ \t]*$/ { in_notes = 0; write_exercise(); next }
+in_notes && /^:::+[ \t]*$/ {
+    in_notes = 0
+    if (mode != "")
+        write_form()
+    else
+        write_exercise()
+    next
+}
 in_notes && /^\*\*Your task\.\*\*/ { section = "task" }
 in_notes && /^\*\*Hint\.\*\*/ { section = "hint"; sub(/^\*\*Hint\.\*\* */, "") }
 in_notes { add_note($0) }
