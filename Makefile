@@ -93,7 +93,10 @@ $(B)/obj/%/tests/ch09_packets.o: TEST_OPT := -O1
 RUNNER_ENV := $(if $(SAN),RUNNER_FORKLESS=1)
 # In a handout (below) the static helpers that only an exercise's code
 # calls go unused until the student writes it.
-ALL_CFLAGS = $(CSTD) $(WARN) $(if $(HANDOUT),-Wno-unused-function) $(OPT) $(ARCH) -pthread $(CFLAGS) -MMD -MP
+ALL_CFLAGS = $(CSTD) $(WARN) $(HANDOUT_WARN) $(OPT) $(ARCH) -pthread $(CFLAGS) -MMD -MP
+HANDOUT_WARN = $(if $(HANDOUT),-Wno-unused-function $(if $(BOOK_CODE),,$(STUB_WARN)))
+# (and where the stubs stand in, their parameters and variables too)
+STUB_WARN = -Wno-unused-parameter -Wno-unused-variable -Wno-unused-but-set-variable -Wno-missing-braces
 
 # Parallel by default, one job a core; make -jN still chooses, and a make
 # run by a recipe shares its parent's jobs.
@@ -552,7 +555,8 @@ hint:
 	@awk -v hint=$(EX) -f tools/exercises.awk $(CHAPTERS)
 
 watch: $(TANGLE)
-	+@WB_DIR=$(WB_DIR) sh tools/watch.sh $(MAKE) --no-print-directory grade
+	+@WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) sh tools/watch.sh $(MAKE) --no-print-directory \
+	  WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD)
 
 # make chart-chNN WORKBOOK=1: chapter NN's charts with the reader's started
 # exercises as "yours", timed in the same rounds as the book's methods, under
@@ -734,14 +738,17 @@ check-stubs: $(TANGLE)
 # make builds those first, so that no two makes write one object at once.
 # The book's code, typed in, builds the book's programs byte for byte: the
 # last chapter's suites, run first, give that grade its results.
-WB_CHECK_CHAPTERS := $(LAST) $(call previous,$(LAST)) 06 05
+WB_CHECK_CHAPTERS := $(NUMS)
 .PHONY: check-workbook
 check-workbook: $(TANGLE) $(foreach n,$(filter $(NUMS),$(WB_CHECK_CHAPTERS)),$(B)/test/ch$(n) $(BIN)/ch$(n)) \
                 test-ch$(LAST)
 	+@MAKE="$(MAKE)" WB_CHECK_DIR=build/wbcheck$(WB_TAG) sh tools/check_workbook.sh
 
 # The workbook's program and suites of chapter NN, built from the tangle
-# that tools/grade.sh writes to $(WB_BUILD)/tangle/chNN.
+# that tools/grade.sh writes to $(WB_BUILD)/tangle/chNN. What the
+# compiler says of a file is kept beside its object, OBJ.warnings: the
+# grader shows the warnings at the reader's lines at every grade, whether
+# or not the file was compiled again.
 define workbook_rules
 WT$(1) := $(WB_BUILD)/tangle/ch$(1)
 WO$(1) := $(WB_BUILD)/obj/ch$(1)
@@ -750,7 +757,9 @@ WLIB$(1) := $$(filter-out $$(WO$(1))/main.o,$$(WOBJ$(1)))
 
 $$(WO$(1))/%.o: $$(WT$(1))/%.c $$(O$(1))/%.o | deps $(REUSE)
 	@$$(dir_of_target)
-	$$(call wb_reuse_book,$(1),$$*.o) $$(call wb_reuse_from,$(1),$$*.o)$$(CC) $$(WB_CFLAGS) $$(RT_TU) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
+	$$(call wb_reuse_book,$(1),$$*.o) $$(call wb_reuse_from,$(1),$$*.o)$$(CC) $$(WB_CFLAGS) $$(RT_TU) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$< \
+	  2> $$@.warnings || { cat $$@.warnings >&2; exit 1; }
+	@cat $$@.warnings >&2
 
 $$(WO$(1))/tests/%.o: tests/%.c $$(O$(1))/tests/%.o | deps $(REUSE)
 	@$$(dir_of_target)
@@ -773,10 +782,13 @@ $(WB_BUILD)/bin/ch$(1): $$(WOBJ$(1)) $$(call book_obj,$(1))
 
 # The suites again, the files that hold the reader's code (WB_TSAN_FILES,
 # their names without .c: tools/grade.sh) built with ThreadSanitizer, the
-# rest as they are: the tests that start threads run in it.
+# rest as they are: the tests that start threads run in it. Without
+# optimization, so that every access the code makes is made (at -O2 a
+# static variable that a function writes and reads may live in a
+# register, and its race go unseen).
 $(WB_BUILD)/tsan/obj/ch$(1)/%.o: $$(WT$(1))/%.c | deps
 	@$$(dir_of_target)
-	$$(CC) $$(WB_CFLAGS) -fsanitize=thread $$(RT_TU) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
+	$$(CC) $$(WB_CFLAGS) -O0 -fsanitize=thread $$(RT_TU) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
 
 $(WB_BUILD)/tsan/test/ch$(1): $$(WO$(1))/tests/runner.o \
                       $$(patsubst tests/%.c,$$(WO$(1))/tests/%.o,$$(SUITES$(1))) \

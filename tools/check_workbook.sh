@@ -4,30 +4,49 @@
 # Usage: MAKE=make [WB_CHECK_DIR=DIR] tools/check_workbook.sh
 # Works in DIR (default build/wbcheck/): each check below has a folder of its own there
 # (NAME/wb, the workbook; NAME/build, where make grade builds it,
-# incrementally from one run to the next), and checks 2, 3 and 5 run side
-# by side, check 4 after 3 in its folder (the wrong answers recompile only
-# the files they are in). Checks that
+# incrementally from one run to the next), and they run side by side, in
+# three lines (1, 6, 8; 3 then 4 in its folder; 5, 2, 7), each grading no
+# more chapters than its mistakes need, which it finds by the exercises'
+# chunk names (a chapter put before another renumbers them). Checks that
 #   1. an untouched workbook grades "Progress: 0 of N", N >= 36, at least 4
 #      exercises a chapter, exit 0; make workbook overwrites no file; no
-#      task holds TeX ($...$);
+#      task holds TeX ($...$); and that 2.4 without its line <<the
+#      sphere's hit-point bound>> (kept for chapter 6) fails at chapter 2,
+#      saying so, its file left out (the book's code stands in); and that
+#      make grade EX=N.k exits 0 for a right 1.1, 1 for that 2.4;
 #   2. with every stub started, no exercise passes (each stub fails one of
 #      its tests), and the exit status is not 0;
 #   3. a SOLVED=1 workbook grades "Progress: N of N", exit 0, and builds
 #      the book's programs byte for byte (their logged results stand);
 #   4. the course sheet's forms typed in as answers fail with a message
 #      naming the correction (sphere, half vector, tone map, Snell),
-#      a loop is "timed out" and a null pointer "crashed (signal 11)"; in
+#      a loop is "timed out" with its limit and the load, a null pointer
+#      "crashed (signal 11)"; in
 #      the same grade, a syntax error is reported at its workbook line, a
-#      lost fence where it was, and the other chapters'
-#      exercises pass their tests but are not done, the program failing
-#      elsewhere; the exit status is 1;
-#   5. a 1.1 that passes its own tests but breaks chapter 5's camera is not
-#      done, chapter 5's failing tests are listed as failing elsewhere, and
-#      the exit status is 1; in the same grade, 2.4 taking the far root,
-#      6.3's points not stratified and the sheet's normal in 5.2 fail with
-#      messages naming the mistake (5.2 is in vec.h, which every file
-#      includes: here, in a build of chapters 1 to 6, and not in check 4,
-#      whose answers then recompile only the files they are in).
+#      lost fence where it was, and the other chapters' exercises are
+#      done (every failure is laid on an exercise); the exit status is 1,
+#      and the JUnit report has a failure for each exercise not done;
+#   5. (chapters 1 to 6) a 1.1 that passes its own tests but breaks
+#      chapter 5's camera (it sets the ray's direction again after the
+#      chunk that places it) is failing, chapter 5's test laid on it, found
+#      by halves of the exercises that name no failing test; in the same
+#      grade, 2.4 taking the far root, 6.3's points not stratified, the
+#      sheet's normal in 5.2, 3.2's cone that leaves out its edge and 6.2
+#      seeded by three of the six coordinates fail with messages naming
+#      the mistake, and 4.3 wrong with 4.4 right, which share tests: only
+#      4.3 is failing, 4.4 and the right answers 2.1 and 3.3 are done;
+#      and 1.3 without its last return fails on the compiler's warning;
+#   6. (chapters 1 to 3) 1.3 taking +12x34 for a size, 2.4 that forgets
+#      inside, and 3.2 with a directional light at distance 0, each caught
+#      by a test of its own chapter;
+#   7. (chapters 1 to 10) 9.1 with static first and last, and 10.1 with a
+#      static hash state: data races, both caught by ThreadSanitizer (where
+#      the compiler has it) and laid on their exercises; 10.1's hash also
+#      leaves out the axis, which its own test sees; and 8.3 with an
+#      uninitialised variable and a write past an array, failing on the
+#      compiler's warnings at its lines;
+#   8. (chapters 1 to 8) 8.3 that clips one edge short: every failing test,
+#      its own and the others, laid on it.
 # Prints what went wrong in each failed check and exits 1.
 set -u
 MAKE=${MAKE:-make}
@@ -71,22 +90,57 @@ expect_verdict() {
         fail "exercise $1 should say '$2'"
 }
 
-# The book's code of exercise ID, from the (solved) workbook file FILE.
-solution() {
-    awk -v id="ex=\"$1\"" 'index($0, id) { code = 1; next } code && /^```/ { exit } code' \
-        "$wb/$2"
+# The exercises are named by their chunk or file (KEY), not by number:
+# a chapter put before another renumbers them. id_of KEY: "2.1";
+# file_of KEY: its workbook file's name; chapter_of KEY: "02".
+id_of() { awk -F '\t' -v k="$1" '$5 == k { print $1; exit }' "$list"; }
+file_of() { awk -F '\t' -v k="$1" '$5 == k { sub(/.*\//, "", $2); print $2; exit }' "$list"; }
+chapter_of() { file_of "$1" | cut -c1-2; }
+
+# expect KEY TEXT: exercise KEY's verdict holds TEXT.
+expect() { expect_verdict "$(id_of "$1")" "$2"; }
+
+# The last chapter of the exercises KEY...: what a grade of them needs.
+last_chapter() {
+    for key in "$@"; do chapter_of "$key"; done | sort | tail -n 1
 }
 
-# Replaces the code of exercise ID in workbook file FILE by the file ANSWER.
+# The book's code of exercise KEY, from the solved workbook.
+solution() {
+    awk -v id="ex=\"$(id_of "$1")\"" 'index($0, id) { code = 1; next } code && /^```/ { exit } code' \
+        "$top/book/$(file_of "$1")"
+}
+
+# answer KEY FILE: exercise KEY started with the code in FILE.
 answer() {
-    awk -v id="$2" -v answer="$3" '
+    awk -v id="$(id_of "$1")" -v answer="$2" '
         !open && /^```/ && index($0, "ex=\"" id "\"") {
             print; open = 1
             while ((getline line < answer) > 0) print line
             next
         }
         open && /^```[ \t]*$/ { open = 0 }
-        !open { print }' "$1" > "$1.new" && mv "$1.new" "$1"
+        !open { print }' "$wb/$(file_of "$1")" > "$t/answer.md" &&
+        mv "$t/answer.md" "$wb/$(file_of "$1")"
+}
+
+# plant KEY SED_SCRIPT: exercise KEY started with the book's code edited
+# by SED_SCRIPT; fails the check when the edit changes nothing (the
+# book's code moved on: the plant must follow it).
+plant() {
+    solution "$1" > "$t/plant.orig"
+    sed "$2" "$t/plant.orig" > "$t/plant.c"
+    ! cmp -s "$t/plant.orig" "$t/plant.c" ||
+        fail "exercise $1's code no longer holds what the plant '$2' edits"
+    answer "$1" "$t/plant.c"
+}
+
+# right KEY...: each started with the book's code.
+right() {
+    for key in "$@"; do
+        solution "$key" > "$t/right.c"
+        answer "$key" "$t/right.c"
+    done
 }
 
 list=$top/list
@@ -98,18 +152,40 @@ for c in chapters/[0-9][0-9]-*.md; do
     [ "$k" -ge 4 ] || { echo "check-workbook: $c has $k exercises, fewer than 4"; exit 1; }
 done
 
-# ---- 1. untouched
-use untouched
-fresh
-echo "my own line" >> "$wb/01-camera.md"
-$MAKE -s --no-print-directory workbook WB_DIR="$wb" > "$t/out" 2>&1
-grep -qx "my own line" "$wb/01-camera.md" || fail "make workbook overwrote a file"
-# the tasks are read as plain text: no TeX left in them
-tex=$(awk '/^```/ { code = !code; next } !code && /\$[^$ ][^$]*\$/' "$wb"/*.md | head -3)
-[ -z "$tex" ] || fail "a task holds TeX: $tex"
-grade ""
-[ "$status" = 0 ] || fail "an untouched workbook should grade with status 0"
-grep -qx "Progress: 0 of $n exercises" "$t/out" || fail "expected Progress: 0 of $n"
+rm -rf "$top/book"
+$MAKE -s --no-print-directory workbook WB_DIR="$top/book" SOLVED=1 > /dev/null 2>&1 ||
+    { echo "check-workbook: make workbook SOLVED=1 failed"; exit 1; }
+
+# ---- 1. untouched; then 2.4 without a chunk line that a later chapter fills
+check_untouched() {
+    use untouched
+    fresh
+    mine=$(ls "$wb" | head -n 1)
+    echo "my own line" >> "$wb/$mine"
+    $MAKE -s --no-print-directory workbook WB_DIR="$wb" > "$t/out" 2>&1
+    grep -qx "my own line" "$wb/$mine" || fail "make workbook overwrote a file"
+    # the tasks are read as plain text: no TeX left in them
+    tex=$(awk '/^```/ { code = !code; next } !code && /\$[^$ ][^$]*\$/' "$wb"/*.md | head -3)
+    [ -z "$tex" ] || fail "a task holds TeX: $tex"
+    grade ""
+    [ "$status" = 0 ] || fail "an untouched workbook should grade with status 0"
+    grep -qx "Progress: 0 of $n exercises" "$t/out" || fail "expected Progress: 0 of $n"
+    plant sphere.c "/^<<the sphere's hit-point bound>>\$/d"
+    grade "-ch$(chapter_of sphere.c)"
+    [ "$status" != 0 ] || fail "2.4 without a chunk line should not grade with status 0"
+    expect sphere.c "failing: lost its line <<the sphere's hit-point bound>>"
+    grep -q "^$wb/$(file_of sphere.c):[0-9]*: error: exercise $(id_of sphere.c) lost its line" "$t/out" ||
+        fail "the lost chunk line should be reported at its exercise in $wb/$(file_of sphere.c)"
+    # one exercise's verdict as the exit status (the grade of its chapter)
+    right camera.c
+    $MAKE -s --no-print-directory grade EX="$(id_of camera.c)" WB_DIR="$wb" \
+        WB_BUILD="$t/build" > "$t/out" 2>&1 ||
+        fail "make grade EX=$(id_of camera.c) should exit 0: it is right"
+    $MAKE -s --no-print-directory grade EX="$(id_of sphere.c)" WB_DIR="$wb" \
+        WB_BUILD="$t/build" > "$t/out" 2>&1 &&
+        fail "make grade EX=$(id_of sphere.c) should exit 1: it lost a line"
+    return 0
+}
 
 # ---- 2. every stub started: each one fails
 check_stubs() {
@@ -136,102 +212,179 @@ check_solved() {
         fail "the book's code, typed in, should build the book's programs"
 }
 
-# ---- 4. the sheet's forms, a loop and a crash; in the same grade, a syntax
-# error in chapter 4 and a lost fence in chapter 6 (chapters the wrong
-# answers are not in, so that each is seen)
+# ---- 4. the sheet's forms, a loop, a crash and a hash without the axis;
+# in the same grade, a syntax error and a lost fence in two chapters that
+# hold no wrong answer, so that each is seen
 check_wrong() {
     use solved # after check 3, in its folder: only what changes is compiled
     fresh SOLVED=1
-    answer "$wb/02-spheres.md" 2.3 "$data/sheet-sphere.c"
-    answer "$wb/03-phong.md" 3.1 "$data/sheet-half-vector.c"
-    answer "$wb/03-phong.md" 3.3 "$data/sheet-tone-map.c"
-    answer "$wb/07-refraction.md" 7.1 "$data/sheet-snell.c"
-    answer "$wb/01-camera.md" 1.2 "$data/loops.c"
-    answer "$wb/07-refraction.md" 7.3 "$data/crashes.c"
-    fence=$(grep -n 'ex="4.1"' "$wb/04-triangles.md" | cut -d: -f1)
-    sed -i "$((fence + 1))i this is not C" "$wb/04-triangles.md"
-    lost=$(grep -n 'ex="6.1"' "$wb/06-shadows.md" | cut -d: -f1)
-    sed -i '/ex="6.1"/d' "$wb/06-shadows.md"
-    GRADE_TIMEOUT=4 grade ""
+    answer "robust form" "$data/sheet-sphere.c"
+    answer highlights "$data/sheet-half-vector.c"
+    answer "tone mapping" "$data/sheet-tone-map.c"
+    answer optics.c "$data/sheet-snell.c"
+    answer "colour encoding" "$data/loops.c"
+    answer "Fresnel reflectance" "$data/crashes.c"
+    syntax=$wb/$(file_of "the sheet's method")
+    fence=$(grep -n "ex=\"$(id_of "the sheet's method")\"" "$syntax" | cut -d: -f1)
+    sed -i "$((fence + 1))i this is not C" "$syntax"
+    fenced=$wb/$(file_of offset.c)
+    lost=$(grep -n "ex=\"$(id_of offset.c)\"" "$fenced" | cut -d: -f1)
+    sed -i "/ex=\"$(id_of offset.c)\"/d" "$fenced"
+    upto=$(last_chapter "robust form" highlights "tone mapping" optics.c \
+        "colour encoding" "Fresnel reflectance" "the sheet's method" offset.c)
+    GRADE_TIMEOUT=4 grade "-ch$upto"
     [ "$status" != 0 ] || fail "wrong answers should not grade with status 0"
-    expect_verdict 2.3 "measure from the ray's origin, c - o"
-    expect_verdict 3.1 "h is the unit vector (l + v) / |l + v|"
-    expect_verdict 3.3 "the tone map is min(alpha I^beta, 1), not the sheet's max"
-    expect_verdict 7.1 "sin1 / sin2 = eta2 / eta1, not the sheet's eta1 / eta2"
-    expect_verdict 1.2 "timed out: test_gamma_22"
-    expect_verdict 7.3 "crashed (signal 11): test_brewster_angle_of_glass_is_56_31_degrees"
-    grep -q "^$wb/04-triangles.md:$((fence + 1)):[0-9]*: error" "$t/out" ||
-        fail "the syntax error should be reported at $wb/04-triangles.md:$((fence + 1))"
-    grep -q "^$wb/06-shadows.md:$lost: error: exercise 6.1" "$t/out" ||
-        fail "the lost fence should be reported where it was, $wb/06-shadows.md:$lost"
+    expect "robust form" "measure from the ray's origin, c - o"
+    expect highlights "h is the unit vector (l + v) / |l + v|"
+    expect "tone mapping" "the tone map is min(alpha I^beta, 1), not the sheet's max"
+    expect optics.c "sin1 / sin2 = eta2 / eta1, not the sheet's eta1 / eta2"
+    expect "colour encoding" "timed out after 4 s (its limit; the machine's load was"
+    expect "colour encoding" "test_gamma_22"
+    expect "Fresnel reflectance" "crashed (signal 11): test_brewster_angle_of_glass_is_56_31_degrees"
+    grep -q "^$syntax:$((fence + 1)):[0-9]*: error" "$t/out" ||
+        fail "the syntax error should be reported at $syntax:$((fence + 1))"
+    grep -q "^$fenced:$lost: error: exercise $(id_of offset.c)" "$t/out" ||
+        fail "the lost fence should be reported where it was, $fenced:$lost"
     ! grep -q '__builtin_' "$t/out" ||
         fail "a message shows what a macro expanded to, not the macro"
-    expect_verdict 4.1 "not graded"
-    expect_verdict 6.1 "not graded"
-    # the chapters that hold no wrong answer are graded all the same: their
-    # tests pass, and they are not done while the program fails elsewhere
-    for id in $(awk -F '\t' '$2 ~ /\/(0[89]|[1-9][0-9])-/ { print $1 }' "$list"); do
-        verdict "$id" | grep -q ' its tests pass, but [0-9]* other test(s) fail' ||
-            fail "exercise $id, untouched, should pass its tests, not be done"
+    expect "the sheet's method" "not graded"
+    expect offset.c "not graded"
+    # the exercises of the chapters that hold no wrong answer and no error
+    # are done: every failure is laid on the wrong answer that causes it
+    touched=$(for key in "robust form" highlights optics.c "colour encoding" \
+                  "the sheet's method" offset.c; do
+                  chapter_of "$key"; done | sort -u | tr '\n' ' ')
+    for id in $(awk -F '\t' -v touched=" $touched" -v upto="$upto" '{
+            c = $2; sub(/.*\//, "", c); c = substr(c, 1, 2)
+            if (!index(touched, " " c " ") && c <= upto) print $1 }' "$list"); do
+        expect_verdict "$id" " done"
+    done
+    ! grep -q '^Failing, and laid on no one' "$t/out" ||
+        fail "every failure should be laid on an exercise"
+    not_done=$(grep -E '^  [0-9]+\.[0-9]+ ' "$t/out" | grep -vc ' done$\| not started')
+    [ "$(grep -c '<failure message=' "$t/build/junit.xml")" = "$not_done" ] ||
+        fail "the JUnit report should hold a failure for each of the $not_done exercises not done"
+    return 0
+}
+
+# ---- 5. mistakes that another chapter's test catches, that share tests,
+# that the compiler sees, and that a message names
+check_elsewhere() {
+    use elsewhere
+    fresh
+    # 1.1 sets the ray's direction again after <<place the primary ray>>:
+    # its own tests pass, the look-at camera's fail
+    plant camera.c '/^    <<place the primary ray>>$/a\
+    r.dir = vec3_normalize(on_plane); /* the direction, to be sure */'
+    # the far root: the larger root whenever it lies past t_min
+    plant sphere.c \
+        's/roots\[0\] > t_min ? roots\[0\] : roots\[1\]/roots[1] > t_min ? roots[1] : roots[0]/'
+    # 4.3 keeping only the hits whose edge functions are all positive, and
+    # 4.4 right: the tests they share fail, and 4.3 alone is blamed
+    plant watertight \
+        's/(u < 0 || v < 0 || w < 0) \&\& (u > 0 || v > 0 || w > 0)/u < 0 || v < 0 || w < 0/'
+    right "shear the ray onto the z axis" "geometric form" "tone mapping"
+    answer "points in the unit square" "$data/unstratified.c"
+    answer "4x4 matrices" "$data/sheet-normal.c"
+    plant lights 's/if (cos_theta < L->cos_cutoff)/if (cos_theta <= L->cos_cutoff)/'
+    plant "the random stream" 's/for (int k = 0; k < 6; k++) {/for (int k = 0; k < 3; k++) {/'
+    plant "parse a size" '/^    return true;$/d'
+    grade "-ch$(last_chapter camera.c sphere.c watertight "points in the unit square" \
+        "4x4 matrices" lights "the random stream")"
+    [ "$status" != 0 ] || fail "a program that breaks the look-at camera should not grade with status 0"
+    expect camera.c "test_look_at_"
+    expect camera.c "_transforms.c:"
+    expect camera.c "it fails with your $(id_of camera.c) alone"
+    expect sphere.c "test_the_nearer_root_is_the_hit: t = 6: the nearer root is 4"
+    expect "points in the unit square" "is outside its cell"
+    expect "4x4 matrices" "a normal moves by (M^-1)^T n, not by M n"
+    expect watertight "failing: test_"
+    expect lights "the edge is inside the cone"
+    expect "the random stream" "every coordinate's bits must seed it"
+    expect "parse a size" "the compiler warns at your line: $wb/$(file_of "parse a size"):"
+    expect "parse a size" "[-Wreturn-type]"
+    for key in "shear the ray onto the z axis" "geometric form" "tone mapping"; do
+        expect "$key" " done"
     done
 }
 
-# ---- 5. only three exercises started: 1.1, the book's code without the
-# line that lets chapter 5 place the camera: 1.1's tests pass, chapter 5's
-# look-at tests fail, no started exercise names them, and the grade says
-# so; 2.4 taking the far root, 6.3 with points that are not stratified and
-# 5.2 moving normals as the sheet does, each caught by a message that
-# names the mistake; and 4.3 wrong with 4.4 right, which share tests: only
-# 4.3 is failing
-check_elsewhere() {
-    use elsewhere
-    fresh SOLVED=1
-    solution 1.1 01-camera.md | grep -vx '    <<place the primary ray>>' \
-        > "$t/camera.c"
-    # the far root: the larger root whenever it lies past t_min
-    near='roots\[0\] > t_min ? roots\[0\] : roots\[1\]'
-    far='roots[1] > t_min ? roots[1] : roots[0]'
-    solution 2.4 02-spheres.md | sed "s/$near/$far/" > "$t/far-root.c"
-    grep -q 'roots\[1\] > t_min' "$t/far-root.c" ||
-        fail "2.4's code no longer picks its root as the far-root plant expects"
-    # 4.3 keeping only the hits whose edge functions are all positive, and
-    # 4.4 right: the tests they share fail, and 4.3 alone is blamed
-    both='(u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)'
-    solution 4.3 04-triangles.md | sed "s/$both/u < 0 || v < 0 || w < 0/" \
-        > "$t/one-winding.c"
-    grep -q 'if (u < 0 || v < 0 || w < 0)$' "$t/one-winding.c" ||
-        fail "4.3's code no longer tests its signs as the one-winding plant expects"
-    solution 4.4 04-triangles.md > "$t/shear.c"
+# ---- 6. mistakes that passed, each caught at its own chapter
+check_early() {
+    use early
     fresh
-    answer "$wb/01-camera.md" 1.1 "$t/camera.c"
-    answer "$wb/02-spheres.md" 2.4 "$t/far-root.c"
-    answer "$wb/06-shadows.md" 6.3 "$data/unstratified.c"
-    answer "$wb/05-transforms.md" 5.2 "$data/sheet-normal.c"
-    answer "$wb/04-triangles.md" 4.3 "$t/one-winding.c"
-    answer "$wb/04-triangles.md" 4.4 "$t/shear.c"
-    grade -ch06
-    [ "$status" != 0 ] || fail "a program that breaks chapter 5 should not grade with status 0"
-    expect_verdict 1.1 "its tests pass, but"
-    expect_verdict 2.4 "test_the_nearer_root_is_the_hit: t = 6: the nearer root is 4"
-    expect_verdict 6.3 "is outside its cell"
-    expect_verdict 5.2 "a normal moves by (M^-1)^T n, not by M n"
-    expect_verdict 4.3 "failing: test_"
-    expect_verdict 4.4 "its tests pass, but"
-    grep -A 1000 '^Failing, and the fault of no exercise you started' "$t/out" |
-        grep -q '^  test_look_at_keeps_up_up (tests/ch05_transforms.c:' ||
-        fail "chapter 5's look-at test should be listed as failing elsewhere"
+    plant "parse a size" "/if (text\[0\] < '0' || text\[0\] > '9')/,/return false;/d"
+    plant sphere.c '/h->inside = /d'
+    plant lights 's/vec3_scale(L->direction, -1), INFINITY,/vec3_scale(L->direction, -1), 0,/'
+    grade "-ch$(last_chapter "parse a size" sphere.c lights)"
+    [ "$status" != 0 ] || fail "three mistakes should not grade with status 0"
+    expect "parse a size" "failing: test_command_line_numbers_are_digits_only"
+    expect sphere.c "the hit must say so (inside)"
+    expect lights "a directional light at distance 0, not infinity"
 }
 
-# 2, 3 then 4, and 5 side by side; each prints only when it fails.
-check_stubs > "$top/stubs.verdict" 2>&1 & stubs=$!
-{ check_solved && check_wrong; } > "$top/solved.verdict" 2>&1 & solved=$!
-check_elsewhere > "$top/elsewhere.verdict" 2>&1 & elsewhere=$!
+# ---- 7. state the threads share; the compiler's warnings in 8.3
+check_races() {
+    use races
+    fresh
+    plant "a thread's bands" 's/^    int first, last;$/    static int first, last;/'
+    # 10.1 keeps its hash in a static variable, and leaves out the axis
+    plant "the sample hash" 's/^    uint64_t h = mix64(/    static uint64_t h;\
+    h = mix64(/; s/h = mix64(h ^ ((uint64_t)(uint32_t)k << 1 | (uint64_t)(axis \& 1)));/h = mix64(h ^ (uint64_t)(uint32_t)k);/'
+    plant "clipping a polygon" 's/^    int m = 0;$/    int m;/; /^    for (int i = 0; i < n; i++) {$/i\
+    vec3 first[1];\
+    first[1] = poly[0]; /* the first corner, kept */\
+    if (n < 1)\
+        out[0] = first[1];'
+    grade "-ch$(last_chapter "a thread's bands" "the sample hash" "clipping a polygon")"
+    [ "$status" != 0 ] || fail "data races should not grade with status 0"
+    clip=$wb/$(file_of "clipping a polygon")
+    expect "clipping a polygon" "the compiler warns at your line: $clip:"
+    grep -q "^$clip:[0-9]*:[0-9]*: warning: .*m.* uninitialized" "$t/out" ||
+        fail "the compiler should warn of 8.3's m, used uninitialized"
+    grep -Eq "^$clip:[0-9]*:[0-9]*: warning: array (subscript|index) 1 is (above|past)" "$t/out" ||
+        fail "the compiler should warn of 8.3's write past its array"
+    expect "the sample hash" "the axis must change the number"
+    if grep -q "^(no ThreadSanitizer" "$t/out"; then
+        return 0
+    fi
+    expect "a thread's bands" "data race (ThreadSanitizer) at $wb/$(file_of "a thread's bands"):"
+    expect "a thread's bands" "a static variable, which every thread shares"
+    # the race, which the verdict does not show behind the failing test
+    grep -q "^$(id_of "the sample hash")	a data race (ThreadSanitizer) at $wb/$(file_of "the sample hash"):.* on h, a static variable" \
+        "$t/build/ch$(chapter_of "the sample hash")/races.tsv" ||
+        fail "ThreadSanitizer should see 10.1's static h"
+}
+
+# ---- 8. 8.3's loop one edge short
+check_kd() {
+    use kd
+    fresh
+    plant "clipping a polygon" 's/^    for (int i = 0; i < n; i++) {$/    for (int i = 0; i < n - 1; i++) {/'
+    grade "-ch$(chapter_of "clipping a polygon")"
+    [ "$status" != 0 ] || fail "8.3 one edge short should not grade with status 0"
+    expect "clipping a polygon" "failing: test_tree_agrees_with_brute_force"
+    ! grep -q '^Failing, and laid on no one' "$t/out" ||
+        fail "every failure should be laid on 8.3"
+}
+
+# timed NAME: check_NAME, its seconds noted in $top/seconds.
+timed() {
+    start=$(date +%s)
+    "check_$1" || return 1
+    echo "$1 $(($(date +%s) - start))" >> "$top/seconds"
+}
+
+# Three lines of checks side by side; each prints only when it fails.
+: > "$top/seconds"
+{ timed untouched && timed early && timed kd; } > "$top/first.verdict" 2>&1 & first=$!
+{ timed solved && timed wrong; } > "$top/solved.verdict" 2>&1 & solved=$!
+{ timed elsewhere && timed stubs && timed races; } > "$top/elsewhere.verdict" 2>&1 & elsewhere=$!
 failed=0
-for check in stubs solved elsewhere; do
+for check in first solved elsewhere; do
     eval "pid=\$$check"
     wait "$pid" || { failed=1; cat "$top/$check.verdict"; }
 done
 [ "$failed" = 0 ] || exit 1
 
 echo "check-workbook: $n exercises; stubs fail, the book's code passes, the sheet's" \
-     "forms are named, errors are located"
+     "forms are named, errors are located, every mistake is laid on its exercise"

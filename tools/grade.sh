@@ -9,8 +9,10 @@
 # case sets a limit of its own, as the heavy ones do, gets that limit
 # times GRADE_TIMEOUT / 10), GRADE_EX (an exercise, 2.1: the exit status
 # is its verdict alone), GRADE_TANGLE_ONLY (1: check and tangle the
-# workbook, build and run nothing), GRADE_ALONE (how many exercises that
-# name a failing test are built alone first, default 8), GRADE_TSAN (0:
+# workbook, build and run nothing), GRADE_ALONE (the most exercises
+# failing their own tests for which failing tests are laid on one
+# exercise, default 12; more, as every stub started, and each is failing
+# already), GRADE_TSAN (0:
 # no run under ThreadSanitizer), BOOK_BUILD and BOOK_BIN (the book's build
 # and programs: their logged results stand for a workbook that builds the
 # very same programs).
@@ -212,8 +214,12 @@ esac
 # (each once: the chapter before's program compiles the same lines), and
 # each laid on the exercise whose lines it names.
 show_warnings() {
-    awk -v wb="$WB_DIR/" 'index($0, wb) == 1 && / warning: / && !seen[$0]++' \
-        "$work/build.log" > "$work/warnings"
+    # each object's compiler messages are kept beside it (the Makefile):
+    # a file compiled in an earlier grade keeps its warnings
+    for d in "$WB_BUILD/obj/ch$target" ${previous:+"$WB_BUILD/obj/ch$previous"}; do
+        cat "$d"/*.o.warnings 2> /dev/null
+    done | awk -v wb="$WB_DIR/" 'index($0, wb) == 1 && / warning: / && !seen[$0]++' \
+        > "$work/warnings"
     cat "$work/warnings" >&2
     awk -F '\t' -v warnings="$work/warnings" '
         $2 == "started" { file[$1] = $3; first[$1] = $4; last[$1] = $5; ids[++n] = $1 }
@@ -241,6 +247,16 @@ make_programs() {
 }
 
 build() {
+    # an object compiled before its messages were kept: compiled again
+    # (and what it was linked into, which make would not remake)
+    for o in "$WB_BUILD"/obj/ch*/*.o; do
+        [ -e "$o" ] && [ ! -e "$o.warnings" ] &&
+            rm -f "$o" "$WB_BUILD"/bin/ch* "$WB_BUILD"/test/ch*
+    done
+    for d in "$WB_BUILD"/obj/ch*; do # none left, but the programs stand
+        [ -d "$d" ] && ! ls "$d"/*.o > /dev/null 2>&1 &&
+            rm -f "$WB_BUILD"/bin/ch* "$WB_BUILD"/test/ch*
+    done
     for attempt in 1 2 3; do
         tangle_all "$@" || return 1
         if make_programs > "$work/build.log" 2>&1; then
@@ -292,7 +308,7 @@ run_tests() {
 }
 
 run_suites() {
-    book_results && return
+    book_results && book_own=yes && return
     run_tests "$WB_BUILD/test/ch$target" "$WB_BUILD/bin/ch$target" \
         "$work/tests.log"
 }
@@ -338,7 +354,7 @@ threaded_tests() {
 # ThreadSanitizer; each report is laid on the exercise whose line it
 # names first.
 run_threads_sanitized() {
-    [ "${GRADE_TSAN:-1}" = 1 ] || return 0
+    [ "${GRADE_TSAN:-1}" = 1 ] && [ -z "${book_own:-}" ] || return 0
     names=$(threaded_tests)
     [ -n "$names" ] || return 0
     files=$(readers_files "$WB_BUILD/tangle/ch$target" | tr '\n' ' ')
@@ -449,11 +465,14 @@ build_only() {
 probe() {
     ids=$1 tests=$2
     shift 2
+    [ -z "${GRADE_DEBUG:-}" ] || echo "probe $ids: $(date +%s.%N | cut -c1-14) ${tests%% *}..." >&2
     build_only "$ids" "$@" < /dev/null || { echo "$tests" | tr ' ' '\n'; return; }
+    [ -z "${GRADE_DEBUG:-}" ] || echo "  built $(date +%s.%N | cut -c1-14)" >&2
     names=$(echo "$tests" | tr ' ' '\n' | sed 's/:[0-9]*$//' | sort -u | tr '\n' ' ')
     run_tests "$alone/test/ch$target" "$alone/bin/ch$target" \
         "$work/alone-run.log" "$names" < /dev/null
     failed_in "$work/alone-run.log" > "$work/alone-failed"
+    [ -z "${GRADE_DEBUG:-}" ] || echo "  ran $(date +%s.%N | cut -c1-14)" >&2
     for t in $tests; do
         grep -qxF -- "$t" "$work/alone-failed" && echo "$t"
     done
@@ -476,7 +495,7 @@ bisect() {
     count=0
     for w in $ids; do count=$((count + 1)); done
     if [ "$count" = 1 ]; then
-        for t in $tests; do printf '%s\t%s\n' "$ids" "$t"; done >> "$laid"
+        for t in $tests; do printf '%s\t%s\n' $ids "$t"; done >> "$laid"
         return
     fi
     half=$((count / 2))
@@ -496,6 +515,24 @@ bisect() {
     return 0
 }
 
+# The built exercises that name a test that failed, one a line.
+failing_named() {
+    failing=$(failed_in "$work/tests.log" | tr '\n' ' ')
+    ids=$(built_exercises | tr '\n' ' ')
+    awk -F '\t' -v failing=" $failing " -v ids=" $ids " '
+        index(ids, " " $1 " ") {
+            k = split($6, t, " ")
+            for (i = 1; i <= k; i++)
+                if (index(failing, " " t[i] " ") || index(failing, " " t[i] ":")) { print $1; break }
+        }' "$list"
+}
+
+# More than GRADE_ALONE exercises failing their own tests (every stub
+# started): each is failing already; nothing is run again.
+too_many_failing() {
+    [ "$(failing_named | wc -l)" -gt "${GRADE_ALONE:-12}" ]
+}
+
 lay_failures() {
     failing=$(failed_in "$work/tests.log" | tr '\n' ' ')
     [ -n "$failing" ] || return 0
@@ -508,13 +545,9 @@ lay_failures() {
     fi
     while [ "$1" != "--" ]; do shift; done
     shift
-    # first the exercises that name a failing test, each alone
-    named=$(awk -F '\t' -v failing=" $failing " -v ids=" $ids " '
-        index(ids, " " $1 " ") {
-            k = split($6, t, " ")
-            for (i = 1; i <= k; i++)
-                if (index(failing, " " t[i] " ") || index(failing, " " t[i] ":")) { print $1; break }
-        }' "$list" | head -n "${GRADE_ALONE:-8}" | tr '\n' ' ')
+    # first the exercises that name a failing test, each alone (but one
+    # whose failing tests are all laid on another already)
+    named=$(failing_named | tr '\n' ' ')
     rest=$failing
     for id in $named; do
         # its own failing tests, and those still unexplained
@@ -527,6 +560,7 @@ lay_failures() {
                             print all[j]; break
                         }
             }' "$list" | tr '\n' ' ')
+        [ -n "$(minus "$own" "$(cut -f 2 "$laid" | tr '\n' ' ')")" ] || continue
         tests=$(echo "$rest $own" | tr ' ' '\n' | sed '/^$/d' | sort -u | tr '\n' ' ')
         [ -n "$tests" ] || continue
         fails=$(probe "$id" "$tests" "$@" | tr '\n' ' ')
@@ -537,8 +571,12 @@ lay_failures() {
     [ -n "$(echo $rest)" ] || return 0
     others=$(minus "$ids" "$named")
     [ -n "$(echo $others)" ] || return 0
-    # then the others together, and by halves
-    fails=$(probe "$others" "$rest" "$@" | tr '\n' ' ')
+    # then the others together (all of them: as graded), and by halves
+    if [ -z "$(echo $named)" ]; then
+        fails=$rest
+    else
+        fails=$(probe "$others" "$rest" "$@" | tr '\n' ' ')
+    fi
     [ -n "$(echo $fails)" ] && bisect "$fails" "$others" "$@"
     return 0
 }
@@ -569,8 +607,12 @@ if [ "$started" -gt 0 ]; then
         built=yes
         run_suites
         load=$( (cut -d ' ' -f 1 /proc/loadavg || uptime | sed 's/.*: //; s/,.*//') 2> /dev/null)
-        run_threads_sanitized
-        lay_failures "$@"
+        # without the book's code (a handout on another machine) the
+        # stubs of the exercises not started fail tests of their own
+        if [ "${GRADE_BOOK_CODE:-}" != no ] && ! too_many_failing; then
+            run_threads_sanitized
+            lay_failures "$@"
+        fi
     fi
 fi
 cores=$(nproc 2> /dev/null || sysctl -n hw.ncpu 2> /dev/null || echo 1)
@@ -580,5 +622,5 @@ awk -v built="$built" -v bad_files="$bad_files" -v later="$later" \
     -v warned="$warned" -v races="$races" -v index_file="$work/tests.tsv" \
     -v multiplier="$multiplier" -v load="${load:-?}" -v cores="$cores" \
     -v only="${GRADE_EX:-}" -v junit="$WB_BUILD/junit.xml" \
-    -v chapter="$target" \
+    -v chapter="$target" -v stubs="$([ "${GRADE_BOOK_CODE:-}" = no ] && echo yes)" \
     -f "$tools_dir/grade_report.awk" "$list" "$state" "$work/tests.log"

@@ -3,7 +3,7 @@
 #   awk -v built=yes|no -v bad_files=FILE [-v later=FILE -v laid=FILE \
 #       -v cleared=FILE -v lost=FILE -v warned=FILE -v races=FILE \
 #       -v index_file=FILE -v multiplier=M -v load=L -v cores=C \
-#       -v only=ID -v junit=FILE -v chapter=NN] \
+#       -v only=ID -v junit=FILE -v chapter=NN -v stubs=yes] \
 #       -f tools/grade_report.awk EXERCISES.tsv STATE.tsv TESTS.log
 #
 # EXERCISES.tsv is tools/exercises.awk's listing, STATE.tsv tools/grade.sh's
@@ -34,6 +34,12 @@
 # JUnit report, a test case an exercise), and exits 1 unless every
 # started exercise is done, no other test failed and no workbook file was
 # left out; with only=ID, 0 exactly when that exercise is done.
+#
+# With stubs=yes (a handout whose compiled book's code this machine cannot
+# link) the exercises not started are stubs, not the book's code, and
+# nothing was laid on an exercise: a failing test that a not-started
+# exercise names, or that no started exercise names, waits for the
+# exercises not started; it is listed as waiting and fails nothing.
 
 # A test's name without the iteration an exercise may give it (TEST:K).
 function bare_name(t) {
@@ -105,6 +111,9 @@ function verdict(id,    names, n, i, t, graded, keys, m, j, k) {
                 return describe(k)
             if ((k in laid_any) || ((id SUBSEP k) in clear))
                 continue
+            if (stubs == "yes" && (bare[k] in named_by_waiting || k in named_by_waiting))
+                return "waiting for " named_by_waiting[k in named_by_waiting ? k : bare[k]] \
+                       " (not started): " shown[k]
             claimed[k] = 1
             return describe(k)
         }
@@ -174,7 +183,16 @@ BEGIN {
 
 FILENAME == ARGV[1] { split($0, f, "\t"); order[++count] = f[1]; key[f[1]] = f[5]
                       tests[f[1]] = f[6]; next }
-FILENAME == ARGV[2] { split($0, f, "\t"); st[f[1]] = f[2]; file_of[f[1]] = f[3]; next }
+FILENAME == ARGV[2] {
+    split($0, f, "\t"); st[f[1]] = f[2]; file_of[f[1]] = f[3]
+    if (f[2] != "started") { # its tests wait for it, where it is a stub
+        n = split(tests[f[1]], names, " ")
+        for (i = 1; i <= n; i++)
+            if (!(names[i] in named_by_waiting))
+                named_by_waiting[names[i]] = f[1]
+    }
+    next
+}
 {
     # FILE:LINE:R:TCASE:TEST:ITER: MESSAGE (the message may hold colons)
     line = $0
@@ -242,12 +260,19 @@ END {
         printf "  %-5s %-38s %s\n", id, key[id], v
     }
     # the failing tests that no one exercise causes, nor names
-    elsewhere = 0
+    elsewhere = waits = 0
     for (i = 1; built == "yes" && i <= ran_count; i++) {
         k = ran[i]
-        if (result[k] != "P" && !(k in laid_any) && !(k in claimed))
+        if (result[k] == "P" || (k in laid_any) || (k in claimed))
+            continue
+        if (stubs == "yes")
+            waiting[++waits] = k
+        else
             other[++elsewhere] = k
     }
+    if (waits > 0)
+        printf "Waiting for the exercises you have not started (their stubs" \
+               " stand in; book/ is not for this machine): %d test(s)\n", waits
     if (elsewhere + loose_races > 0) {
         print "Failing, and laid on no one exercise of yours (each test passes" \
               " with the book's code, and with each of your exercises alone;" \
