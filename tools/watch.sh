@@ -72,8 +72,9 @@ last_user() {
     for c in chapters/[0-9][0-9]-*.md; do
         n=$(basename "$c" | cut -c1-2)
         [ "$n" -gt "$1" ] || continue
-        for name in $names; do
-            if grep -q -- "$name" "$c" tests/ch"$n"_*.c 2> /dev/null; then
+        for name in $names; do # its code, not its prose, and its tests
+            if awk '/^(```|~~~)/ { code = !code; next } code' "$c" |
+                    cat - tests/ch"$n"_*.c 2> /dev/null | grep -qw -- "$name"; then
                 last=$n
                 break
             fi
@@ -121,7 +122,7 @@ while :; do
     clear_screen
     if [ -n "$later" ]; then
         echo "== chapter $later, which uses what you changed: its exercises not done"
-        awk -v n="$first" '/^  [0-9]+\.[0-9]+ / && $1 + 0 > n + 0 &&
+        awk -v n="$first" '/^  [0-9]+\.[0-9]+ / && int($1) > n + 0 &&
             !/ done$/ && !/ not started/' "$state/later.out"
         grep -A 1000 '^Failing, and laid' "$state/later.out" | grep -v '^Progress'
         grep '^Progress' "$state/later.out" | sed 's/^/chapter '"$later"': /'
