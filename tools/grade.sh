@@ -296,8 +296,15 @@ book_results() {
 }
 
 # Every test's limit: Check's default (GRADE_TIMEOUT) for most, a test
-# case's own times GRADE_TIMEOUT / 10 for the heavy ones.
-multiplier=$(awk -v g="$GRADE_TIMEOUT" 'BEGIN { printf "%g", g / 10 }')
+# case's own times GRADE_TIMEOUT / 10 for the heavy ones; on a machine
+# busier than it has cores (the load, as the grade starts, above the
+# cores), every limit times load / cores, and one runner a core instead of
+# four: a test then gets the share of a core that it would get alone.
+cores=$(nproc 2> /dev/null || sysctl -n hw.ncpu 2> /dev/null || echo 1)
+load=$( (cut -d ' ' -f 1 /proc/loadavg || uptime | sed 's/.*: //; s/,.*//') 2> /dev/null)
+busy=$(awk -v l="${load:-0}" -v c="$cores" 'BEGIN { print (l > c ? l / c : 1) }')
+multiplier=$(awk -v g="$GRADE_TIMEOUT" -v b="$busy" 'BEGIN { printf "%.3g", g / 10 * b }')
+[ "$busy" = 1 ] || export SHARDS="${SHARDS:-$cores}"
 
 # run_tests RUNNER PROGRAM LOG [NAMES]: the runner's tests (only NAMES,
 # when given), forked and timed, shard by shard.
@@ -606,7 +613,6 @@ if [ "$started" -gt 0 ]; then
     if build "$@"; then
         built=yes
         run_suites
-        load=$( (cut -d ' ' -f 1 /proc/loadavg || uptime | sed 's/.*: //; s/,.*//') 2> /dev/null)
         # without the book's code (a handout on another machine) the
         # stubs of the exercises not started fail tests of their own
         if [ "${GRADE_BOOK_CODE:-}" != no ] && ! too_many_failing; then
@@ -615,8 +621,6 @@ if [ "$started" -gt 0 ]; then
         fi
     fi
 fi
-cores=$(nproc 2> /dev/null || sysctl -n hw.ncpu 2> /dev/null || echo 1)
-
 awk -v built="$built" -v bad_files="$bad_files" -v later="$later" \
     -v laid="$laid" -v cleared="$cleared" -v lost="$lost" \
     -v warned="$warned" -v races="$races" -v index_file="$work/tests.tsv" \

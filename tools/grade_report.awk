@@ -63,7 +63,7 @@ function describe(k,    t, limit, shown_k) {
     if (message[k] ~ /Test timeout expired/) {
         limit = (t in own_limit && own_limit[t] > 0 ? own_limit[t] : 10) * multiplier
         return "timed out after " limit " s (its limit; the machine's load was " \
-               load " on " cores " cores): " shown_k " (" located(t) ")"
+               load " on " cores " cores as the grade began): " shown_k " (" located(t) ")"
     }
     if (match(message[k], /Received signal [0-9]+/))
         return "crashed (signal " substr(message[k], RSTART + 16, RLENGTH - 16) \
