@@ -7,7 +7,8 @@
 # (tools/handout_readme.md), book.md, the chapters with every exercise's
 # code replaced by its stub (tools/handout.awk), the workbook made from
 # them (workbook/, stubs and "// NOT DONE" lines), tests/, tools/ (but the
-# diagrams' programs, whose figures are in figures/), meshes/ and
+# diagrams' programs, whose figures are in figures/, and the workbook's
+# own checks, which quote the book's code), meshes/ and
 # figures/, the book's code of the exercises compiled (book/chNN.o, with
 # book/forward/, book/export/ and book/MACHINE: tools/book_code.sh, made
 # by make book-code in build/bookcode), so that an exercise not started
@@ -25,7 +26,10 @@ cp -R Makefile book.md tools tests meshes figures "$out/"
 cp tools/handout_readme.md "$out/README.md"
 printf 'build/\nbin/\n' > "$out/.gitignore"
 cp chapters/README.md "$out/chapters/"
-rm -rf "$out/tests/data/workbook"  # the workbook's own tests: wrong answers
+# the workbook's own tests: wrong answers, and plants that quote the
+# book's code to edit it
+rm -rf "$out/tests/data/workbook" "$out/tools/check_workbook.sh" \
+    "$out/tools/check_stubs.sh"
 rm -rf "$out/tools/diagrams"       # draws 7.1 and 7.2 in two dimensions
 for c in chapters/[0-9][0-9]-*.md; do
     awk -f tools/stub.awk -f tools/handout.awk "$c" > "$out/$c"
