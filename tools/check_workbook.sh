@@ -5,15 +5,13 @@
 # Works in DIR (default build/wbcheck/): each check below has a folder of its own there
 # (NAME/wb, the workbook; NAME/build, where make grade builds it,
 # incrementally from one run to the next), and they run side by side, in
-# three lines (1, 6, 8; 3 then 4 in its folder; 5, 2, 7), each grading no
+# three lines (1, 8; 3 then 4 in its folder; 5, 2, 7), each grading no
 # more chapters than its mistakes need, which it finds by the exercises'
 # chunk names (a chapter put before another renumbers them). Checks that
 #   1. an untouched workbook grades "Progress: 0 of N", N >= 36, at least 4
 #      exercises a chapter, exit 0; make workbook overwrites no file; no
-#      task holds TeX ($...$); and that 2.4 without its line <<the
-#      sphere's hit-point bound>> (kept for chapter 6) fails at chapter 2,
-#      saying so, its file left out (the book's code stands in); and that
-#      make grade EX=N.k exits 0 for a right 1.1, 1 for that 2.4;
+#      task holds TeX ($...$); and make grade EX=N.k exits 0 for a right
+#      1.1, and not 0 for 1.2, not started;
 #   2. with every stub started, no exercise passes (each stub fails one of
 #      its tests), and the exit status is not 0;
 #   3. a SOLVED=1 workbook grades "Progress: N of N", exit 0, and builds
@@ -21,7 +19,9 @@
 #   4. the course sheet's forms typed in as answers fail with a message
 #      naming the correction (sphere, half vector, tone map, Snell),
 #      a loop is "timed out" with its limit and the load, a null pointer
-#      "crashed (signal 11)"; in
+#      "crashed (signal 11)"; 1.3 taking +12x34 for a size and 3.2 with a
+#      directional light at distance 0 are each caught by a test of its
+#      own chapter; in
 #      the same grade, a syntax error is reported at its workbook line, a
 #      lost fence where it was, and the other chapters' exercises are
 #      done (every failure is laid on an exercise); the exit status is 1,
@@ -36,17 +36,17 @@
 #      the mistake, and 4.3 wrong with 4.4 right, which share tests: only
 #      4.3 is failing, 4.4 and the right answers 2.1 and 3.3 are done;
 #      and 1.3 without its last return fails on the compiler's warning;
-#   6. (chapters 1 to 3) 1.3 taking +12x34 for a size, 2.4 that forgets
-#      inside, and 3.2 with a directional light at distance 0, each caught
-#      by a test of its own chapter;
-#   7. (chapters 1 to 10) 9.1 with static first and last, and 10.1 with a
+#   6. (chapters 1 to 10) 9.1 with static first and last, and 10.1 with a
 #      static hash state: data races, both caught by ThreadSanitizer (where
 #      the compiler has it) and laid on their exercises; 10.1's hash also
 #      leaves out the axis, which its own test sees; and 8.3 with an
 #      uninitialised variable and a write past an array, failing on the
-#      compiler's warnings at its lines;
-#   8. (chapters 1 to 8) 8.3 that clips one edge short: every failing test,
-#      its own and the others, laid on it.
+#      compiler's warnings at its lines; and 2.4 that forgets inside,
+#      caught by a test of its own chapter;
+#   7. (chapters 1 to 8) 8.3 that clips one edge short: every failing test,
+#      its own and the others, laid on it; and 2.4 without its line <<the
+#      sphere's hit-point bound>> (kept for chapter 6) fails, saying so,
+#      its file left out (the book's code stands in).
 # Prints what went wrong in each failed check and exits 1.
 set -u
 MAKE=${MAKE:-make}
@@ -156,7 +156,7 @@ rm -rf "$top/book"
 $MAKE -s --no-print-directory workbook WB_DIR="$top/book" SOLVED=1 > /dev/null 2>&1 ||
     { echo "check-workbook: make workbook SOLVED=1 failed"; exit 1; }
 
-# ---- 1. untouched; then 2.4 without a chunk line that a later chapter fills
+# ---- 1. untouched; then one exercise's verdict as the exit status
 check_untouched() {
     use untouched
     fresh
@@ -170,20 +170,14 @@ check_untouched() {
     grade ""
     [ "$status" = 0 ] || fail "an untouched workbook should grade with status 0"
     grep -qx "Progress: 0 of $n exercises" "$t/out" || fail "expected Progress: 0 of $n"
-    plant sphere.c "/^<<the sphere's hit-point bound>>\$/d"
-    grade "-ch$(chapter_of sphere.c)"
-    [ "$status" != 0 ] || fail "2.4 without a chunk line should not grade with status 0"
-    expect sphere.c "failing: lost its line <<the sphere's hit-point bound>>"
-    grep -q "^$wb/$(file_of sphere.c):[0-9]*: error: exercise $(id_of sphere.c) lost its line" "$t/out" ||
-        fail "the lost chunk line should be reported at its exercise in $wb/$(file_of sphere.c)"
     # one exercise's verdict as the exit status (the grade of its chapter)
     right camera.c
     $MAKE -s --no-print-directory grade EX="$(id_of camera.c)" WB_DIR="$wb" \
         WB_BUILD="$t/build" > "$t/out" 2>&1 ||
         fail "make grade EX=$(id_of camera.c) should exit 0: it is right"
-    $MAKE -s --no-print-directory grade EX="$(id_of sphere.c)" WB_DIR="$wb" \
+    $MAKE -s --no-print-directory grade EX="$(id_of "colour encoding")" WB_DIR="$wb" \
         WB_BUILD="$t/build" > "$t/out" 2>&1 &&
-        fail "make grade EX=$(id_of sphere.c) should exit 1: it lost a line"
+        fail "make grade EX=$(id_of "colour encoding") should not exit 0: it is not started"
     return 0
 }
 
@@ -224,6 +218,9 @@ check_wrong() {
     answer optics.c "$data/sheet-snell.c"
     answer "colour encoding" "$data/loops.c"
     answer "Fresnel reflectance" "$data/crashes.c"
+    # mistakes that passed before, each caught at its own chapter
+    plant "parse a size" "/if (text\[0\] < '0' || text\[0\] > '9')/,/return false;/d"
+    plant lights 's/vec3_scale(L->direction, -1), INFINITY,/vec3_scale(L->direction, -1), 0,/'
     syntax=$wb/$(file_of "the sheet's method")
     fence=$(grep -n "ex=\"$(id_of "the sheet's method")\"" "$syntax" | cut -d: -f1)
     sed -i "$((fence + 1))i this is not C" "$syntax"
@@ -242,6 +239,8 @@ check_wrong() {
     expect "colour encoding" "timed out after "
     expect "colour encoding" "test_gamma_22"
     expect "Fresnel reflectance" "crashed (signal 11): test_brewster_angle_of_glass_is_56_31_degrees"
+    expect "parse a size" "failing: test_command_line_numbers_are_digits_only"
+    expect lights "a directional light at distance 0, not infinity"
     grep -q "^$syntax:$((fence + 1)):[0-9]*: error" "$t/out" ||
         fail "the syntax error should be reported at $syntax:$((fence + 1))"
     grep -q "^$fenced:$lost: error: exercise $(id_of offset.c)" "$t/out" ||
@@ -309,25 +308,12 @@ check_elsewhere() {
     done
 }
 
-# ---- 6. mistakes that passed, each caught at its own chapter
-check_early() {
-    use early
-    fresh
-    plant "parse a size" "/if (text\[0\] < '0' || text\[0\] > '9')/,/return false;/d"
-    plant sphere.c '/h->inside = /d'
-    plant lights 's/vec3_scale(L->direction, -1), INFINITY,/vec3_scale(L->direction, -1), 0,/'
-    grade "-ch$(last_chapter "parse a size" sphere.c lights)"
-    [ "$status" != 0 ] || fail "three mistakes should not grade with status 0"
-    expect "parse a size" "failing: test_command_line_numbers_are_digits_only"
-    expect sphere.c "the hit must say so (inside)"
-    expect lights "a directional light at distance 0, not infinity"
-}
-
-# ---- 7. state the threads share; the compiler's warnings in 8.3
+# ---- 6. state the threads share; the compiler's warnings in 8.3
 check_races() {
     use races
     fresh
     plant "a thread's bands" 's/^    int first, last;$/    static int first, last;/'
+    plant sphere.c '/h->inside = /d'
     # 10.1 keeps its hash in a static variable, and leaves out the axis
     plant "the sample hash" 's/^    uint64_t h = mix64(/    static uint64_t h;\
     h = mix64(/; s/h = mix64(h ^ ((uint64_t)(uint32_t)k << 1 | (uint64_t)(axis \& 1)));/h = mix64(h ^ (uint64_t)(uint32_t)k);/'
@@ -336,8 +322,9 @@ check_races() {
     first[1] = poly[0]; /* the first corner, kept */\
     if (n < 1)\
         out[0] = first[1];'
-    grade "-ch$(last_chapter "a thread's bands" "the sample hash" "clipping a polygon")"
+    grade "-ch$(last_chapter "a thread's bands" "the sample hash" "clipping a polygon" sphere.c)"
     [ "$status" != 0 ] || fail "data races should not grade with status 0"
+    expect sphere.c "the hit must say so (inside)"
     clip=$wb/$(file_of "clipping a polygon")
     expect "clipping a polygon" "the compiler warns at your line: $clip:"
     grep -q "^$clip:[0-9]*:[0-9]*: warning: .*m.* uninitialized" "$t/out" ||
@@ -356,14 +343,18 @@ check_races() {
         fail "ThreadSanitizer should see 10.1's static h"
 }
 
-# ---- 8. 8.3's loop one edge short
+# ---- 7. 8.3's loop one edge short
 check_kd() {
     use kd
     fresh
     plant "clipping a polygon" 's/^    for (int i = 0; i < n; i++) {$/    for (int i = 0; i < n - 1; i++) {/'
-    grade "-ch$(chapter_of "clipping a polygon")"
+    plant sphere.c "/^<<the sphere's hit-point bound>>\$/d"
+    grade "-ch$(last_chapter "clipping a polygon" sphere.c)"
     [ "$status" != 0 ] || fail "8.3 one edge short should not grade with status 0"
     expect "clipping a polygon" "failing: test_tree_agrees_with_brute_force"
+    expect sphere.c "failing: lost its line <<the sphere's hit-point bound>>"
+    grep -q "^$wb/$(file_of sphere.c):[0-9]*: error: exercise $(id_of sphere.c) lost its line" "$t/out" ||
+        fail "the lost chunk line should be reported at its exercise in $wb/$(file_of sphere.c)"
     ! grep -q '^Failing, and laid on no one' "$t/out" ||
         fail "every failure should be laid on 8.3"
 }
@@ -377,7 +368,7 @@ timed() {
 
 # Three lines of checks side by side; each prints only when it fails.
 : > "$top/seconds"
-{ timed untouched && timed early && timed kd; } > "$top/first.verdict" 2>&1 & first=$!
+{ timed untouched && timed kd; } > "$top/first.verdict" 2>&1 & first=$!
 { timed solved && timed wrong; } > "$top/solved.verdict" 2>&1 & solved=$!
 { timed elsewhere && timed stubs && timed races; } > "$top/elsewhere.verdict" 2>&1 & elsewhere=$!
 failed=0

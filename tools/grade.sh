@@ -11,7 +11,7 @@
 # is its verdict alone), GRADE_TANGLE_ONLY (1: check and tangle the
 # workbook, build and run nothing), GRADE_ALONE (the most exercises
 # failing their own tests for which failing tests are laid on one
-# exercise, default 12; more, as every stub started, and each is failing
+# exercise, default 16; more, as every stub started, and each is failing
 # already), GRADE_TSAN (0:
 # no run under ThreadSanitizer), BOOK_BUILD and BOOK_BIN (the book's build
 # and programs: their logged results stand for a workbook that builds the
@@ -384,7 +384,7 @@ run_threads_sanitized() {
     rm -rf "$work/tsan"
     mkdir -p "$work/tsan"
     for name in $names; do
-        TSAN_OPTIONS="halt_on_error=1 exitcode=66 report_signal_unsafe=0 log_path=$work/tsan/$name" \
+        TSAN_OPTIONS="exitcode=66 report_signal_unsafe=0 log_path=$work/tsan/$name" \
         RUNNER_ONLY=$name CK_FORK=yes CK_VERBOSITY=verbose \
         CK_DEFAULT_TIMEOUT=10 CK_TIMEOUT_MULTIPLIER=$(awk -v m="$multiplier" 'BEGIN { print 4 * m }') \
         CHAPTER_BIN=$WB_BUILD/bin/ch$target \
@@ -398,8 +398,11 @@ run_threads_sanitized() {
                         if (f[2] == "started") { file[f[1]] = f[3]; lo[f[1]] = f[4]; hi[f[1]] = f[5]; ids[++n] = f[1] }
                     }
                 }
-                /WARNING: ThreadSanitizer:/ && what == "" {
+                # a report a block; each printed at the next one or at the end
+                /WARNING: ThreadSanitizer:/ {
+                    report()
                     what = $0; sub(/.*ThreadSanitizer: /, "", what); sub(/ \(pid.*/, "", what)
+                    where = func = variable = id = ""
                 }
                 /^ *#[0-9]+ / && where == "" {
                     for (i = 1; i <= NF; i++)
@@ -415,13 +418,14 @@ run_threads_sanitized() {
                     variable = $0; sub(/.*Location is global \047/, "", variable)
                     sub(/\047.*/, "", variable); sub(/\.[0-9]+$/, "", variable)
                 }
-                END {
-                    if (what == "") exit
+                function report() {
+                    if (what == "") return
                     printf "%s\ta %s (ThreadSanitizer) at %s in %s, seen by %s: %s\n",
                         id == "" ? "-" : id, what, where == "" ? "the book'\''s code" : where, func, test,
                         variable == "" ? "state that the threads share" : \
                         "on " variable ", a static variable, which every thread shares: make it a local one"
-                }' "$report" >> "$races"
+                }
+                END { report() }' "$report" >> "$races"
         done
     done
 }
@@ -537,7 +541,7 @@ failing_named() {
 # More than GRADE_ALONE exercises failing their own tests (every stub
 # started): each is failing already; nothing is run again.
 too_many_failing() {
-    [ "$(failing_named | wc -l)" -gt "${GRADE_ALONE:-12}" ]
+    [ "$(failing_named | wc -l)" -gt "${GRADE_ALONE:-16}" ]
 }
 
 lay_failures() {
