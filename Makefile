@@ -17,7 +17,7 @@
 #                     draws (left) next to what the program draws (right)
 #   make charts       run bench/ (built with link-time optimization, under
 #                     build/rel-lto) and redraw figures/chNN-*.svg; and
-#                     chart-ch10_page: the page's programs against bin/chNN
+#                     chart-ch12_page: the page's programs against bin/chNN
 #   make diagrams     redraw the explanatory figures/chNN-diagram-*.svg
 #   make book         build/book.html          make clean
 #   make wasm         build/wasm/chNN.wasm: each chapter's program for the
@@ -37,7 +37,7 @@
 #   make SAN=1 test   what runs the programs (suites, figures, commands)
 #                     with AddressSanitizer and UBSan
 #   make WERROR=1     warnings are errors (CI)
-#   make SCALAR=1, NATIVE=1   chapter 9's BVH tests in scalar code, or with
+#   make SCALAR=1, NATIVE=1   chapter 10's BVH tests in scalar code, or with
 #                     every instruction of this machine
 
 .DELETE_ON_ERROR:
@@ -64,14 +64,14 @@ LTO_LINK := $(if $(LTO_FLAGS),-Wno-maybe-uninitialized)
 OPT     := $(if $(SAN),$(SANFLAGS),-O2 -g $(LTO_FLAGS))
 CFLAGS  ?=
 LDFLAGS ?=
-# make SCALAR=1: chapter 9's BVH node tests without vector instructions;
+# make SCALAR=1: chapter 10's BVH node tests without vector instructions;
 # make NATIVE=1: the instructions of the machine that builds (not needed
 # for correctness). GCC 12.2 with AVX-512 stores a by-value struct built
 # from a compound literal wrongly (a ray passed to mesh_ray_of, in chapter
-# 8's tests); tools/probe_native.sh runs a three-line reproducer with this
+# 8's tests); tools/book/probe_native.sh runs a three-line reproducer with this
 # compiler and flags and adds -fno-tree-slp-vectorize only where the bug is.
 # Each builds apart.
-NATIVE_FIX := $(if $(NATIVE),$(shell sh tools/probe_native.sh "$(CC)" $(CSTD) $(OPT) -march=native))
+NATIVE_FIX := $(if $(NATIVE),$(shell sh tools/book/probe_native.sh "$(CC)" $(CSTD) $(OPT) -march=native))
 ARCH    := $(if $(SCALAR),-DRT_SCALAR) $(if $(NATIVE),-march=native $(NATIVE_FIX))
 # The suites (not the book's program) may use wait4, BSD's and Linux's, to
 # read what a child process did. Check prints the doubles of a failed
@@ -84,7 +84,7 @@ TEST_DEFS := -D_DEFAULT_SOURCE -D_DARWIN_C_SOURCE -DCK_FLOATING_DIG=17
 # The packet suite's loops are its work (half a million rays through the
 # filter), and keep -O1.
 TEST_OPT := -O0
-$(B)/obj/%/tests/ch09_packets.o: TEST_OPT := -O1
+$(B)/obj/%/tests/ch10_packets.o: TEST_OPT := -O1
 # The sanitized pass runs each runner's tests in the runner's own process
 # (tests/runner.c), but for those that need a process of their own: a
 # sanitized child takes tens of milliseconds to start and to be checked for
@@ -114,7 +114,7 @@ CHECK_LIBS   = $(call once,CHECK_LIBS,pkg-config --libs check)
 
 # reuse_from NN OBJ: the start of a compile command of chapter NN that copies
 # the previous chapter's OBJ instead when all it was compiled from is the
-# same text (tools/reuse_object.c); nothing for the first chapter.
+# same text (tools/book/reuse_object.c); nothing for the first chapter.
 reuse_from = $(if $(call previous,$(1)),$(REUSE) $(B)/obj/ch$(call previous,$(1))/$(2) build/tangle/ch$(call previous,$(1)) build/tangle/ch$(1) -- )
 
 # The target's folder, made when missing: no shell at all when it exists
@@ -127,8 +127,8 @@ dir_of_target = $(if $(wildcard $(@D)/.),,$(shell mkdir -p $(@D)))
 CC_TAG  := $(if $(filter cc gcc,$(notdir $(firstword $(CC)))),,-$(notdir $(firstword $(CC))))
 B       := build/$(if $(SAN),san,rel)$(CC_TAG)$(if $(SCALAR),-scalar)$(if $(NATIVE),-native)$(if $(LTO_FLAGS),-lto)
 BIN     := $(if $(SAN)$(SCALAR)$(NATIVE)$(LTO_FLAGS)$(CC_TAG),$(B)/bin,bin)
-TANGLE  := $(B)/tools/tangle
-REUSE   := $(B)/tools/reuse_object
+TANGLE  := $(B)/tools/book/tangle
+REUSE   := $(B)/tools/book/reuse_object
 
 CHAPTERS := $(sort $(wildcard chapters/[0-9][0-9]-*.md))
 NUMS     := $(foreach c,$(CHAPTERS),$(firstword $(subst -, ,$(notdir $(c)))))
@@ -157,13 +157,13 @@ previous = $(lastword $(filter-out $(1),$(filter $(call nums_upto,$(1)),$(NUMS))
 # stubs, and the book's code of the exercises comes compiled, book/chNN.o,
 # linked into every program of chapter NN, which calls it through
 # book/forward/ and lets it call the student's code through book/export/
-# (tools/book_code.sh, tools/book_code.awk): an exercise not started
+# (tools/workbook/book_code.sh, tools/workbook/book_code.awk): an exercise not started
 # behaves as the book's code does. Each file is compiled with its name,
 # -DRT_TU=NAME, which the names of those calls hold. On another machine
 # than the one book/MACHINE names, the objects cannot serve: the stubs
 # stand in for the exercises not started (BOOK_CODE is empty).
 HANDOUT   := $(if $(wildcard book/MACHINE),yes)
-BOOK_CODE := $(if $(HANDOUT),$(shell sh tools/book_code.sh machine book/MACHINE '$(CC)' && echo yes))
+BOOK_CODE := $(if $(HANDOUT),$(shell sh tools/workbook/book_code.sh machine book/MACHINE '$(CC)' && echo yes))
 book_forms_upto = $(if $(BOOK_CODE),$(foreach k,forward export,$(foreach c,$(call chapters_upto,$(1)),book/$(k)/$(notdir $(c)))))
 book_obj = $(if $(BOOK_CODE),book/ch$(1).o)
 RT_TU = $(if $(HANDOUT),-DRT_TU=$(subst /,_,$*))
@@ -186,20 +186,20 @@ all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) workbook
 endif
 
 deps:
-	@sh tools/deps.sh
+	@sh tools/book/deps.sh
 
 # ---------------------------------------------------------------- tools
 $(B)/tools/%: tools/%.c | deps
 	@$(dir_of_target)
 	$(CC) $(ALL_CFLAGS) -o $@ $< $(LDFLAGS)
 
-$(B)/tools/pngdiff: tools/pngdiff.c | deps
+$(B)/tools/checks/pngdiff: tools/checks/pngdiff.c | deps
 	@$(dir_of_target)
 	$(CC) $(ALL_CFLAGS) $(PNG_CFLAGS) -o $@ $< $(LDFLAGS) $(PNG_LIBS)
 
-tools: $(TANGLE) $(B)/tools/check_book $(B)/tools/pngdiff
+tools: $(TANGLE) $(B)/tools/checks/check_book $(B)/tools/checks/pngdiff
 
--include $(wildcard $(B)/tools/*.d)
+-include $(wildcard $(B)/tools/book/*.d $(B)/tools/checks/*.d)
 
 # ---------------------------------------------------------------- chapters
 # One template, instantiated for every chapter NN.
@@ -213,7 +213,7 @@ SUITES$(1) := $$(call suites_upto,$(1))
 FIGS$(1) := figures/ch$(1)-default.png $$(patsubst scenes/%.scene,figures/%.png,$$(call scene_files,$(1)))
 
 # The --line tangle is what gets compiled: errors point at the chapter.
-$$(T$(1))/.stamp: $$(call chapters_upto,$(1)) $$(call book_forms_upto,$(1)) tools/tangle.c | $(TANGLE)
+$$(T$(1))/.stamp: $$(call chapters_upto,$(1)) $$(call book_forms_upto,$(1)) tools/book/tangle.c | $(TANGLE)
 	@$$(dir_of_target)
 	$(TANGLE) --line --strict -o $$(@D) $$(call chapters_upto,$(1)) $$(call book_forms_upto,$(1))
 	@$$(call link_meshes,$$(@D),../../../../)
@@ -258,7 +258,7 @@ $(B)/test/ch$(1): $$(O$(1))/tests/runner.o $$(patsubst tests/%.c,$$(O$(1))/tests
 test-ch$(1): deps $(B)/test/ch$(1) $(BIN)/ch$(1) $(if $(call previous,$(1)),$(BIN)/ch$(call previous,$(1)))
 	@echo "== suites 01..$(1) against the program of chapter $(1)"
 	CHAPTER_BIN=$(BIN)/ch$(1) CK_DEFAULT_TIMEOUT=60 RUN_LOG=$(B)/test/ch$(1).log \
-	  $(RUNNER_ENV) sh tools/run_shards.sh $(B)/test/ch$(1)
+	  $(RUNNER_ENV) sh tools/checks/run_shards.sh $(B)/test/ch$(1)
 
 run-ch$(1): $(BIN)/ch$(1)
 	@mkdir -p build
@@ -295,8 +295,8 @@ $(B)/fig/ch$(1)-%.png: $$(T$(1))/scenes/ch$(1)-%.scene $(BIN)/ch$(1)
 	@$$(dir_of_target)
 	$(BIN)/ch$(1) $$< -o $$@
 
-check-figures-ch$(1): $$(patsubst figures/%,$(B)/fig/%,$$(FIGS$(1))) $(B)/tools/pngdiff
-	@sh tools/check_figures.sh $(B)/tools/pngdiff $(B)/fig $$(FIGS$(1))
+check-figures-ch$(1): $$(patsubst figures/%,$(B)/fig/%,$$(FIGS$(1))) $(B)/tools/checks/pngdiff
+	@sh tools/checks/check_figures.sh $(B)/tools/checks/pngdiff $(B)/fig $$(FIGS$(1))
 
 # Benchmarks link the chapter's program (all but main) like the tests do.
 $$(O$(1))/bench/%.o: bench/%.c $$(T$(1))/.stamp | deps
@@ -353,8 +353,8 @@ failures: deps $(FAILURE_FIGS)
 # The committed failure figures must be what the programs draw now (and
 # each program exits non-zero, failing its render, when the naive half no
 # longer shows the failure).
-check-failures: $(patsubst figures/%,$(B)/fig/%,$(FAILURE_FIGS)) $(B)/tools/pngdiff
-	@sh tools/check_figures.sh --made-by failures $(B)/tools/pngdiff $(B)/fig $(FAILURE_FIGS)
+check-failures: $(patsubst figures/%,$(B)/fig/%,$(FAILURE_FIGS)) $(B)/tools/checks/pngdiff
+	@sh tools/checks/check_figures.sh --made-by failures $(B)/tools/checks/pngdiff $(B)/fig $(FAILURE_FIGS)
 	@echo "check-failures: $(words $(FAILURE_FIGS)) failure figures up to date"
 
 # figures/ holds the committed copies of the renders in $(B)/fig: a copy is
@@ -364,7 +364,7 @@ check-failures: $(patsubst figures/%,$(B)/fig/%,$(FAILURE_FIGS)) $(B)/tools/pngd
 figures/%.png: $(B)/fig/%.png
 	@cmp -s $< $@ || cp $< $@
 
-# Chapter 09 compares chapter 08's kd-tree with Intel Embree 3 where it is installed
+# Chapter 10 compares chapter 08's kd-tree with Intel Embree 3 where it is installed
 # (Debian: libembree-dev); without it that benchmark is not built, and
 # `make charts` draws its chart from this program's rates alone.
 HAVE_EMBREE := $(shell printf '\043include <embree3/rtcore.h>\n' | \
@@ -372,11 +372,11 @@ HAVE_EMBREE := $(shell printf '\043include <embree3/rtcore.h>\n' | \
 ifneq ($(HAVE_EMBREE),yes)
 BENCHES  := $(filter-out %_embree,$(BENCHES))
 endif
-$(B)/bench/ch09_embree: BENCH_LIBS := -lembree3
-# Chapter 09's build chart shows Embree's builds beside ours where it can.
+$(B)/bench/ch10_embree: BENCH_LIBS := -lembree3
+# Chapter 11's build chart shows Embree's builds beside ours where it can.
 ifeq ($(HAVE_EMBREE),yes)
-$(B)/bench/ch09_build: BENCH_LIBS := -lembree3
-$(B)/obj/ch09/bench/ch09_build.o: ALL_CFLAGS += -DHAVE_EMBREE
+$(B)/bench/ch11_build: BENCH_LIBS := -lembree3
+$(B)/obj/ch11/bench/ch11_build.o: ALL_CFLAGS += -DHAVE_EMBREE
 endif
 
 src: $(foreach n,$(NUMS),src-ch$(n))
@@ -418,33 +418,33 @@ check-diagrams: $(DIAGRAM_PROGRAMS)
 $(foreach n,$(NUMS),$(B)/obj/ch$(n)/bench/timing.o): \
   ALL_CFLAGS += '-DBENCH_FLAGS="$(strip $(OPT) $(CFLAGS))"'
 
-# Chapter 9's profile names the functions a ray's time goes to, which
+# Chapter 10's profile names the functions a ray's time goes to, which
 # link-time optimization would inline into one another: its chart is made
-# from the plain build (bench/ch09_profile.c).
-.PHONY: chart-ch09_profile chart-ch09_profile-plain
-chart-ch09_profile: | deps
-	+@$(MAKE) --no-print-directory LTO= chart-ch09_profile-plain
-chart-ch09_profile-plain: $(B)/bench/ch09_profile | deps
-	$< > figures/ch09-profile.csv.tmp
-	mv figures/ch09-profile.csv.tmp figures/ch09-profile.csv
-	gnuplot -e "csv='figures/ch09-profile.csv'; stem='figures/ch09-profile'" bench/ch09_profile.gp
-	@echo "wrote figures/ch09-profile*.svg"
+# from the plain build (bench/ch10_profile.c).
+.PHONY: chart-ch10_profile chart-ch10_profile-plain
+chart-ch10_profile: | deps
+	+@$(MAKE) --no-print-directory LTO= chart-ch10_profile-plain
+chart-ch10_profile-plain: $(B)/bench/ch10_profile | deps
+	$< > figures/ch10-profile.csv.tmp
+	mv figures/ch10-profile.csv.tmp figures/ch10-profile.csv
+	gnuplot -e "csv='figures/ch10-profile.csv'; stem='figures/ch10-profile'" bench/ch10_profile.gp
+	@echo "wrote figures/ch10-profile*.svg"
 
-# Chapter 10's chart of the programs in the page: each chapter's own scene
+# Chapter 12's chart of the programs in the page: each chapter's own scene
 # rendered in the book's page (headless Chromium) and by bin/chNN, the
-# everyday build, on one thread (tools/page_check.sh --speed). It needs
+# everyday build, on one thread (tools/checks/page_check.sh --speed). It needs
 # Chromium and the programs for the page; make charts draws it where it can.
-.PHONY: chart-ch10_page chart-ch10_page-plain
+.PHONY: chart-ch12_page chart-ch12_page-plain
 PAGE_SPEED_SIZE := 640x480
 PAGE_SPEED_ROUNDS := 11
-chart-ch10_page: | deps
-	+@$(MAKE) --no-print-directory LTO= chart-ch10_page-plain
-chart-ch10_page-plain: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n)) | deps
-	sh tools/page_check.sh --speed figures/ch10-page.csv.tmp $(PAGE_SPEED_ROUNDS) \
+chart-ch12_page: | deps
+	+@$(MAKE) --no-print-directory LTO= chart-ch12_page-plain
+chart-ch12_page-plain: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n)) | deps
+	sh tools/checks/page_check.sh --speed figures/ch12-page.csv.tmp $(PAGE_SPEED_ROUNDS) \
 	  build/book.html $(BIN) $(PAGE_SPEED_SIZE) $(NUMS)
-	mv figures/ch10-page.csv.tmp figures/ch10-page.csv
-	gnuplot -e "csv='figures/ch10-page.csv'; stem='figures/ch10-page'" bench/ch10_page.gp
-	@echo "wrote figures/ch10-page.svg"
+	mv figures/ch12-page.csv.tmp figures/ch12-page.csv
+	gnuplot -e "csv='figures/ch12-page.csv'; stem='figures/ch12-page'" bench/ch12_page.gp
+	@echo "wrote figures/ch12-page.svg"
 
 ifeq ($(LTO_FLAGS)$(SAN),)
 # The charts measure the program built with link-time optimization.
@@ -461,27 +461,27 @@ chart-%: $(B)/bench/% | deps
 
 charts: deps $(BENCHES)
 	@for b in $(notdir $(BENCHES)); do $(MAKE) --no-print-directory chart-$$b || exit 1; done
-	$(if $(filter 09,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
-	@if [ -n "$(HAVE_WASM)" ] && . tools/find_chromium.sh && [ -n "$$(find_chromium)" ]; then \
-	  $(MAKE) --no-print-directory chart-ch10_page; \
-	else echo "charts: figures/ch10-page.svg not measured: no Chromium or no programs for the page"; fi
+	$(if $(filter 10,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
+	@if [ -n "$(HAVE_WASM)" ] && . tools/editions/find_chromium.sh && [ -n "$$(find_chromium)" ]; then \
+	  $(MAKE) --no-print-directory chart-ch12_page; \
+	else echo "charts: figures/ch12-page.svg not measured: no Chromium or no programs for the page"; fi
 
 # Can the speed axes be trusted? Every bench run twice: the largest ratio
 # between two runs of a method, and whether an ordering a quoted ratio
-# relies on flipped (tools/charts_check.sh). Writes only build/charts-check.
+# relies on flipped (tools/checks/charts_check.sh). Writes only build/charts-check.
 charts-check: deps $(BENCHES)
-	@sh tools/charts_check.sh $(BENCHES)
+	@sh tools/checks/charts_check.sh $(BENCHES)
 endif
 
-# Without Embree, chapter 09's comparison chart shows this program's own
+# Without Embree, chapter 10's comparison chart shows this program's own
 # rates (from chapter 08's kd-tree benchmark) and says that Embree was absent.
 .PHONY: chart-embree-absent
 chart-embree-absent: figures/ch08-kdtree.csv
 	{ grep '^# machine' figures/ch08-kdtree.csv; \
 	  echo 'method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns'; \
 	  grep -E '^kdtree,[^,]*,[^,]*,[^,]*,mrays_per_s(,|$$)|^kdtree-build,' figures/ch08-kdtree.csv; \
-	  echo 'embree,absent,0,0,absent'; } > figures/ch09-embree.csv
-	gnuplot -e "csv='figures/ch09-embree.csv'; stem='figures/ch09-embree'" bench/ch09_embree.gp
+	  echo 'embree,absent,0,0,absent'; } > figures/ch10-embree.csv
+	gnuplot -e "csv='figures/ch10-embree.csv'; stem='figures/ch10-embree'" bench/ch10_embree.gp
 
 .PHONY: charts-check
 
@@ -500,14 +500,14 @@ check-charts: | deps
 	@echo "check-charts: $$(ls build/chartcheck | wc -l) charts redraw byte for byte from their CSVs"
 
 # ---------------------------------------------------------------- workbook
-# The reader writes the chunks a chapter marks .exercise (tools/exercises.awk
+# The reader writes the chunks a chapter marks .exercise (tools/workbook/exercises.awk
 # lists them) in workbook/NN-name.md, and the chapters' tests grade them.
 #   make workbook            one file per chapter, stubs that fail their tests;
 #                            a file that exists is never overwritten
 #   make workbook SOLVED=1   the book's own code in each stub, marked done
 #   make grade, grade-chNN   build the program with the started exercises in
 #                            place of the book's chunks, under build/workbook,
-#                            and grade each exercise (tools/grade.sh)
+#                            and grade each exercise (tools/workbook/grade.sh)
 #   make hint EX=2.1         that exercise's hint
 #   make watch               grade again whenever a workbook file changes
 # WB_DIR and WB_BUILD name another workbook and build folder (the tests).
@@ -517,7 +517,7 @@ check-charts: | deps
 WB_DIR   ?= workbook
 WB_TAG   := $(if $(filter build/rel,$(B)),,-$(notdir $(B)))
 WB_BUILD ?= build/workbook$(WB_TAG)
-$(WB_BUILD)/obj/%/tests/ch09_packets.o: TEST_OPT := -O1
+$(WB_BUILD)/obj/%/tests/ch10_packets.o: TEST_OPT := -O1
 WB_FILES := $(patsubst chapters/%,$(WB_DIR)/%,$(CHAPTERS))
 # The reader's code is graded, not linted: a stub leaves parameters unused.
 # The code is compiled as the book's is (the warnings do not change an
@@ -534,8 +534,8 @@ workbook: $(WB_FILES)
 # Order-only: a workbook file is the reader's, never remade once it exists.
 $(WB_DIR)/%.md: | chapters/%.md
 	@$(dir_of_target)
-	awk -f tools/types.awk $(CHAPTERS) > $@.types
-	awk -v solved=$(if $(SOLVED),1,0) -v types=$@.types -f tools/stub.awk -f tools/book_code.awk -f tools/workbook.awk \
+	awk -f tools/workbook/types.awk $(CHAPTERS) > $@.types
+	awk -v solved=$(if $(SOLVED),1,0) -v types=$@.types -f tools/workbook/stub.awk -f tools/workbook/book_code.awk -f tools/workbook/workbook.awk \
 	  chapters/$*.md chapters/$*.md > $@.tmp && mv $@.tmp $@; s=$$?; rm -f $@.types; exit $$s
 
 # make grade EX=2.1: exercise 2.1's chapter graded, and the exit status is
@@ -547,20 +547,20 @@ grade: $(if $(EX),grade-ch$(EX_CHAPTER),grade-ch$(LAST))
 $(foreach n,$(NUMS),grade-ch$(n)): grade-ch%: $(TANGLE)
 	+@TANGLE=$(TANGLE) WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) MAKE="$(MAKE)" CC="$(CC)" \
 	  GRADE_EX=$(EX) GRADE_BOOK_CODE=$(if $(HANDOUT),$(if $(BOOK_CODE),yes,no)) \
-	  BOOK_BUILD=$(B) BOOK_BIN=$(BIN) sh tools/grade.sh $* $(call chapters_upto,$*)
+	  BOOK_BUILD=$(B) BOOK_BIN=$(BIN) sh tools/workbook/grade.sh $* $(call chapters_upto,$*)
 
 hint:
 	@if [ -z "$(EX)" ]; then \
 	  echo "usage: make hint EX=N.k (an exercise's number, e.g. EX=2.1)" >&2; exit 2; fi
-	@awk -v hint=$(EX) -f tools/exercises.awk $(CHAPTERS)
+	@awk -v hint=$(EX) -f tools/workbook/exercises.awk $(CHAPTERS)
 
 watch: $(TANGLE)
-	+@WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) sh tools/watch.sh $(MAKE) --no-print-directory \
+	+@WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) sh tools/workbook/watch.sh $(MAKE) --no-print-directory \
 	  WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD)
 
 # make chart-chNN WORKBOOK=1: chapter NN's charts with the reader's started
 # exercises as "yours", timed in the same rounds as the book's methods, under
-# $(WB_BUILD)/charts (never figures/; tools/chart_yours.sh). A bench takes
+# $(WB_BUILD)/charts (never figures/; tools/workbook/chart_yours.sh). A bench takes
 # part with YOURS_<bench> (exercise=macro the bench knows), YOURS_OBJS_<bench>
 # (the workbook objects that hold them) and YOURS_SYMS_<bench> (the functions
 # renamed yours_...).
@@ -596,10 +596,10 @@ define yours_chart_rule
 chart-ch$(1): $(TANGLE) $$(LIB$(1)) $$(O$(1))/bench/timing.o | deps
 	$$(if $$(WORKBOOK),,$$(error make chart-ch$(1) WORKBOOK=1 charts your methods; the book's charts are chart-ch$(1)_NAME))
 	@GRADE_TANGLE_ONLY=1 TANGLE=$(TANGLE) WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) \
-	  sh tools/grade.sh $(1) $$(call chapters_upto,$(1))
+	  sh tools/workbook/grade.sh $(1) $$(call chapters_upto,$(1))
 	@$(MAKE) --no-print-directory -s WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) \
 	  $$(foreach b,$$(filter ch$(1)_%,$(YOURS_BENCHES)),$$(addprefix $$(WO$(1))/,$$(YOURS_OBJS_$$(b))))
-	@drew=; $$(foreach b,$$(filter ch$(1)_%,$(YOURS_BENCHES)),sh tools/chart_yours.sh $$(b) \
+	@drew=; $$(foreach b,$$(filter ch$(1)_%,$(YOURS_BENCHES)),sh tools/workbook/chart_yours.sh $$(b) \
 	  $(WB_BUILD)/ch$(1)/state.tsv $(WB_BUILD)/charts "$$(YOURS_$$(b))" \
 	  "$$(addprefix $$(WO$(1))/,$$(YOURS_OBJS_$$(b)))" "$$(YOURS_SYMS_$$(b))" "$(CC)" \
 	  "$(ALL_CFLAGS) $(LTO_LINK) $(PNG_CFLAGS) -Ibench -I$$(T$(1))" \
@@ -624,7 +624,7 @@ $(foreach n,$(YOURS_NUMS),$(eval $(call yours_chart_rule,$(n))))
 # (Of the PNG figures, the renders, which make keeps up to date: a PNG
 # that a benchmark writes has no rule here, and would be taken for one.)
 HANDOUT_FROM := Makefile README.md book.md chapters/README.md $(CHAPTERS) \
-                $(wildcard tools/* tools/*/* tests/* tests/*/* tests/*/*/* meshes/* meshes/*/*) \
+                $(wildcard tools/* tools/*/* tools/*/*/* tests/* tests/*/* tests/*/*/* meshes/* meshes/*/*) \
                 $(filter-out %.png,$(wildcard figures/*)) $(ALL_FIGS) $(FAILURE_FIGS)
 # The editions asked for in this make, which the tarball must hold too.
 # One that does not exist yet is made in this make, so the tarball is made
@@ -637,8 +637,8 @@ HANDOUT_NEW := $(filter-out $(wildcard $(HANDOUT_EDITIONS)),$(HANDOUT_EDITIONS))
 handout: build/handout.tar.gz
 
 build/handout/book.html: $(HANDOUT_FROM) $(BC)/.forms $(foreach n,$(NUMS),$(BC)/ch$(n).o) | deps
-	+CC="$(CC)" sh tools/handout.sh build/handout
-	sh tools/check_handout.sh build/handout
+	+CC="$(CC)" sh tools/workbook/handout.sh build/handout
+	sh tools/checks/check_handout.sh build/handout
 
 build/handout.tar.gz: build/handout/book.html $(HANDOUT_EDITIONS) $(if $(HANDOUT_NEW),handout-editions-new)
 	tar -czf $@ -C build handout
@@ -653,10 +653,10 @@ build/handout.tar.gz: build/handout/book.html $(HANDOUT_EDITIONS) $(if $(HANDOUT
 BC_CFLAGS = $(CSTD) -O2 $(ARCH) -pthread -w -MMD -MP
 .PHONY: book-code
 book-code: $(foreach n,$(NUMS),$(BC)/ch$(n).o)
-$(BC)/.forms: $(CHAPTERS) tools/stub.awk tools/book_code.awk tools/workbook.awk \
-              tools/book_code.sh tools/exercises.awk $(T$(LAST))/.stamp
+$(BC)/.forms: $(CHAPTERS) tools/workbook/stub.awk tools/workbook/book_code.awk tools/workbook/workbook.awk \
+              tools/workbook/book_code.sh tools/workbook/exercises.awk $(T$(LAST))/.stamp
 	@mkdir -p $(BC)
-	sh tools/book_code.sh forms $(BC) $(T$(LAST)) $(CHAPTERS)
+	sh tools/workbook/book_code.sh forms $(BC) $(T$(LAST)) $(CHAPTERS)
 	@touch $@
 
 define bookcode_rules
@@ -673,24 +673,24 @@ ifneq ($(call previous,$(1)),)
 $$(patsubst %.c,$(BC)/obj/ch$(1)/%.o,$$(filter $$(SRC$(call previous,$(1))),$$(SRC$(1)))): \
   $(BC)/obj/ch$(1)/%.o: | $(BC)/obj/ch$(call previous,$(1))/%.o
 endif
-$(BC)/ch$(1).o: $$(patsubst %.c,$(BC)/obj/ch$(1)/%.o,$$(SRC$(1))) tools/book_code.sh
-	sh tools/book_code.sh link $$@ $$(filter %.o,$$^)
+$(BC)/ch$(1).o: $$(patsubst %.c,$(BC)/obj/ch$(1)/%.o,$$(SRC$(1))) tools/workbook/book_code.sh
+	sh tools/workbook/book_code.sh link $$@ $$(filter %.o,$$^)
 -include $$(wildcard $(BC)/obj/ch$(1)/*.d)
 endef
 $(if $(HANDOUT),,$(foreach n,$(NUMS),$(eval $(call bookcode_rules,$(n)))))
 
 check-handout: $(BC)/.forms
-	+@sh tools/handout.sh build/handoutcheck --no-book > /dev/null
-	@sh tools/check_handout.sh build/handoutcheck
-	@! sh tools/check_handout.sh src > /dev/null || \
+	+@sh tools/workbook/handout.sh build/handoutcheck --no-book > /dev/null
+	@sh tools/checks/check_handout.sh build/handoutcheck
+	@! sh tools/checks/check_handout.sh src > /dev/null || \
 	  { echo "check-handout: the check finds no solution in src/ either"; exit 1; }
 
 # make pdf, make epub: both editions, the book's (build/book.pdf, .epub) and
 # the handout's (build/handout/book.pdf, .epub), each made again only when
 # what it is made from has changed, and the handout's tarball with them.
 # The PDF is headless Chromium's print with the stylesheet's print rules
-# (tools/pdf.sh, which installs Chromium as root), the EPUB pandoc's,
-# MathML kept, its links and SVG figures made valid EPUB (tools/epub.sh).
+# (tools/editions/pdf.sh, which installs Chromium as root), the EPUB pandoc's,
+# MathML kept, its links and SVG figures made valid EPUB (tools/editions/epub.sh).
 # make test checks the book's: every chapter starts a page of the PDF (where
 # Chromium and pdftotext are installed), the EPUB is a whole zip whose
 # navigation lists every chapter, and epubcheck finds no error in it
@@ -699,22 +699,22 @@ check-handout: $(BC)/.forms
 pdf: build/book.pdf build/handout/book.pdf build/handout.tar.gz
 epub: build/book.epub build/handout/book.epub build/handout.tar.gz
 
-EPUB_TOOLS := tools/epub.sh tools/epub_links.awk tools/epub_svg.awk
-build/handout/book.pdf: build/handout/book.html tools/pdf.sh
-	sh tools/pdf.sh $< $@
+EPUB_TOOLS := tools/editions/epub.sh tools/editions/epub_links.awk tools/editions/epub_svg.awk
+build/handout/book.pdf: build/handout/book.html tools/editions/pdf.sh
+	sh tools/editions/pdf.sh $< $@
 build/handout/book.epub: build/handout/book.html $(EPUB_TOOLS)
-	cd build/handout && sh tools/epub.sh book.md book.epub chapters/[0-9][0-9]-*.md
+	cd build/handout && sh tools/editions/epub.sh book.md book.epub chapters/[0-9][0-9]-*.md
 
-build/book.pdf: build/book.html tools/pdf.sh
-	sh tools/pdf.sh $< $@
+build/book.pdf: build/book.html tools/editions/pdf.sh
+	sh tools/editions/pdf.sh $< $@
 
 # (CHARTS is set further down: the charts are named here by wildcard.)
-build/book.epub: book.md $(CHAPTERS) tools/weave.lua tools/weave_names.lua $(EPUB_TOOLS) \
-                 tools/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(wildcard figures/ch[0-9][0-9]-*.svg) | deps
-	sh tools/epub.sh book.md $@ $(CHAPTERS)
+build/book.epub: book.md $(CHAPTERS) tools/book/weave.lua tools/book/weave_names.lua $(EPUB_TOOLS) \
+                 tools/book/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(wildcard figures/ch[0-9][0-9]-*.svg) | deps
+	sh tools/editions/epub.sh book.md $@ $(CHAPTERS)
 
 check-epub: build/book.epub
-	@sh tools/check_epub.sh $< $(CHAPTERS)
+	@sh tools/checks/check_epub.sh $< $(CHAPTERS)
 
 HAVE_PDF_TOOLS = $(shell (command -v chromium || command -v chromium-browser || \
                    command -v google-chrome) >/dev/null 2>&1 && \
@@ -723,15 +723,15 @@ HAVE_PDF_TOOLS = $(shell (command -v chromium || command -v chromium-browser || 
 # the programs at the same time as this one.
 check-pdf: $(if $(HAVE_PDF_TOOLS),build/book.pdf)
 	@if [ "$(HAVE_PDF_TOOLS)" = yes ]; then \
-	  sh tools/check_pdf.sh build/book.pdf $(CHAPTERS); \
+	  sh tools/checks/check_pdf.sh build/book.pdf $(CHAPTERS); \
 	else echo "check-pdf: skipped: no chromium or no pdftotext (make pdf installs Chromium)"; fi
 
 # Each stub alone must fail its tests (minutes: not in make test).
 .PHONY: check-stubs
 check-stubs: $(TANGLE)
-	+@MAKE="$(MAKE)" sh tools/check_stubs.sh
+	+@MAKE="$(MAKE)" sh tools/checks/check_stubs.sh
 
-# The workbook's own tests (tools/check_workbook.sh), in build/wbcheck
+# The workbook's own tests (tools/checks/check_workbook.sh), in build/wbcheck
 # (another compiler's, as make grade's, in a folder of its own).
 # Its grades run side by side, each a make of its own that takes the book's
 # objects of the chapters it grades (and of the chapters before them): this
@@ -742,10 +742,10 @@ WB_CHECK_CHAPTERS := $(NUMS)
 .PHONY: check-workbook
 check-workbook: $(TANGLE) $(foreach n,$(filter $(NUMS),$(WB_CHECK_CHAPTERS)),$(B)/test/ch$(n) $(BIN)/ch$(n)) \
                 test-ch$(LAST)
-	+@MAKE="$(MAKE)" WB_CHECK_DIR=build/wbcheck$(WB_TAG) sh tools/check_workbook.sh
+	+@MAKE="$(MAKE)" WB_CHECK_DIR=build/wbcheck$(WB_TAG) sh tools/checks/check_workbook.sh
 
 # The workbook's program and suites of chapter NN, built from the tangle
-# that tools/grade.sh writes to $(WB_BUILD)/tangle/chNN. What the
+# that tools/workbook/grade.sh writes to $(WB_BUILD)/tangle/chNN. What the
 # compiler says of a file is kept beside its object, OBJ.warnings: the
 # grader shows the warnings at the reader's lines at every grade, whether
 # or not the file was compiled again.
@@ -781,7 +781,7 @@ $(WB_BUILD)/bin/ch$(1): $$(WOBJ$(1)) $$(call book_obj,$(1))
 	$$(CC) $$(WB_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
 
 # The suites again, the files that hold the reader's code (WB_TSAN_FILES,
-# their names without .c: tools/grade.sh) built with ThreadSanitizer, the
+# their names without .c: tools/workbook/grade.sh) built with ThreadSanitizer, the
 # rest as they are: the tests that start threads run in it. Without
 # optimization, so that every access the code makes is made (at -O2 a
 # static variable that a function writes and reads may live in a
@@ -807,10 +807,10 @@ $(foreach n,$(NUMS),$(eval $(call workbook_rules,$(n))))
 # headers is the book's code, #line directives aside.
 wb_reuse_book = $(REUSE) --code $(B)/obj/ch$(1)/$(2) build/tangle/ch$(1) $(WB_BUILD)/tangle/ch$(1) --
 
-# WB_REUSE=NN (tools/grade.sh sets it): chapter NN's program is built with
+# WB_REUSE=NN (tools/workbook/grade.sh sets it): chapter NN's program is built with
 # the chapter before it, whose program some suites compare with; a file of
 # NN that is the same text as there, with the same headers, is compiled
-# there first and its object copied (tools/reuse_object).
+# there first and its object copied (tools/book/reuse_object).
 wb_reuse_from = $(if $(filter $(1),$(WB_REUSE)),$(if $(call previous,$(1)),$(REUSE) $(WB_BUILD)/obj/ch$(call previous,$(1))/$(2) $(WB_BUILD)/tangle/ch$(call previous,$(1)) $(WB_BUILD)/tangle/ch$(1) -- ))
 define workbook_reuse_rules
 $$(patsubst %.c,$(WB_BUILD)/obj/ch$(1)/%.o,$$(filter $$(SRC$(2)),$$(SRC$(1)))): \
@@ -836,13 +836,13 @@ FUZZ_LIB     := $(patsubst %.c,build/fuzz/obj/%.o,$(filter-out main.c,$(call c_f
 
 .PHONY: fuzz fuzz-deps fuzz-build
 fuzz-deps:
-	@sh tools/deps.sh clang libclang-rt-dev
+	@sh tools/book/deps.sh clang libclang-rt-dev
 
 build/fuzz/obj/%.o: build/tangle/ch$(FUZZ_CHAPTER)/%.c | fuzz-deps
 	@$(dir_of_target)
 	clang $(FUZZ_FLAGS) -fsanitize=fuzzer-no-link $(PNG_CFLAGS) -Ibuild/tangle/ch$(FUZZ_CHAPTER) -c -o $@ $<
 
-build/fuzz/tangle_fuzz: fuzz/tangle_fuzz.c tools/tangle.c | fuzz-deps
+build/fuzz/tangle_fuzz: fuzz/tangle_fuzz.c tools/book/tangle.c | fuzz-deps
 	@$(dir_of_target)
 	clang $(FUZZ_FLAGS) -fsanitize=fuzzer -Dmain=tangle_main -o $@ $^
 
@@ -854,16 +854,16 @@ build/fuzz/%_fuzz: fuzz/%_fuzz.c $(FUZZ_LIB) | fuzz-deps
 fuzz-build: $(foreach t,$(FUZZ_TARGETS),build/fuzz/$(t)_fuzz)
 
 # The targets run side by side, all at once whatever the jobs (so that
-# FUZZ_SECONDS is the whole run's time on the clock), by tools/fuzz.sh;
+# FUZZ_SECONDS is the whole run's time on the clock), by tools/checks/fuzz.sh;
 # make fuzz-run-NAME runs one alone.
 FUZZ_RUNS := $(addprefix fuzz-run-,$(FUZZ_TARGETS))
 .PHONY: $(FUZZ_RUNS)
 fuzz: fuzz-build
-	@sh tools/fuzz.sh $(FUZZ_SECONDS) $(FUZZ_TARGETS)
+	@sh tools/checks/fuzz.sh $(FUZZ_SECONDS) $(FUZZ_TARGETS)
 	@echo "make fuzz: $(FUZZ_TARGETS) ran $(FUZZ_SECONDS) s each and found nothing"
 
 $(FUZZ_RUNS): fuzz-run-%: build/fuzz/%_fuzz
-	@sh tools/fuzz.sh $(FUZZ_SECONDS) $*
+	@sh tools/checks/fuzz.sh $(FUZZ_SECONDS) $*
 
 # ---------------------------------------------------------------- valgrind
 # make valgrind: every test binary (its tests in its own process, so that
@@ -892,7 +892,7 @@ valgrind: all $(B)/test/tangle $(foreach n,$(NUMS),$(B)/test/ch$(n))
 # render its scenes (chapter 10, "The program in the page"): the same
 # files as bin/chNN, with the headers of the last chapter's page/ folder
 # in front of the system's. make installs the toolchain as root (Debian:
-# clang lld wasi-libc libclang-rt-dev-wasm32, tools/deps.sh --page);
+# clang lld wasi-libc libclang-rt-dev-wasm32, tools/book/deps.sh --page);
 # without it the programs are skipped, and the book has no playground.
 # make page-check (in make test where Chromium is installed) renders
 # every chapter's scenes in the book's page in headless Chromium.
@@ -900,7 +900,7 @@ WASM_CC   := clang --target=wasm32-wasi
 PAGE_DIR  := build/tangle/ch$(LAST)/page
 # Asked once, by the first make: its sub-makes get the answer from it.
 ifndef PAGE_PROBED
-HAVE_WASM := $(if $(filter clean,$(MAKECMDGOALS))$(HANDOUT),,$(shell sh tools/deps.sh --page >&2; \
+HAVE_WASM := $(if $(filter clean,$(MAKECMDGOALS))$(HANDOUT),,$(shell sh tools/book/deps.sh --page >&2; \
                printf 'int main(void) { return 0; }\n' | \
                $(WASM_CC) -x c - -o /dev/null >/dev/null 2>&1 && echo yes))
 export HAVE_WASM
@@ -942,8 +942,8 @@ build/page/%.obj.b64: meshes/%.obj
 	gzip -9 -n -c $< | base64 -w 76 > $@
 build/page/playground.html: $(patsubst build/wasm/%,build/page/%.b64,$(WASM_PROGRAMS)) \
                             $(patsubst meshes/%,build/page/%.b64,$(PAGE_MESHES)) \
-                            tools/page.sh $(wildcard tools/page/*)
-	sh tools/page.sh $@ $(patsubst build/wasm/%,build/page/%.b64,$(WASM_PROGRAMS)) \
+                            tools/editions/page.sh $(wildcard tools/editions/page/*)
+	sh tools/editions/page.sh $@ $(patsubst build/wasm/%,build/page/%.b64,$(WASM_PROGRAMS)) \
 	  -- $(patsubst meshes/%,build/page/%.b64,$(PAGE_MESHES))
 .PHONY: wasm
 wasm: $(WASM_PROGRAMS)
@@ -955,10 +955,10 @@ CHARTS := $(wildcard figures/ch[0-9][0-9]-*.svg)
 book: build/book.html
 # With the programs for the page (above), the page renders the scenes.
 PAGE_HTML := $(if $(HAVE_WASM),build/page/playground.html)
-build/book.html: book.md $(CHAPTERS) tools/weave.lua tools/weave_names.lua tools/weave.sh \
-                 tools/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) $(PAGE_HTML) | deps
+build/book.html: book.md $(CHAPTERS) tools/book/weave.lua tools/book/weave_names.lua tools/book/weave.sh \
+                 tools/book/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) $(PAGE_HTML) | deps
 	@$(dir_of_target)
-	WEAVE_PAGE=$(PAGE_HTML) sh tools/weave.sh book.md $@ $(CHAPTERS)
+	WEAVE_PAGE=$(PAGE_HTML) sh tools/book/weave.sh book.md $@ $(CHAPTERS)
 
 # The weaver stops at a chunk no program uses: a made-up chapter woven
 # with and without one.
@@ -966,41 +966,41 @@ build/book.html: book.md $(CHAPTERS) tools/weave.lua tools/weave_names.lua tools
 check-weave-errors: | deps
 	@d=$$(mktemp -d) && \
 	printf '# A\n\n```{.c file="a.c"}\nint main(void) { return 0; }\n<<used>>\n```\n\n```{.c chunk="used"}\nint y;\n```\n' > $$d/01-a.md && \
-	sh tools/weave.sh book.md $$d/good.html $$d/01-a.md > $$d/log 2>&1 || \
+	sh tools/book/weave.sh book.md $$d/good.html $$d/01-a.md > $$d/log 2>&1 || \
 	  { cat $$d/log; echo "check-weave-errors: a good chapter did not weave"; rm -rf $$d; exit 1; }; \
 	printf '\n```{.c chunk="unused"}\nint x;\n```\n' >> $$d/01-a.md; \
-	if sh tools/weave.sh book.md $$d/bad.html $$d/01-a.md > $$d/log 2>&1 || \
+	if sh tools/book/weave.sh book.md $$d/bad.html $$d/01-a.md > $$d/log 2>&1 || \
 	   ! grep -q '<<unused>> is defined but never used' $$d/log; then \
 	  cat $$d/log; echo "check-weave-errors: an unused chunk did not stop the weave"; rm -rf $$d; exit 1; fi; \
 	rm -rf $$d; echo "check-weave-errors: an unused chunk stops the weave: ok"
 
-check-book: build/book.html $(B)/tools/check_book
-	$(B)/tools/check_book build/book.html
+check-book: build/book.html $(B)/tools/checks/check_book
+	$(B)/tools/checks/check_book build/book.html
 
 # Every line of every code box fits 80 columns (names the chunk if not).
-check-code-width: build/book.html $(B)/tools/check_book
-	$(B)/tools/check_book --code-width 80 build/book.html
+check-code-width: build/book.html $(B)/tools/checks/check_book
+	$(B)/tools/checks/check_book --code-width 80 build/book.html
 
 # The page in headless Chromium at 1280x900: make book-check installs it
 # when missing (as root); make test only runs it if it is there.
 book-check: build/book.html
-	sh tools/book_check.sh build/book.html build/book-screenshot.png
+	sh tools/checks/book_check.sh build/book.html build/book-screenshot.png
 
 check-book-browser: build/book.html
-	@sh tools/book_check.sh --no-install build/book.html build/book-screenshot.png
+	@sh tools/checks/book_check.sh --no-install build/book.html build/book-screenshot.png
 
 # The scenes rendered in the page against the programs' own PNGs (at a
 # small size, to be quick), a located mistake, a cancelled render, the
-# network off: headless Chromium, where it is installed (tools/page_check.sh).
+# network off: headless Chromium, where it is installed (tools/checks/page_check.sh).
 PAGE_CHECK_SIZE := 160x120
 check-page: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n))
-	@sh tools/page_check.sh build/book.html $(BIN) $(PAGE_CHECK_SIZE) $(NUMS)
+	@sh tools/checks/page_check.sh build/book.html $(BIN) $(PAGE_CHECK_SIZE) $(NUMS)
 
 # Every bin/chNN command the book and README quote runs (the self-test
 # first: the check must be able to fail).
 check-commands: $(foreach n,$(NUMS),$(BIN)/ch$(n))
-	@sh tools/check_commands.sh --self-test
-	@sh tools/check_commands.sh --bin $(BIN) chapters/*.md book.md README.md
+	@sh tools/checks/check_commands.sh --self-test
+	@sh tools/checks/check_commands.sh --bin $(BIN) chapters/*.md book.md README.md
 
 # ---------------------------------------------------------------- tests
 $(B)/test/tangle: tests/runner.c tests/tangle_test.c | deps
@@ -1009,27 +1009,27 @@ $(B)/test/tangle: tests/runner.c tests/tangle_test.c | deps
 
 test-tangle: $(B)/test/tangle $(TANGLE)
 	@echo "== the tangler's suite"
-	TANGLE=$(TANGLE) CK_DEFAULT_TIMEOUT=60 $(RUNNER_ENV) sh tools/run_shards.sh $(B)/test/tangle
+	TANGLE=$(TANGLE) CK_DEFAULT_TIMEOUT=60 $(RUNNER_ENV) sh tools/checks/run_shards.sh $(B)/test/tangle
 
 # A syntax error typed into chapter 01 must be reported at its Markdown line.
 check-lines: $(TANGLE) | deps
-	@sh tools/check_line_directives.sh $(TANGLE) chapters/01-camera.md 'double half_width = tan('
+	@sh tools/checks/check_line_directives.sh $(TANGLE) chapters/01-camera.md 'double half_width = tan('
 
 # The numbers the chapters quote must be the ones in the CSV files of make charts.
 check-quotes:
-	@sh tools/check_quotes.sh bench/quotes.txt
+	@sh tools/checks/check_quotes.sh bench/quotes.txt
 
 # Every paragraph of prose closes the brackets it opens (pandoc would scan
-# the rest of the book for each: tools/check_brackets.awk).
+# the rest of the book for each: tools/checks/check_brackets.awk).
 .PHONY: check-brackets
 check-brackets:
-	@awk -f tools/check_brackets.awk book.md $(CHAPTERS)
+	@awk -f tools/checks/check_brackets.awk book.md $(CHAPTERS)
 	@echo "check-brackets: every paragraph closes its brackets"
 
-# tools/reuse_object copies an object only for the same code.
+# tools/book/reuse_object copies an object only for the same code.
 .PHONY: check-reuse
 check-reuse: $(REUSE)
-	@sh tools/check_reuse.sh $(REUSE) $(CC)
+	@sh tools/checks/check_reuse.sh $(REUSE) $(CC)
 
 # The README quotes the build's own speed as bench/build_speed.sh measured
 # it (figures/build-speed.md): every line of that table, word for word.
@@ -1041,10 +1041,12 @@ check-build-speed:
 	done < figures/build-speed.md
 	@echo "check-build-speed: README.md quotes figures/build-speed.md"
 
-# chapters/README.md's map of layers and hooks is that of the last chapter.
+# chapters/README.md's map of layers and hooks is that of the last chapter,
+# and every file of tools/ is in a folder whose README.md names it.
 check-map: check-src
-	@sh tools/check_map.sh --self-test
-	@sh tools/check_map.sh chapters/README.md src/ch$(lastword $(NUMS)) $(CHAPTERS)
+	@sh tools/checks/check_map.sh --self-test
+	@sh tools/checks/check_map.sh chapters/README.md src/ch$(lastword $(NUMS)) $(CHAPTERS)
+	@sh tools/checks/check_map.sh --tools tools
 
 # Every allocation of the last chapter's program goes through memory.h.
 check-allocations: check-src

@@ -35,7 +35,7 @@
  *     method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns
  * preceded by one comment line, "# machine: CPU, compiler and flags, date"
  * (bench_print_machine), which the chart scripts print under each chart and
- * which gnuplot and tools/check_quotes.sh skip. */
+ * which gnuplot and tools/checks/check_quotes.sh skip. */
 #ifndef BENCH_TIMING_H
 #define BENCH_TIMING_H
 

@@ -1,4 +1,4 @@
-/* tangle_fuzz.c: libFuzzer target for the tangler (tools/tangle.c).
+/* tangle_fuzz.c: libFuzzer target for the tangler (tools/book/tangle.c).
  *
  * Each input is written as a chapter file and tangled into a scratch folder
  * twice, as the build does: with --line --strict (what is compiled) and with

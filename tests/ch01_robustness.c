@@ -462,10 +462,10 @@ START_TEST(test_a_byte_order_mark_is_skipped)
     scene_free(&s);
     /* Columns count from after the mark, as an editor shows them. */
     expect_parse_error("\xEF\xBB\xBF" "camera fov x\n", 1, 12, "found 'x'");
-    /* Only at the start of the file. */
+    /* Only at the start of the file: elsewhere it is reported. */
     expect_parse_error("image 8 6\n\xEF\xBB\xBF"
                        "image 8 6\n",
-                       2, 1, "statement keyword");
+                       2, 1, "byte order mark");
 }
 END_TEST
 
@@ -632,7 +632,7 @@ START_TEST(test_command_line_numbers_are_digits_only)
         ck_assert_msg(strstr(errors, "--size expects WIDTHxHEIGHT"), "'%s': %s",
                       sizes[k], errors);
     }
-    /* --threads (chapter 9) and, before it, an unknown option alike */
+    /* --threads (chapter 11) and, before it, an unknown option alike */
     const char *counts[] = {" 2", "+2", "2 ", "0x2", ""};
     for (int k = 0; k < 5; k++) {
         const char *args[] = {"--threads", counts[k], "-o", out, NULL};
@@ -743,6 +743,161 @@ START_TEST(test_a_long_render_shows_progress_lines_in_a_log)
 }
 END_TEST
 
+/* ------------------------------------------------- every signal, and SIGPIPE
+ * and SIGXFSZ (a closed pipe, a file size limit) */
+
+/* Starts $CHAPTER_BIN with args as start_bin does, but with stderr the
+ * descriptor err, every signal at its default action, files limited to
+ * max_file_bytes (> 0) and no core dump. */
+static pid_t start_bin_as_is(const char *const *args, int err,
+                             long max_file_bytes)
+{
+    const char *bin = getenv("CHAPTER_BIN");
+    ck_assert_ptr_nonnull(bin);
+    pid_t pid = fork();
+    ck_assert(pid >= 0);
+    if (pid == 0) {
+        const char *argv[16] = {bin};
+        for (int k = 0; args[k] != NULL && k < 14; k++)
+            argv[k + 1] = args[k];
+        struct rlimit none = {0, 0}, size = {(rlim_t)max_file_bytes,
+                                             (rlim_t)max_file_bytes};
+        if (dup2(err, STDERR_FILENO) < 0 ||
+            freopen("/dev/null", "w", stdout) == NULL ||
+            setrlimit(RLIMIT_CORE, &none) != 0 ||
+            (max_file_bytes > 0 && setrlimit(RLIMIT_FSIZE, &size) != 0))
+            _exit(126);
+        for (int sig = 1; sig < 32; sig++)
+            if (sig != SIGKILL && sig != SIGSTOP)
+                signal(sig, SIG_DFL);
+        alarm(120); /* a binary that hangs ends */
+        execv(bin, (char *const *)argv);
+        _exit(127);
+    }
+    return pid;
+}
+
+/* Waits until folder holds a file named out.png.tmp-*, the output of pid
+ * being made. */
+static void wait_for_temporary(pid_t pid, const char *folder)
+{
+    struct timespec ms = {0, 1000000};
+    int waited = 0;
+    while (!has_entry_starting(folder, "out.png.tmp-") && waited++ < 60000) {
+        ck_assert_msg(!has_exited(pid), "the program ended before its output");
+        nanosleep(&ms, NULL);
+    }
+    ck_assert_msg(waited < 60000, "no temporary file appeared");
+}
+
+START_TEST(test_every_stop_signal_leaves_no_temporary_file)
+{
+    /* Ctrl-\, a timer, a user's signal, a limit of processor time: each
+     * ends the program as it would, with no temporary left. */
+    const int stops[] = {SIGQUIT, SIGALRM, SIGUSR1, SIGXCPU};
+    for (int k = 0; k < 4; k++) {
+        char folder[192], out[192], errors[1024];
+        snprintf(folder, sizeof folder, "%s/stop%d", tmpdir, k);
+        ck_assert_int_eq(mkdir(folder, 0755), 0);
+        snprintf(out, sizeof out, "%.160s/out.png", folder);
+        const char *args[] = {"-o", out, "--size", "4096x4096", NULL};
+        int err = open(tmp_path("stderr.txt"), O_WRONLY | O_CREAT | O_TRUNC,
+                       0644);
+        ck_assert_int_ge(err, 0);
+        pid_t pid = start_bin_as_is(args, err, 0);
+        close(err);
+        wait_for_temporary(pid, folder);
+        ck_assert_int_eq(kill(pid, stops[k]), 0);
+        ck_assert_int_eq(finish_bin(pid, errors, sizeof errors),
+                         128 + stops[k]);
+        ck_assert_msg(count_entries(folder) == 0, "signal %d left a file",
+                      stops[k]);
+    }
+}
+END_TEST
+
+START_TEST(test_a_file_size_limit_keeps_the_old_picture)
+{
+    /* ulimit -f: a write past the limit raises SIGXFSZ, whose default
+     * action would end the program with its temporary half written. */
+    static char bytes[65536];
+    char path[192], errors[1024];
+    size_t n = first_picture(path, sizeof path, bytes, sizeof bytes);
+    const char *args[] = {"-o", path, "--size", "160x120", NULL};
+    int err = open(tmp_path("stderr.txt"), O_WRONLY | O_CREAT | O_TRUNC,
+                   0644);
+    ck_assert_int_ge(err, 0);
+    pid_t pid = start_bin_as_is(args, err, 512); /* the PNG is over 1900 */
+    close(err);
+    int status = finish_bin(pid, errors, sizeof errors);
+    ck_assert_msg(status == 1, "status %d: %s", status, errors);
+    ck_assert_msg(strstr(errors, "error: cannot write") != NULL, "stderr: %s",
+                  errors);
+    expect_picture_kept(path, bytes, n);
+}
+END_TEST
+
+START_TEST(test_progress_to_a_closed_pipe_does_not_end_the_render)
+{
+    /* bin/chNN ... 2>&1 | head -1: the pipe of standard error closes; a
+     * progress line written to it must not cost the picture. The program
+     * is held still for 1.2 s as it starts its render, so that it has run
+     * for over a second and writes a line after the next band. */
+    char folder[192], out[192], errors[1024];
+    snprintf(folder, sizeof folder, "%s", tmp_path("pipe"));
+    ck_assert_int_eq(mkdir(folder, 0755), 0);
+    snprintf(out, sizeof out, "%.160s/out.png", folder);
+    char sky[192]; /* the sky alone: cheap in every chapter */
+    snprintf(sky, sizeof sky, "%s",
+             write_file("sky.scene", "image 2048 2048\n"));
+    const char *args[] = {sky, "-o", out, NULL};
+    int ends[2];
+    ck_assert_int_eq(pipe(ends), 0);
+    /* the program gets the write end as stderr (dup2 keeps that one open
+     * across execv), and neither end otherwise: no reader is left */
+    ck_assert_int_eq(fcntl(ends[0], F_SETFD, FD_CLOEXEC), 0);
+    ck_assert_int_eq(fcntl(ends[1], F_SETFD, FD_CLOEXEC), 0);
+    pid_t pid = start_bin_as_is(args, ends[1], 0);
+    close(ends[1]);
+    close(ends[0]); /* nobody reads: a write gets EPIPE, or SIGPIPE */
+    wait_for_temporary(pid, folder);
+    pause_bin(pid, 1200);
+    int status;
+    ck_assert_int_eq(waitpid(pid, &status, 0), pid);
+    ck_assert_msg(WIFEXITED(status) && WEXITSTATUS(status) == 0,
+                  "ended by signal %d, status %d",
+                  WIFSIGNALED(status) ? WTERMSIG(status) : 0,
+                  WIFEXITED(status) ? WEXITSTATUS(status) : -1);
+    (void)errors;
+    ck_assert(file_exists(out));
+    ck_assert_int_eq(count_entries(folder), 1); /* no temporary left */
+}
+END_TEST
+
+START_TEST(test_the_png_memory_is_taken_before_the_render)
+{
+#ifndef TEST_ASAN
+    /* A 4096 x 4096 image is 384 MiB of doubles, its PNG's bytes 48 MiB
+     * more: with 408 MiB of address space the image fits and the bytes do
+     * not, which must show before the render, not after it. */
+    char errors[1024];
+    write_file("sky.scene", "image 4096 4096\n");
+    char scene_path[192], out[192];
+    snprintf(scene_path, sizeof scene_path, "%s", tmp_path("sky.scene"));
+    snprintf(out, sizeof out, "%s", tmp_path("sky.png"));
+    const char *args[] = {scene_path, "-o", out, NULL};
+    int status = run_bin_limited(args, errors, sizeof errors,
+                                 (run_limits){.max_memory_bytes = 408L << 20,
+                                              .alarm_seconds = 120});
+    ck_assert_msg(status == 1, "status %d: %s", status, errors);
+    ck_assert_msg(strstr(errors, "no memory for a 4096x4096 image and its "
+                                 "PNG") != NULL,
+                  "stderr: %s", errors);
+    ck_assert(!file_exists(out));
+#endif
+}
+END_TEST
+
 Suite *ch01_robustness_suite(void)
 {
     Suite *s = suite_create("ch01 robustness");
@@ -795,5 +950,17 @@ Suite *ch01_robustness_suite(void)
     tcase_add_test(io, test_command_line_numbers_are_digits_only);
     tcase_add_test(io, test_a_usage_error_is_two_documented_lines);
     suite_add_tcase(s, io);
+
+    TCase *signals = tcase_create("every way a run may end");
+    tcase_add_checked_fixture(signals, make_tmpdir, remove_tmpdir);
+    tcase_set_timeout(signals, 180);
+    tcase_add_test(signals, test_every_stop_signal_leaves_no_temporary_file);
+    tcase_add_test(signals, test_a_file_size_limit_keeps_the_old_picture);
+    tcase_add_slow_test(signals,
+                        test_progress_to_a_closed_pipe_does_not_end_the_render);
+    tcase_add_test_in_a_process(signals,
+                                test_the_png_memory_is_taken_before_the_render);
+    suite_add_tcase(s, signals);
     return s;
 }
+

@@ -774,6 +774,37 @@ START_TEST(test_the_method_table_names_each_method)
 }
 END_TEST
 
+/* A byte order mark at the start of a line other than the first (two
+ * files pasted into one) would make the line an unknown statement, which
+ * the reader skips: it is reported where it is, in a small file and, read
+ * by the program, in one large enough for later chapters to read in
+ * parts. */
+START_TEST(test_a_byte_order_mark_inside_an_obj_file_is_reported)
+{
+    expect_obj_error("v 0 0 5\n\xEF\xBB\xBFv 1 0 5\nv 0 1 5\nf 1 2 3\n", 2, 1,
+                     "byte order mark");
+    enum { VERTICES = 30000, MARK = 20000 }; /* about 600 KB */
+    static char text[VERTICES * 24 + 64];
+    size_t n = 0;
+    for (int k = 1; k <= VERTICES; k++)
+        n += (size_t)snprintf(text + n, sizeof text - n, "%sv %d 0 5.25\n",
+                              k == MARK ? "\xEF\xBB\xBF" : "", k);
+    n += (size_t)snprintf(text + n, sizeof text - n, "f 1 2 %d\n", VERTICES);
+    write_bytes("large.obj", text, n);
+    const char *scene_path =
+        write_file("large.scene", "mesh file large.obj\n");
+    char scene_copy[192], out[192], errors[2048], says[64];
+    snprintf(scene_copy, sizeof scene_copy, "%s", scene_path);
+    snprintf(out, sizeof out, "%s", tmp_path("out.png"));
+    snprintf(says, sizeof says, "large.obj:%d:1: error: a byte order mark",
+             MARK);
+    const char *args[] = {scene_copy, "-o", out, "--size", "8x6", NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+    ck_assert_msg(strstr(errors, says) != NULL, "stderr: %s", errors);
+    ck_assert(!file_exists(out));
+}
+END_TEST
+
 Suite *ch04_triangles_suite(void)
 {
     Suite *s = suite_create("ch04 triangles");
@@ -820,6 +851,7 @@ Suite *ch04_triangles_suite(void)
     tcase_add_test(bad, test_a_mesh_named_twice_is_read_once);
     tcase_add_test(bad, test_the_scene_budget_is_kept);
     tcase_add_test(bad, test_running_out_of_memory_is_reported_as_such);
+    tcase_add_test(bad, test_a_byte_order_mark_inside_an_obj_file_is_reported);
     suite_add_tcase(s, bad);
     return s;
 }

@@ -1,5 +1,5 @@
 /*
- * Tests for tools/tangle.c.
+ * Tests for tools/book/tangle.c.
  *
  * Every test writes small chapters into a fresh temporary directory, runs
  * the tangler there as a subprocess (its path comes from the environment

@@ -23,4 +23,5 @@ static inline moment moment_now(void)
                     moment_seconds_of(CLOCK_PROCESS_CPUTIME_ID)};
 }
 
+
 #endif

@@ -21,4 +21,10 @@ void scene_free(scene *s)
     memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
 }
 
+void scene_phase(const scene *s, const char *what)
+{
+    if (s->on_phase != NULL)
+        s->on_phase(s->phase_context, what);
+}
+
 

@@ -23,10 +23,18 @@ typedef struct {
 typedef struct {
     camera cam;
     background bg;
+    /* told when a phase of the loading begins ("reading the scene"), for
+     * the progress line; NULL: no one is told */
+    void (*on_phase)(void *context, const char *phase);
+    void *phase_context;
+    int image_line; /* the line of the image statement; 0: none */
 } scene;
 
 void scene_init(scene *s);
 void scene_free(scene *s);
+
+/* Tells s->on_phase, if there is one, that the loading now does what. */
+void scene_phase(const scene *s, const char *what);
 
 
 

@@ -42,6 +42,7 @@ static bool parse_image(parser *p, scene *s)
                               IMAGE_MAX_PIXELS, w, h, w * h);
     s->cam.width = (int)w;
     s->cam.height = (int)h;
+    s->image_line = p->line_number;
     return true;
 }
 
@@ -147,6 +148,7 @@ bool scene_load(scene *s, const char *path, scene_error *err)
 {
     char *text;
     size_t length;
+    scene_phase(s, "reading the scene"); /* its meshes too, from chapter 4 */
     if (!parse_read_file(path, SCENE_MAX_BYTES, &text, &length, err))
         return false;
     bool ok = scene_parse(s, text, length, path, err);

@@ -5,8 +5,10 @@
 
 #include "image.h"
 
-/* From now on SIGINT, SIGTERM and SIGHUP remove the output's temporary
- * file before they stop the program (unless they were ignored). */
+/* From now on the signals that stop the program from outside (SIGINT,
+ * SIGTERM, SIGHUP, SIGQUIT, ...) remove the output's temporary file before
+ * they stop it (unless they were ignored), and SIGPIPE and SIGXFSZ are
+ * ignored: a write to a closed pipe or past the file size limit fails. */
 void output_catch_stop_signals(void);
 
 /* png_output_open, with the signal handler told of the temporary file. */

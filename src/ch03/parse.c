@@ -284,6 +284,10 @@ bool parse_lines(const char *text, size_t length, const char *name,
         if (nul != NULL)
             return parse_fail_at(&p, nul, "unexpected NUL byte: "
                                           "this is not a text file");
+        if (p.line_number > 1 && eol - line >= 3 &&
+            memcmp(line, "\xEF\xBB\xBF", 3) == 0)
+            return parse_fail_at(&p, line, "a byte order mark (EF BB BF) "
+                                           "after the start of the file");
         if (!parse_line(&p, target))
             return false;
         line = eol < end ? eol + 1 : end;

@@ -64,12 +64,18 @@ typedef struct {
     bool owns_out;   /* false for standard output, which stays open */
     char *temporary; /* NULL when the target is written in place */
     char *target;    /* the file that the temporary replaces */
+    unsigned char *bytes; /* the sRGB bytes, reserved; NULL: not yet */
+    size_t pixels;        /* how many pixels bytes has room for */
 } png_output;
 
 /* Opens path for a PNG as the table above says ("-": standard output);
  * false with the reason in why. Free o with png_output_free either way. */
 bool png_output_open(png_output *o, const char *path, char *why,
                      size_t why_size);
+
+/* Takes now the memory that finishing a width x height PNG needs, so
+ * that a lack of it shows before the render; false if there is none. */
+bool png_output_reserve(png_output *o, int width, int height);
 
 /* Writes img to o and, for a file, renames the temporary over the target;
  * false with the reason in why. */

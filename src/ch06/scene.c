@@ -51,6 +51,12 @@ void scene_free(scene *s)
     memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
 }
 
+void scene_phase(const scene *s, const char *what)
+{
+    if (s->on_phase != NULL)
+        s->on_phase(s->phase_context, what);
+}
+
 /* <<scene arrays>> ch02 */
 bool scene_add_object(scene *s, object o)
 {

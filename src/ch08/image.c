@@ -63,18 +63,17 @@ double gamma_encode(double linear, double gamma)
 }
 
 /* <<PNG output>> ch01 */
-/* 8-bit sRGB bytes of the whole image, row by row; NULL if out of memory.
- * 3 * width * height cannot overflow: image_init capped it at 3 * 2^24. */
-static unsigned char *encode_rows(const image *img)
+/* The 8-bit sRGB bytes of the whole image, row by row, into bytes (room
+ * for 3 * width * height; that cannot overflow: image_init capped it at
+ * 3 * 2^24). */
+static void encode_rows(const image *img, unsigned char *bytes)
 {
     size_t n = (size_t)img->width * img->height;
-    unsigned char *bytes = memory_alloc(n, 3);
-    for (size_t k = 0; bytes != NULL && k < n; k++) {
+    for (size_t k = 0; k < n; k++) {
         bytes[3 * k + 0] = srgb_to_byte(img->pixels[k].x);
         bytes[3 * k + 1] = srgb_to_byte(img->pixels[k].y);
         bytes[3 * k + 2] = srgb_to_byte(img->pixels[k].z);
     }
-    return bytes;
 }
 
 /* <<write bytes to a PNG stream>> ch01 */
@@ -106,11 +105,20 @@ static bool write_png_stream(FILE *out, const image *img,
     return true;
 }
 
+/* The image as a PNG on out, its bytes encoded into bytes. */
+static bool write_png_with(const image *img, FILE *out, unsigned char *bytes,
+                           char *why, size_t why_size)
+{
+    encode_rows(img, bytes);
+    return write_png_stream(out, img, bytes, why, why_size);
+}
+
 bool image_write_png_stream(const image *img, FILE *out, char *why,
                             size_t why_size)
 {
-    unsigned char *bytes = encode_rows(img);
-    bool ok = bytes != NULL && write_png_stream(out, img, bytes, why, why_size);
+    unsigned char *bytes =
+        memory_alloc((size_t)img->width * img->height, 3);
+    bool ok = bytes != NULL && write_png_with(img, out, bytes, why, why_size);
     if (bytes == NULL)
         snprintf(why, why_size, "out of memory");
     free(bytes);
@@ -246,10 +254,23 @@ bool png_output_open(png_output *o, const char *path, char *why,
 }
 
 /* <<finish the output>> ch01 */
+bool png_output_reserve(png_output *o, int width, int height)
+{
+    size_t n = (size_t)width * (size_t)height;
+    if (o->pixels < n) {
+        free(o->bytes);
+        o->bytes = memory_alloc(n, 3);
+        o->pixels = o->bytes != NULL ? n : 0;
+    }
+    return o->bytes != NULL;
+}
+
 bool png_output_finish(png_output *o, const image *img, char *why,
                        size_t why_size)
 {
-    bool ok = image_write_png_stream(img, o->out, why, why_size);
+    bool reserved = o->pixels >= (size_t)img->width * img->height;
+    bool ok = reserved ? write_png_with(img, o->out, o->bytes, why, why_size)
+                       : image_write_png_stream(img, o->out, why, why_size);
     if (o->owns_out && fclose(o->out) != 0 && ok) /* a full disk, say */
         ok = explain(why, why_size, "cannot write: %s", strerror(errno));
     o->out = NULL;
@@ -269,6 +290,7 @@ void png_output_free(png_output *o)
         unlink(o->temporary);
     free(o->temporary);
     free(o->target);
+    free(o->bytes);
     *o = (png_output){0};
 }
 

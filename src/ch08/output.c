@@ -19,19 +19,25 @@ static void remove_temporary_and_stop(int sig)
     raise(sig); /* SA_RESETHAND restored the default action: it stops */
 }
 
-static const int stop_signals[] = {SIGINT, SIGTERM, SIGHUP};
+/* Every signal whose default action ends the program and that comes from
+ * outside it: the user, the system, a timer, a limit. */
+static const int stop_signals[] = {SIGINT,  SIGTERM,   SIGHUP,  SIGQUIT,
+                                   SIGALRM, SIGUSR1,   SIGUSR2, SIGXCPU,
+                                   SIGVTALRM, SIGPROF};
 enum { STOP_SIGNALS = sizeof stop_signals / sizeof stop_signals[0] };
 
 void output_catch_stop_signals(void)
 {
     struct sigaction action = {.sa_handler = remove_temporary_and_stop,
                                .sa_flags = SA_RESETHAND},
-                     before;
-    sigemptyset(&action.sa_mask);
+                     before, ignore = {.sa_handler = SIG_IGN};
+    sigemptyset(&action.sa_mask), sigemptyset(&ignore.sa_mask);
     for (int k = 0; k < STOP_SIGNALS; k++)
         if (sigaction(stop_signals[k], NULL, &before) == 0 &&
             before.sa_handler != SIG_IGN) /* nohup's choice stands */
             sigaction(stop_signals[k], &action, NULL);
+    sigaction(SIGPIPE, &ignore, NULL); /* write fails with EPIPE */
+    sigaction(SIGXFSZ, &ignore, NULL); /* write fails with EFBIG */
 }
 
 /* The stop signals are held while the file opens, so that the handler

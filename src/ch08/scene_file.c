@@ -121,6 +121,7 @@ static bool parse_image(parser *p, scene *s)
                               IMAGE_MAX_PIXELS, w, h, w * h);
     s->cam.width = (int)w;
     s->cam.height = (int)h;
+    s->image_line = p->line_number;
     return true;
 }
 
@@ -529,6 +530,7 @@ bool scene_parse(scene *s, const char *text, size_t length, const char *name,
     fit_shadow_budget(s);
     /* <<finish the scene>> += ch08 */
     scene_tree_failure why;
+    scene_phase(s, "building the trees");
     if (!scene_build_trees(s, &why))
         return tree_error(s, name, &why, err);
     return true;
@@ -538,6 +540,7 @@ bool scene_load(scene *s, const char *path, scene_error *err)
 {
     char *text;
     size_t length;
+    scene_phase(s, "reading the scene"); /* its meshes too, from chapter 4 */
     if (!parse_read_file(path, SCENE_MAX_BYTES, &text, &length, err))
         return false;
     bool ok = scene_parse(s, text, length, path, err);

@@ -2,16 +2,14 @@
 #include "bvh.h"
 
 #include <assert.h>
-#include <pthread.h>
-#include <stdatomic.h>
 #include <stdlib.h>
-#include <unistd.h>
 #include "memory.h"
 
 /* <<bvh storage>> ch09 */
 bvh_params bvh_default_params(void)
 {
-    int width = bvh_walks_with_avx2() ? 8 : BVH_WIDTH;
+    /* <<the default width>> ch09 */
+    int width = 2;
     return (bvh_params){.width = width, .bins = 32, .max_leaf_items = 8,
                         .traversal_cost = 1, .intersection_cost = 1,
                         .min_items = 1, .item_group = 1};
@@ -35,15 +33,13 @@ static bvh_params bvh_filled(const bvh_params *p)
 
 void bvh_free(bvh *t)
 {
-    free(t->nodes), free(t->nodes4), free(t->nodes8), free(t->items);
+    free(t->nodes), free(t->items);
     *t = (bvh){0};
 }
 
 long long bvh_bytes(const bvh *t)
 {
-    long long node = t->width == 2   ? (long long)sizeof(bvh_node)
-                     : t->width == 4 ? (long long)sizeof(bvh_node4)
-                                     : (long long)sizeof(bvh_node8);
+    long long node = (long long)sizeof(bvh_node);
     return t->node_capacity * node + (long long)t->item_count * sizeof(int);
 }
 
@@ -100,21 +96,16 @@ bool bvh_ray_of(vec3 origin, vec3 inv, double t_min, double t_max,
 }
 
 /* <<the bins of a split>> ch09 */
-typedef struct bvh_slice bvh_slice;
-
-/* What a build shares between its nodes and its threads; only centers,
- * items, scratch and slots are written, each range of them by one
- * thread. */
+/* What a build shares between its nodes: the items' boxes, which it
+ * reads; their centers, made first; and the items, reordered range by
+ * range. */
 typedef struct {
-    const box *bounds;  /* of each item */
-    vec3 *centers;       /* of each item's box, made first */
-    int *items;          /* reordered range by range */
-    int *scratch;        /* as many: the partitions of large nodes */
-    bvh_node *slots;     /* 2 count - 1 of them: see build_range */
-    bvh_slice *slices;   /* the top's: one a thread */
-    int slice_count;
+    const box *bounds; /* of each item */
+    vec3 *centers;     /* of each item's box */
+    int *items;        /* a node's are items[b..e) */
     bvh_params p;
-    double pad;
+    double pad;        /* every box's, BVH_THICKNESS times the largest
+                          coordinate */
 } bvh_builder;
 
 typedef struct {
@@ -129,7 +120,38 @@ static int bin_of(vec3 c, int axis, double lo, double scale, int bins)
     return k < 0 ? 0 : k >= bins ? bins - 1 : k;
 }
 
-/* The items of items[b..e) in their bins: their count, and their box. */
+/* <<a node's passes over its items>> ch09 */
+/* The first pass, over every item of items[b..e): its center, its place
+ * in the first order, and the largest coordinate of its box; the largest
+ * of them. */
+static double items_prepared(const bvh_builder *bd, int b, int e)
+{
+    double most = 0;
+    for (int k = b; k < e; k++) {
+        const box *bb = &bd->bounds[k];
+        bd->centers[k] = vec3_scale(vec3_add(bb->lo, bb->hi), 0.5);
+        bd->items[k] = k;
+        most = largest_coordinate(bb, most);
+    }
+    return most;
+}
+
+/* The boxes around the items of items[b..e), and around their centers. */
+static void items_boxed(const bvh_builder *bd, int b, int e, box *bounds,
+                        box *centers)
+{
+    box bb = box_empty(), cb = box_empty();
+    for (int i = b; i < e; i++) {
+        int item = bd->items[i];
+        bb = box_union(bb, bd->bounds[item]);
+        cb = box_union(cb, (box){bd->centers[item], bd->centers[item]});
+    }
+    *bounds = bb, *centers = cb;
+}
+
+/* <<a node's items in bins>> ch09 */
+/* The items of items[b..e) in their bins on axis, from lo, scale bins a
+ * unit: each bin's count, and the box around its items' boxes. */
 static void fill_bins(const bvh_builder *bd, int b, int e, int axis,
                       double lo, double scale, bvh_bin *bins)
 {
@@ -143,187 +165,7 @@ static void fill_bins(const bvh_builder *bd, int b, int e, int axis,
     }
 }
 
-/* <<a node's items in slices>> ch09 */
-#define BVH_MAX_THREADS 256
-
-/* A slice of a node's items, one thread's share of a pass over them,
- * and what the pass found there. */
-struct bvh_slice {
-    const bvh_builder *bd;
-    int b, e; /* items[b..e) */
-    void (*pass)(bvh_slice *);
-    box bounds, centers; /* around its items' boxes, and their centers */
-    int axis, split;     /* its bins, and the first bin of the upper side */
-    double lo, scale;
-    bvh_bin bins[BVH_MAX_BINS];
-    int low, high; /* how many go low; then where they go, either side */
-    double largest; /* coordinate of its boxes, in magnitude */
-};
-
-/* Cuts items[b..e) into n slices, or one when there are too few items
- * to share; how many. */
-static int cut_slices(const bvh_builder *bd, bvh_slice *sl, int n, int b,
-                      int e)
-{
-    n = e - b > BVH_SHARED_ITEMS ? n : 1;
-    for (int k = 0; k < n; k++) { /* not a compound literal: no bins */
-        sl[k].bd = bd;
-        sl[k].b = b + (int)((long long)(e - b) * k / n);
-        sl[k].e = b + (int)((long long)(e - b) * (k + 1) / n);
-    }
-    return n;
-}
-
-static void run_slice(void *slices, int k)
-{
-    bvh_slice *s = (bvh_slice *)slices + k;
-    s->pass(s);
-}
-
-/* pass over each of the n slices, one thread each (one slice: this
- * thread, at once, as for almost every node). */
-static void run_slices(bvh_slice *sl, int n, void (*pass)(bvh_slice *))
-{
-    for (int k = 0; k < n; k++)
-        sl[k].pass = pass;
-    if (n == 1)
-        pass(&sl[0]);
-    else
-        bvh_run_jobs(n, n, run_slice, sl);
-}
-
-static void slice_boxes(bvh_slice *s)
-{
-    const bvh_builder *bd = s->bd;
-    box b = box_empty(), c = box_empty();
-    for (int i = s->b; i < s->e; i++) {
-        int item = bd->items[i];
-        b = box_union(b, bd->bounds[item]);
-        c = box_union(c, (box){bd->centers[item], bd->centers[item]});
-    }
-    s->bounds = b, s->centers = c;
-}
-
-/* The first pass of a build, over every item: its center, its place in
- * the first order, and the largest coordinate. */
-static void slice_centers(bvh_slice *s)
-{
-    const bvh_builder *bd = s->bd;
-    double most = 0;
-    for (int k = s->b; k < s->e; k++) {
-        const box *b = &bd->bounds[k];
-        bd->centers[k] = vec3_scale(vec3_add(b->lo, b->hi), 0.5);
-        bd->items[k] = k;
-        most = largest_coordinate(b, most);
-    }
-    s->largest = most;
-}
-
-static void slice_bins(bvh_slice *s)
-{
-    fill_bins(s->bd, s->b, s->e, s->axis, s->lo, s->scale, s->bins);
-}
-
-static bool goes_low(const bvh_slice *s, int item)
-{
-    return bin_of(s->bd->centers[item], s->axis, s->lo, s->scale,
-                  s->bd->p.bins) < s->split;
-}
-
-static void slice_count_low(bvh_slice *s)
-{
-    int low = 0;
-    for (int i = s->b; i < s->e; i++)
-        low += goes_low(s, s->bd->items[i]);
-    s->low = low;
-}
-
-static void slice_scatter(bvh_slice *s)
-{
-    const bvh_builder *bd = s->bd;
-    for (int i = s->b; i < s->e; i++) {
-        int item = bd->items[i];
-        bd->scratch[goes_low(s, item) ? s->low++ : s->high++] = item;
-    }
-}
-
-static void slice_copy_back(bvh_slice *s)
-{
-    memcpy(s->bd->items + s->b, s->bd->scratch + s->b,
-           (size_t)(s->e - s->b) * sizeof(int));
-}
-
-/* The slices' items in bins on axis, from lo, scale bins a unit: the
- * bins of the first slice, the others' added in. */
-static const bvh_bin *slices_binned(bvh_slice *sl, int n, int axis,
-                                    double lo, double scale)
-{
-    for (int k = 0; k < n; k++)
-        sl[k].axis = axis, sl[k].lo = lo, sl[k].scale = scale;
-    run_slices(sl, n, slice_bins);
-    for (int k = 1; k < n; k++)
-        for (int j = 0; j < sl[0].bd->p.bins; j++) {
-            sl[0].bins[j].count += sl[k].bins[j].count;
-            sl[0].bins[j].b = box_union(sl[0].bins[j].b, sl[k].bins[j].b);
-        }
-    return sl[0].bins;
-}
-
-/* Puts the items of bins below split first, each side in the order it
- * had; the first of the others. */
-static int partition_in_order(bvh_slice *sl, int n, int split)
-{
-    for (int k = 0; k < n; k++)
-        sl[k].split = split;
-    run_slices(sl, n, slice_count_low);
-    int low = sl[0].b, high = sl[0].b;
-    for (int k = 0; k < n; k++)
-        high += sl[k].low;
-    int first_high = high;
-    for (int k = 0; k < n; k++) {
-        int lows = sl[k].low;
-        sl[k].low = low, low += lows;
-        sl[k].high = high, high += sl[k].e - sl[k].b - lows;
-    }
-    run_slices(sl, n, slice_scatter);
-    run_slices(sl, n, slice_copy_back);
-    return first_high;
-}
-
-/* <<the binned split>> ch09 */
-/* The tests of n items, item_group at a time. */
-static double groups(const bvh_builder *bd, int n)
-{
-    return (n + bd->p.item_group - 1) / bd->p.item_group;
-}
-
-/* The cheapest plane between the bins: the first bin above it, its cost
- * in *cost; area is the node's (not 0). */
-static int best_bin(const bvh_builder *bd, const bvh_bin *bins, double area,
-                    double *cost)
-{
-    int n = bd->p.bins, right_count[BVH_MAX_BINS], left = 0, best = -1;
-    double right_area[BVH_MAX_BINS];
-    box sweep = box_empty();
-    for (int k = n - 1, count = 0; k >= 1; k--) { /* from the right */
-        sweep = box_union(sweep, bins[k].b), count += bins[k].count;
-        right_area[k] = box_area(&sweep), right_count[k] = count;
-    }
-    sweep = box_empty(), *cost = INFINITY;
-    for (int k = 1; k < n; k++) { /* from the left */
-        sweep = box_union(sweep, bins[k - 1].b), left += bins[k - 1].count;
-        if (left == 0 || right_count[k] == 0)
-            continue;
-        double c = bd->p.traversal_cost +
-                   bd->p.intersection_cost *
-                       (box_area(&sweep) * groups(bd, left) +
-                        right_area[k] * groups(bd, right_count[k])) / area;
-        if (c < *cost)
-            *cost = c, best = k;
-    }
-    return best;
-}
-
+/* <<partitioning a node's items>> ch09 */
 /* Puts the items of items[b..e) in bins below k first; the first of the
  * others. */
 static int partition(const bvh_builder *bd, int b, int e, int axis,
@@ -341,14 +183,76 @@ static int partition(const bvh_builder *bd, int b, int e, int axis,
     return i;
 }
 
-/* Where the n slices' items, in the box bb, their centers in cb, split:
- * the first item of the upper side, the items reordered and the axis in
- * *axis; -1: a leaf. */
-static int split_range(bvh_slice *sl, int n, int depth, const box *bb,
-                       const box *cb, int *axis)
+/* <<a node's passes>> ch09 */
+/* The passes over a node's items, each over items[b..e): the centers of
+ * all count items first, then a node's boxes, bins and partition. */
+static double pass_prepare(bvh_builder *bd, int count)
 {
-    const bvh_builder *bd = sl[0].bd;
-    int b = sl[0].b, e = sl[n - 1].e, items = e - b;
+    return items_prepared(bd, 0, count);
+}
+
+static void pass_boxes(bvh_builder *bd, int b, int e, box *bounds,
+                       box *centers)
+{
+    items_boxed(bd, b, e, bounds, centers);
+}
+
+static const bvh_bin *pass_bins(bvh_builder *bd, int b, int e, int axis,
+                                double lo, double scale, bvh_bin *bins)
+{
+    fill_bins(bd, b, e, axis, lo, scale, bins);
+    return bins;
+}
+
+static int pass_partition(bvh_builder *bd, int b, int e, int axis,
+                          double lo, double scale, int k)
+{
+    return partition(bd, b, e, axis, lo, scale, k);
+}
+
+/* <<the binned split>> ch09 */
+/* The tests of n items, item_group at a time. */
+static double groups(const bvh_builder *bd, int n)
+{
+    return (n + bd->p.item_group - 1) / bd->p.item_group;
+}
+
+/* <<the sweep over the bins>> ch09 */
+/* The cheapest plane between the bins: the first bin above it, its cost
+ * in *cost (infinity, and -1 returned, when no plane has items on both
+ * sides); area is the node's (not 0). */
+static int best_bin(const bvh_builder *bd, const bvh_bin *bins, double area,
+                    double *cost)
+{
+    int n = bd->p.bins, right_count[BVH_MAX_BINS], left = 0, best = -1;
+    double right_area[BVH_MAX_BINS];
+    box sweep = box_empty();
+    for (int k = n - 1, count = 0; k >= 1; k--) { /* from the right */
+        sweep = box_union(sweep, bins[k].b), count += bins[k].count;
+        right_area[k] = box_area(&sweep), right_count[k] = count;
+    }
+    sweep = box_empty(), *cost = INFINITY;
+    for (int k = 1; k < n; k++) { /* from the left */
+        sweep = box_union(sweep, bins[k - 1].b), left += bins[k - 1].count;
+        if (left == 0 || right_count[k] == 0)
+            continue;
+        double tests = box_area(&sweep) * groups(bd, left) +
+                       right_area[k] * groups(bd, right_count[k]);
+        double c = bd->p.traversal_cost +
+                   bd->p.intersection_cost * tests / area; /* C(split) */
+        if (c < *cost)
+            *cost = c, best = k;
+    }
+    return best;
+}
+
+/* Where the items of items[b..e), in the box bb, their centers in cb,
+ * split: the first item of the upper side, the items reordered and the
+ * axis in *axis; -1: a leaf. */
+static int split_range(bvh_builder *bd, int b, int e, int depth,
+                       const box *bb, const box *cb, int *axis)
+{
+    int items = e - b;
     vec3 size = vec3_sub(cb->hi, cb->lo);
     *axis = size.y > size.x ? 1 : 0; /* the longest side of the centers */
     *axis = size.z > vec3_axis(size, *axis) ? 2 : *axis;
@@ -358,231 +262,61 @@ static int split_range(bvh_slice *sl, int n, int depth, const box *bb,
     if (!(extent > 0) || depth >= BVH_MEDIAN_DEPTH) /* the middle */
         return items <= bd->p.max_leaf_items ? -1 : b + items / 2;
     double scale = bd->p.bins / extent, area = box_area(bb), cost;
-    const bvh_bin *bins = slices_binned(sl, n, *axis, lo, scale);
+    bvh_bin space[BVH_MAX_BINS];
+    const bvh_bin *bins = pass_bins(bd, b, e, *axis, lo, scale, space);
     int k = best_bin(bd, bins, area > 0 ? area : 1, &cost);
     if (k < 0 || (items <= bd->p.max_leaf_items &&
                   bd->p.intersection_cost * groups(bd, items) <= cost))
         return k < 0 && items > bd->p.max_leaf_items ? b + items / 2 : -1;
-    if (items > BVH_SHARED_ITEMS)
-        return partition_in_order(sl, n, k);
-    return partition(bd, b, e, *axis, lo, scale, k);
+    return pass_partition(bd, b, e, *axis, lo, scale, k);
 }
 
 /* <<building a range>> ch09 */
-/* Fills slot s with the node of items[b..e), its passes over the items
- * shared by the slices sl[0..n) when it is large; the first item of its
- * upper child, or -1 for a leaf. */
-static int build_node(const bvh_builder *bd, bvh_slice *sl, int n, int b,
-                      int e, int s, int depth)
-{
-    n = cut_slices(bd, sl, n, b, e);
-    run_slices(sl, n, slice_boxes);
-    box bb = sl[0].bounds, cb = sl[0].centers;
-    for (int k = 1; k < n; k++) /* in order: the same bits as one pass */
-        bb = box_union(bb, sl[k].bounds), cb = box_union(cb, sl[k].centers);
-    bvh_node *node = &bd->slots[s];
-    bvh_set_box(node->box, &bb, bd->pad);
-    int axis = 0, m = split_range(sl, n, depth, &bb, &cb, &axis);
-    node->index = (uint32_t)(m < 0 ? b : s + 2 * (m - b));
-    node->count = (uint16_t)(m < 0 ? e - b : 0), node->axis = (uint16_t)axis;
-    return m;
-}
-
-/* Builds the subtree of items[b..e) into slots[s .. s + 2 (e - b) - 1):
- * its root at s, its first child's subtree from s + 1, its second's
- * after that, on this thread (sl: its slice). A pure function of the
- * range, whichever thread runs it. */
-static void build_range(const bvh_builder *bd, bvh_slice *sl, int b, int e,
-                        int s, int depth)
-{
-    int m = build_node(bd, sl, 1, b, e, s, depth);
-    if (m < 0)
-        return;
-    build_range(bd, sl, b, m, s + 1, depth + 1);
-    build_range(bd, sl, m, e, s + 2 * (m - b), depth + 1);
-}
-
-/* <<the build's threads>> ch09 */
-/* A subtree left for the threads: items[b..e) from slot s. */
-typedef struct {
-    int b, e, s, depth;
-} bvh_task;
-
-typedef struct {
-    const bvh_builder *bd;
-    const bvh_task *tasks;
-    int task_count;
-    atomic_int next;
-} bvh_queue;
-
-/* Builds the top of the subtree of items[b..e) at slot s, and leaves its
- * subtrees of at most small items to tasks. */
-static void build_top(const bvh_builder *bd, int b, int e, int s, int depth,
-                      int small, bvh_task *tasks, int *count)
-{
-    if (e - b <= small) {
-        tasks[(*count)++] = (bvh_task){b, e, s, depth};
-        return;
-    }
-    int m = build_node(bd, bd->slices, bd->slice_count, b, e, s, depth);
-    if (m < 0)
-        return;
-    build_top(bd, b, m, s + 1, depth + 1, small, tasks, count);
-    build_top(bd, m, e, s + 2 * (m - b), depth + 1, small, tasks, count);
-}
-
-static void *build_tasks(void *queue)
-{
-    bvh_queue *q = queue;
-    bvh_slice mine; /* this thread's passes, one node at a time */
-    for (int k; (k = atomic_fetch_add(&q->next, 1)) < q->task_count;)
-        build_range(q->bd, &mine, q->tasks[k].b, q->tasks[k].e,
-                    q->tasks[k].s, q->tasks[k].depth);
-    return NULL;
-}
-
-/* The threads of a build asked for threads (0: one per core). */
-static int thread_count(int threads)
-{
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    int n = threads > 0 ? threads : cores > 0 ? (int)cores : 1;
-    return n < BVH_MAX_THREADS ? n : BVH_MAX_THREADS;
-}
-
-/* The tasks, on threads threads (0: one per core), this one among them;
- * never more threads than tasks. Returns how many threads worked. */
-static int run_tasks(bvh_queue *q, int threads)
-{
-    int n = thread_count(threads), started = 0;
-    if (n > q->task_count)
-        n = q->task_count > 1 ? q->task_count : 1; /* a small mesh: one */
-    pthread_t id[BVH_MAX_THREADS];
-    while (started < n - 1 &&
-           pthread_create(&id[started], NULL, build_tasks, q) == 0)
-        started++; /* a thread that cannot start leaves its share to us */
-    build_tasks(q);
-    for (int k = 0; k < started; k++)
-        pthread_join(id[k], NULL);
-    return started + 1;
-}
-
-typedef struct {
-    void (*job)(void *, int);
-    void *context;
-    int count;
-    atomic_int next;
-} bvh_jobs;
-
-static void *take_jobs(void *jobs)
-{
-    bvh_jobs *q = jobs;
-    for (int k; (k = atomic_fetch_add(&q->next, 1)) < q->count;)
-        q->job(q->context, k);
-    return NULL;
-}
-
-void bvh_run_jobs(int count, int threads, void (*job)(void *, int),
-                  void *context)
-{
-    bvh_jobs q = {.job = job, .context = context, .count = count};
-    atomic_init(&q.next, 0);
-    int n = thread_count(threads), started = 0;
-    n = n < count ? n : count > 1 ? count : 1;
-    pthread_t id[BVH_MAX_THREADS];
-    while (started < n - 1 &&
-           pthread_create(&id[started], NULL, take_jobs, &q) == 0)
-        started++; /* a thread that cannot start leaves its share to us */
-    take_jobs(&q);
-    for (int k = 0; k < started; k++)
-        pthread_join(id[k], NULL);
-}
-
-/* <<closing the gaps>> ch09 */
-/* Copies the subtree at slots[s] into t->nodes from t->node_count on, in
- * the order of a walk, each node's first child right after it; where
- * its root went. */
-static int close_gaps(const bvh_node *slots, int s, bvh *t, int depth)
+/* Builds the node of items[b..e) at t->nodes[t->node_count], and its
+ * subtree after it: its first child's subtree first, then its second's. */
+static void build_subtree(bvh_builder *bd, bvh *t, int b, int e, int depth)
 {
     int k = t->node_count++;
-    t->nodes[k] = slots[s];
+    box bb, cb;
+    pass_boxes(bd, b, e, &bb, &cb);
+    bvh_set_box(t->nodes[k].box, &bb, bd->pad);
+    int axis = 0, m = split_range(bd, b, e, depth, &bb, &cb, &axis);
+    t->nodes[k].axis = (uint16_t)axis;
     t->depth = depth > t->depth ? depth : t->depth;
-    if (slots[s].count > 0)
-        return t->leaf_count++, k;
-    close_gaps(slots, s + 1, t, depth + 1);
-    t->nodes[k].index =
-        (uint32_t)close_gaps(slots, (int)slots[s].index, t, depth + 1);
-    return k;
-}
-
-/* <<collapsing to wide nodes>> ch09 */
-/* A wide node's lanes: box[face * width + child], child, count. */
-typedef struct {
-    float *box;
-    uint32_t *child, *count;
-    int width;
-} bvh_lanes;
-
-static bvh_lanes lanes_of(bvh *t, int k)
-{
-    if (t->width == 4)
-        return (bvh_lanes){&t->nodes4[k].box[0][0], t->nodes4[k].child,
-                           t->nodes4[k].count, 4};
-    return (bvh_lanes){&t->nodes8[k].box[0][0], t->nodes8[k].child,
-                       t->nodes8[k].count, 8};
-}
-
-static double float_box_area(const float b[6])
-{
-    double x = b[3] - b[0], y = b[4] - b[1], z = b[5] - b[2];
-    return x * y + y * z + z * x;
-}
-
-/* The children of binary node k, opened until there are width of them or
- * leaves only: the interior child with the largest box first. */
-static int open_children(const bvh_node *nodes, int k, int width,
-                         int kids[8])
-{
-    int n = 2;
-    kids[0] = k + 1, kids[1] = (int)nodes[k].index;
-    while (n < width) {
-        int widest = -1;
-        double most = -1;
-        for (int c = 0; c < n; c++)
-            if (nodes[kids[c]].count == 0 &&
-                float_box_area(nodes[kids[c]].box) > most)
-                most = float_box_area(nodes[kids[c]].box), widest = c;
-        if (widest < 0)
-            break;
-        int open = kids[widest];
-        kids[widest] = open + 1, kids[n++] = (int)nodes[open].index;
+    if (m < 0) { /* a leaf: its items */
+        t->nodes[k].index = (uint32_t)b;
+        t->nodes[k].count = (uint16_t)(e - b);
+        t->leaf_count++;
+        return;
     }
-    return n;
+    t->nodes[k].count = 0;
+    build_subtree(bd, t, b, m, depth + 1);
+    t->nodes[k].index = (uint32_t)t->node_count; /* the second child */
+    build_subtree(bd, t, m, e, depth + 1);
 }
 
-/* Fills wide node w with the children of binary node k, and the wide
- * nodes below it from t->node_count on. */
-static void collapse(bvh *t, const bvh_node *nodes, int k, int w)
+
+/* <<starting a bvh build>> ch09 */
+/* The builder's own arrays for count items; false: no memory (what was
+ * made is freed by builder_free). */
+static bool builder_made(bvh_builder *bd, size_t count)
 {
-    int kids[8], n = 1;
-    kids[0] = k; /* a root that is a leaf: one child */
-    if (nodes[k].count == 0)
-        n = open_children(nodes, k, t->width, kids);
-    bvh_lanes lane = lanes_of(t, w);
-    for (int c = 0; c < lane.width; c++) {
-        for (int f = 0; f < 6; f++) /* no box yet: lo +inf, hi -inf */
-            lane.box[f * lane.width + c] = f < 3 ? INFINITY : -INFINITY;
-        lane.child[c] = BVH_NO_CHILD, lane.count[c] = 0;
-    }
-    for (int c = 0; c < n; c++) {
-        const bvh_node *kid = &nodes[kids[c]];
-        for (int f = 0; f < 6; f++)
-            lane.box[f * lane.width + c] = kid->box[f];
-        lane.count[c] = kid->count, lane.child[c] = kid->index;
-        if (kid->count == 0) {
-            lane.child[c] = (uint32_t)t->node_count++;
-            collapse(t, nodes, kids[c], (int)lane.child[c]);
-        }
-    }
+    bd->centers = memory_alloc(count, sizeof *bd->centers);
+    bool made = bd->centers != NULL;
+    return made;
+}
+
+static void builder_free(bvh_builder *bd)
+{
+    free(bd->centers);
+}
+
+/* <<building the binary tree>> ch09 */
+/* The binary tree of bd's count items in t. */
+static void build_binary(bvh_builder *bd, int count, bvh *t)
+{
+    bd->pad = BVH_THICKNESS * pass_prepare(bd, count);
+    build_subtree(bd, t, 0, count, 0);
 }
 
 /* t's binary nodes in an array of their number (kept larger when even a
@@ -596,69 +330,11 @@ static bool shrink_binary(bvh *t)
     return true;
 }
 
-/* t's wide nodes in an array of their number, which the collapse knows
- * only at its end (kept larger when a smaller one cannot be had). */
-static void shrink_wide(bvh *t, size_t size)
-{
-    void *old = t->width == 4 ? (void *)t->nodes4 : (void *)t->nodes8;
-    void *fit = memory_alloc_aligned(64, (size_t)t->node_count, size);
-    if (fit == NULL)
-        return;
-    memcpy(fit, old, (size_t)t->node_count * size);
-    free(old);
-    if (t->width == 4)
-        t->nodes4 = fit;
-    else
-        t->nodes8 = fit;
-    t->node_capacity = t->node_count;
-}
-
-/* t's binary nodes collapsed into nodes of t->width; false: no memory. */
-static bool make_wide(bvh *t)
-{
-    int most = t->node_count - t->leaf_count + 1; /* wide nodes at most */
-    size_t size = t->width == 4 ? sizeof(bvh_node4) : sizeof(bvh_node8);
-    void *wide = memory_alloc_aligned(64, (size_t)most, size);
-    if (wide == NULL)
-        return false;
-    if (t->width == 4)
-        t->nodes4 = wide;
-    else
-        t->nodes8 = wide;
-    bvh_node *binary = t->nodes;
-    t->nodes = NULL, t->node_count = 1, t->node_capacity = most;
-    collapse(t, binary, 0, 0);
-    free(binary);
-    shrink_wide(t, size);
-    return true;
-}
-
-/* <<starting a bvh build>> ch09 */
-/* The binary tree of bd's items in t, on p->threads threads. */
-static void build_binary(bvh_builder *bd, vec3 *centers, int count,
-                         bvh_task *tasks, bvh *t)
-{
-    bd->centers = centers;
-    int n = cut_slices(bd, bd->slices, bd->slice_count, 0, count);
-    run_slices(bd->slices, n, slice_centers);
-    double most = 0;
-    for (int k = 0; k < n; k++) /* a maximum: the same in any order */
-        most = bd->slices[k].largest > most ? bd->slices[k].largest : most;
-    bd->pad = BVH_THICKNESS * most;
-    /* a task's size: eight tasks a thread, enough to share them out */
-    int tasks_wanted = 8 * thread_count(bd->p.threads);
-    int small = count / tasks_wanted > 1024 ? count / tasks_wanted : 1024;
-    bvh_queue q = {.bd = bd, .tasks = tasks};
-    build_top(bd, 0, count, 0, 0, small, tasks, &q.task_count);
-    atomic_init(&q.next, 0);
-    t->build_threads = run_tasks(&q, bd->p.threads);
-    close_gaps(bd->slots, 0, t, 0);
-}
-
 bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
 {
     bvh_params q = bvh_filled(p);
-    assert(q.width == 2 || q.width == 4 || q.width == 8);
+    /* <<the widths a build makes>> ch09 */
+    assert(q.width == 2);
     assert(q.bins >= 2 && q.bins <= BVH_MAX_BINS);
     assert(q.max_leaf_items >= 1 && q.max_leaf_items <= 15);
     *t = (bvh){.width = q.width};
@@ -666,61 +342,16 @@ bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
         return true;
     size_t n = (size_t)count, slots = 2 * n - 1;
     bvh_builder bd = {.bounds = bounds, .p = q};
-    vec3 *centers = memory_alloc(n, sizeof *centers);
-    bvh_task *tasks = memory_alloc(n, sizeof *tasks);
-    bd.slots = memory_alloc(slots, sizeof *bd.slots);
-    bd.scratch = memory_alloc(n, sizeof *bd.scratch);
-    bd.slice_count = thread_count(q.threads);
-    bd.slices = memory_alloc((size_t)bd.slice_count, sizeof *bd.slices);
     t->items = bd.items = memory_alloc(n, sizeof *t->items);
     t->nodes = memory_alloc(slots, sizeof *t->nodes);
-    bool ok = centers && tasks && bd.slots && bd.scratch && bd.slices &&
-              t->items && t->nodes;
+    bool ok = builder_made(&bd, n) && t->items && t->nodes;
     t->node_capacity = (int)slots, t->item_count = ok ? count : 0;
     if (ok)
-        build_binary(&bd, centers, count, tasks, t);
-    free(centers), free(tasks), free(bd.slots), free(bd.scratch);
-    free(bd.slices);
-    ok = ok && (q.width == 2 ? shrink_binary(t) : make_wide(t));
+        build_binary(&bd, count, t);
+    builder_free(&bd);
+    /* <<the tree made of the binary nodes>> ch09 */
+    ok = ok && shrink_binary(t);
     if (!ok)
         bvh_free(t);
     return ok;
-}
-
-/* Set by bvh_allow_avx2 (the tests); read by every walk. */
-static atomic_bool avx2_forbidden;
-
-bool bvh_walks_with_avx2(void)
-{
-#if BVH_HAS_AVX2_PATH
-    return __builtin_cpu_supports("avx2") && !atomic_load(&avx2_forbidden);
-#else
-    return false;
-#endif
-}
-
-void bvh_allow_avx2(bool allowed)
-{
-    atomic_store(&avx2_forbidden, !allowed);
-}
-
-const char *bvh_vector_width_name(void)
-{
-    if (bvh_walks_with_avx2())
-        return "AVX2 chosen at run time";
-#if defined(RT_SCALAR)
-    return "scalar";
-#elif defined(__AVX512F__)
-    return "AVX-512";
-#elif defined(__AVX2__)
-    return "AVX2";
-#elif defined(__AVX__)
-    return "AVX";
-#elif defined(__SSE2__)
-    return "SSE2";
-#elif defined(__ARM_NEON)
-    return "NEON";
-#else
-    return "vector extensions";
-#endif
 }

@@ -1,13 +1,14 @@
 /* bvh.h: bounding volume hierarchies over items with boxes, built by the
- * binned surface area heuristic, and their nodes' ray tests (chapter 9).
+ * binned surface area heuristic, and the walk of a ray through them
+ * (chapter 9).
  *
  * A bvh sorts count items (triangles of a mesh), each with a bounding
  * box, into a tree of boxes: every node's box holds its items' boxes, in
  * float, rounded outward. bvh_build makes one (false only when out of
  * memory); the tree knows nothing else of its items. Zero means default
- * in bvh_params. A tree with no nodes is "no tree". Nodes have 2, 4 or 8
- * children (p->width); a bvh_walk hands out the leaves whose boxes a ray
- * meets, nearest box first, and the caller tests their items. */
+ * in bvh_params. A tree with no nodes is "no tree". A bvh_walk hands out
+ * the leaves whose boxes a ray meets, nearest box first, and the caller
+ * tests their items. */
 #ifndef BVH_H
 #define BVH_H
 
@@ -20,22 +21,17 @@
 /* <<bvh parameters>> ch09 */
 /* How to build a bvh; zero means default, in every member. */
 typedef struct {
-    int width;                /* children a node: 2, 4 or 8; 0: BVH_WIDTH */
+    int width;                /* children a node: 2; 0: the default */
     int bins;                 /* candidate planes + 1, 2 to BVH_MAX_BINS;
                                  0: 32 */
     int max_leaf_items;       /* 1 to 15; 0: 8 */
     double traversal_cost;    /* K_T: one node's box test; 0: 1 */
     double intersection_cost; /* K_I: one item's test; 0: 1 */
-    int threads;              /* of the build; 0: one per core */
     int min_items;            /* fewer items get no tree; 0: 1 */
-    int item_group;           /* items a leaf tests at once (a packet's
-                                 lanes): the costs count groups; 0: 1 */
+    int item_group;           /* items a leaf tests at once: the costs
+                                 count groups; 0: 1 */
 } bvh_params;
 
-/* The width without AVX2: eight is no faster on the bunny where a node of
- * eight is two tests of four (measured below), and four is half the node.
- * Where the processor has AVX2, the default is eight (bvh_default_params). */
-#define BVH_WIDTH 4
 #define BVH_MAX_BINS 64
 /* The build cuts in the middle below this depth: the walk's stack has
  * room for BVH_MAX_DEPTH levels. */
@@ -45,23 +41,9 @@ typedef struct {
  * all items: as chapter 8's planes are thick (KDTREE_THICKNESS), for the
  * rounding of the triangle tests. */
 #define BVH_THICKNESS 0x1p-32
-/* A node of more items has its passes over them shared by the threads
- * at the top of the tree, and keeps its items' order as it partitions:
- * a pass over fewer is not worth a thread's start. */
-#define BVH_SHARED_ITEMS (1 << 16)
 
-/* The defaults, every member filled: eight wide where the walk may use
- * AVX2 (bvh_walks_with_avx2), BVH_WIDTH elsewhere. */
+/* The defaults, every member filled. */
 bvh_params bvh_default_params(void);
-
-/* Does the walk test eight-wide nodes with AVX2's eight lanes? Where the
- * processor has AVX2 and bvh_allow_avx2 has not forbidden it; the build's
- * flags need not name AVX2 (the answer is known when the program runs). */
-bool bvh_walks_with_avx2(void);
-
-/* false: the walk keeps to the build's own instructions (for the tests,
- * which compare the two). */
-void bvh_allow_avx2(bool allowed);
 
 /* <<bvh nodes>> ch09 */
 /* A node of the binary tree, and its box: lo x, y, z, then hi x, y, z,
@@ -76,61 +58,27 @@ typedef struct {
 
 _Static_assert(sizeof(bvh_node) == 32, "a node is 32 bytes");
 
-/* <<bvh wide nodes>> ch09 */
-/* A node of four or eight children: their boxes as a structure of
- * arrays, box[face][child], faces as in bvh_node, so that one vector
- * reads one face of every child. Child c is node child[c] (count[c] 0),
- * or a leaf of count[c] items from items[child[c]]; an unused child has
- * count 0, child BVH_NO_CHILD and an empty box (lo +inf, hi -inf). */
-#define BVH_NO_CHILD UINT32_MAX
 
-typedef struct {
-    float box[6][4];
-    uint32_t child[4], count[4];
-} bvh_node4;
-
-typedef struct {
-    float box[6][8];
-    uint32_t child[8], count[8];
-} bvh_node8;
-
-_Static_assert(sizeof(bvh_node4) == 128, "two cache lines");
-_Static_assert(sizeof(bvh_node8) == 256, "four cache lines");
-
+/* <<a bvh>> ch09 */
 typedef struct bvh {
-    int width;             /* 2, 4 or 8 */
-    bvh_node *nodes;       /* width 2; node 0 is the root */
-    bvh_node4 *nodes4;     /* width 4 */
-    bvh_node8 *nodes8;     /* width 8 */
-    int node_count;        /* of the width's kind; 0: no tree */
-    int node_capacity;     /* allocated */
-    int *items;            /* leaf after leaf */
+    int width;         /* children a node: 2 */
+    bvh_node *nodes;   /* node 0 is the root */
+    int node_count;    /* 0: no tree */
+    int node_capacity; /* allocated */
+    int *items;        /* leaf after leaf */
     int item_count, leaf_count, depth;
-    int build_threads;     /* the threads its build ran on */
 } bvh;
 
 /* <<bvh building>> ch09 */
 /* Builds t over count items whose bounding boxes are bounds[0..count)
- * by p: no tree when count < p->min_items. The same tree whatever
- * p->threads. False only when out of memory (and then no tree). */
+ * by p: no tree when count < p->min_items. False only when out of
+ * memory (and then no tree). */
 bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p);
 
 void bvh_free(bvh *t);
 
 /* The bytes t holds: its nodes and its items. */
 long long bvh_bytes(const bvh *t);
-
-/* Which node test the walk uses: "scalar", the vector instructions the
- * compiler was allowed ("SSE2", "AVX2", ...), or AVX2 chosen when the
- * program runs. */
-const char *bvh_vector_width_name(void);
-
-/* Runs job(context, k) for every k in [0, count) on threads threads (0:
- * one per core; never more than count), this one among them, each taking
- * the next k left: for the work around a build (a mesh's boxes, its
- * packets). */
-void bvh_run_jobs(int count, int threads, void (*job)(void *, int),
-                  void *context);
 
 /* <<bvh ray tests>> ch09 */
 /* <<the ray's float constants>> ch09 */
@@ -197,166 +145,6 @@ static inline unsigned bvh_lanes_test_scalar(const float *box, int stride,
     return mask;
 }
 
-/* <<the vector node tests>> ch09 */
-typedef float bvh_f4 __attribute__((vector_size(16)));
-typedef int32_t bvh_i4 __attribute__((vector_size(16)));
-
-/* a > b ? a : b and a < b ? a : b, lane by lane, b where either is a NaN:
- * SSE's maxps and minps do exactly that, and the compiler does not find
- * them in the comparison and the masks it replaces. */
-static inline bvh_f4 bvh_max4(bvh_f4 a, bvh_f4 b)
-{
-#ifdef __SSE__
-    return __builtin_ia32_maxps(a, b);
-#else
-    bvh_i4 take = a > b; /* false for a NaN */
-    return (bvh_f4)(((bvh_i4)a & take) | ((bvh_i4)b & ~take));
-#endif
-}
-
-static inline bvh_f4 bvh_min4(bvh_f4 a, bvh_f4 b)
-{
-#ifdef __SSE__
-    return __builtin_ia32_minps(a, b);
-#else
-    bvh_i4 take = a < b;
-    return (bvh_f4)(((bvh_i4)a & take) | ((bvh_i4)b & ~take));
-#endif
-}
-
-/* Lane c's comparison (-1 or 0) in bit c. SSE has one instruction for it,
- * which the vector extensions cannot name and the compiler does not find
- * in the loop. */
-static inline unsigned bvh_mask4(bvh_i4 hit)
-{
-#ifdef __SSE__
-    return (unsigned)__builtin_ia32_movmskps((bvh_f4)hit);
-#else
-    unsigned mask = 0;
-    for (int c = 0; c < 4; c++)
-        mask |= (unsigned)(hit[c] & 1) << c;
-    return mask;
-#endif
-}
-
-/* The slab of axis a narrows [*t0, *t1], lane by lane. */
-static inline void bvh_slab4(const float *box, int stride, const bvh_ray *r,
-                             int a, bvh_f4 *t0, bvh_f4 *t1)
-{
-    bvh_f4 face;
-    memcpy(&face, box + r->near[a] * stride, sizeof face);
-    bvh_f4 tn = (face - r->o_near[a]) * r->inv[a];
-    memcpy(&face, box + r->far[a] * stride, sizeof face);
-    bvh_f4 tf = (face - r->o_far[a]) * r->inv[a] * BVH_FAR_WIDENING;
-    *t0 = bvh_max4(tn, *t0), *t1 = bvh_min4(tf, *t1);
-}
-
-/* bvh_lanes_test_scalar of four lanes at once; the three axes written
- * out, not looped over (the compiler does not unroll the loop at -O2). */
-static inline unsigned bvh_lanes4_test_vector(const float *box, int stride,
-                                              const bvh_ray *r, float t_max,
-                                              float t_near[4])
-{
-    bvh_f4 t0 = {r->t_min, r->t_min, r->t_min, r->t_min};
-    bvh_f4 t1 = {t_max, t_max, t_max, t_max};
-    bvh_slab4(box, stride, r, 0, &t0, &t1);
-    bvh_slab4(box, stride, r, 1, &t0, &t1);
-    bvh_slab4(box, stride, r, 2, &t0, &t1);
-    memcpy(t_near, &t0, sizeof t0);
-    return bvh_mask4(t0 <= t1);
-}
-
-static inline unsigned bvh_node4_test_vector(const bvh_node4 *n,
-                                             const bvh_ray *r, float t_max,
-                                             float t_near[4])
-{
-    return bvh_lanes4_test_vector(&n->box[0][0], 4, r, t_max, t_near);
-}
-
-typedef float bvh_f8 __attribute__((vector_size(32)));
-typedef int32_t bvh_i8 __attribute__((vector_size(32)));
-
-static inline unsigned bvh_node8_test_vector(const bvh_node8 *n,
-                                             const bvh_ray *r, float t_max,
-                                             float t_near[8])
-{
-#ifndef __AVX__ /* no vectors of eight floats: two of four */
-    const float *box = &n->box[0][0];
-    return bvh_lanes4_test_vector(box, 8, r, t_max, t_near) |
-           bvh_lanes4_test_vector(box + 4, 8, r, t_max, t_near + 4) << 4;
-#else
-    /* <<the slab test in eight lanes>> ch09 */
-    float lo = r->t_min, hi = t_max;
-    bvh_f8 t0 = {lo, lo, lo, lo, lo, lo, lo, lo};
-    bvh_f8 t1 = {hi, hi, hi, hi, hi, hi, hi, hi}, face;
-    for (int a = 0; a < 3; a++) {
-        memcpy(&face, n->box[r->near[a]], sizeof face);
-        bvh_f8 tn = (face - r->o_near[a]) * r->inv[a];
-        memcpy(&face, n->box[r->far[a]], sizeof face);
-        bvh_f8 tf = (face - r->o_far[a]) * r->inv[a] * BVH_FAR_WIDENING;
-        t0 = __builtin_ia32_maxps256(tn, t0); /* as bvh_max4 */
-        t1 = __builtin_ia32_minps256(tf, t1);
-    }
-    memcpy(t_near, &t0, sizeof t0);
-    return (unsigned)__builtin_ia32_movmskps256((bvh_f8)(t0 <= t1));
-#endif
-}
-
-/* <<the node tests this build uses>> ch09 */
-/* The vector tests, unless the program is built with -DRT_SCALAR. */
-static inline unsigned bvh_node4_test(const bvh_node4 *n, const bvh_ray *r,
-                                      float t_max, float t_near[4])
-{
-#ifdef RT_SCALAR
-    return bvh_lanes_test_scalar(&n->box[0][0], 4, 4, r, t_max, t_near);
-#else
-    return bvh_node4_test_vector(n, r, t_max, t_near);
-#endif
-}
-
-static inline unsigned bvh_node8_test(const bvh_node8 *n, const bvh_ray *r,
-                                      float t_max, float t_near[8])
-{
-#ifdef RT_SCALAR
-    return bvh_lanes_test_scalar(&n->box[0][0], 8, 8, r, t_max, t_near);
-#else
-    return bvh_node8_test_vector(n, r, t_max, t_near);
-#endif
-}
-
-#if defined(__x86_64__) && !defined(RT_SCALAR)
-#define BVH_AVX2_TARGET __attribute__((target("avx2")))
-#define BVH_HAS_AVX2_PATH 1
-#else /* no AVX2 to choose: the walk never asks for it */
-#define BVH_AVX2_TARGET
-#define BVH_HAS_AVX2_PATH 0
-#endif
-
-/* bvh_node8_test in AVX2's eight lanes, whatever the build's flags: to be
- * called only where bvh_walks_with_avx2() says yes. */
-BVH_AVX2_TARGET static inline unsigned
-bvh_node8_test_avx2(const bvh_node8 *n, const bvh_ray *r, float t_max,
-                    float t_near[8])
-{
-#if BVH_HAS_AVX2_PATH /* the text of the eight-wide test with AVX */
-    /* <<the slab test in eight lanes>> ch09 */
-    float lo = r->t_min, hi = t_max;
-    bvh_f8 t0 = {lo, lo, lo, lo, lo, lo, lo, lo};
-    bvh_f8 t1 = {hi, hi, hi, hi, hi, hi, hi, hi}, face;
-    for (int a = 0; a < 3; a++) {
-        memcpy(&face, n->box[r->near[a]], sizeof face);
-        bvh_f8 tn = (face - r->o_near[a]) * r->inv[a];
-        memcpy(&face, n->box[r->far[a]], sizeof face);
-        bvh_f8 tf = (face - r->o_far[a]) * r->inv[a] * BVH_FAR_WIDENING;
-        t0 = __builtin_ia32_maxps256(tn, t0); /* as bvh_max4 */
-        t1 = __builtin_ia32_minps256(tf, t1);
-    }
-    memcpy(t_near, &t0, sizeof t0);
-    return (unsigned)__builtin_ia32_movmskps256((bvh_f8)(t0 <= t1));
-#else
-    return bvh_node8_test(n, r, t_max, t_near);
-#endif
-}
 
 /* <<the bvh walk>> ch09 */
 /* A child still to visit: a node (count 0) or a leaf of count items from
@@ -366,8 +154,9 @@ typedef struct {
     float t_near;
 } bvh_todo;
 
-/* Each level pushes at most seven children more than it takes. */
-#define BVH_STACK (7 * BVH_MAX_DEPTH + 1)
+/* <<the walk's stack>> ch09 */
+/* Each level pushes at most one child more than it takes. */
+#define BVH_STACK (BVH_MAX_DEPTH + 1)
 
 typedef struct {
     const bvh *t;
@@ -378,8 +167,6 @@ typedef struct {
     double best;       /* the last nearest hit given to bvh_walk_next */
     float t_max;       /* and its bound in float */
     bool sorted;       /* nearest child first; false: any order (any hit) */
-    bool avx2;         /* eight-wide nodes tested with AVX2 (the caller's
-                          code compiled for it: bvh_node8_test_avx2) */
 } bvh_walk;
 
 /* A leaf: its items are items[first .. first + count). */
@@ -392,15 +179,16 @@ typedef struct {
 static inline void bvh_walk_start(bvh_walk *w, const bvh *t,
                                   const bvh_ray *r)
 {
+    /* a binary tree's root may be a leaf, of a tree of few items */
     const bvh_node *root = t->width == 2 ? &t->nodes[0] : NULL;
-    bool leaf = root != NULL && root->count > 0; /* a tree of one leaf */
+    bool leaf = root != NULL && root->count > 0;
     w->t = t, w->r = r, w->pending = 1, w->visited = 0, w->sorted = true;
-    w->avx2 = false; /* the caller's code may say otherwise: see bvh_visit */
     w->best = NAN, w->t_max = r->t_max; /* no bound yet: made at first */
     w->stack[0] = (bvh_todo){leaf ? root->index : 0, leaf ? root->count : 0,
                              r->t_min};
 }
 
+/* <<taking the children a node's test found>> ch09 */
 /* The children in mask: the nearest into *next, the others pushed onto
  * w's stack, farthest on the bottom (unsorted: in the order of their
  * lanes); false when mask is empty. */
@@ -408,9 +196,6 @@ static inline bool bvh_take(bvh_walk *w, unsigned mask, const uint32_t *child,
                             const uint32_t *count, const float *t_near,
                             bvh_todo *next)
 {
-    /* An unused child is never in mask: its empty box (lo +inf, hi -inf)
-     * gives every ray t_near = +inf and t_far = -inf, whatever the sign
-     * of 1 / d, for the finite origins bvh_ray_of accepts. */
     if (mask == 0)
         return false;
     int c = __builtin_ctz(mask), first = w->pending;
@@ -453,19 +238,8 @@ static inline bool bvh_visit2(bvh_walk *w, uint32_t k, float t_max,
 static inline bool bvh_visit(bvh_walk *w, bvh_todo now, float t_max,
                              bvh_todo *next)
 {
-    float t_near[8];
     w->visited++;
-    if (w->t->width == 2)
-        return bvh_visit2(w, now.child, t_max, next);
-    if (w->t->width == 4) {
-        const bvh_node4 *n = &w->t->nodes4[now.child];
-        unsigned mask = bvh_node4_test(n, w->r, t_max, t_near);
-        return bvh_take(w, mask, n->child, n->count, t_near, next);
-    }
-    const bvh_node8 *n = &w->t->nodes8[now.child];
-    unsigned mask = w->avx2 ? bvh_node8_test_avx2(n, w->r, t_max, t_near)
-                            : bvh_node8_test(n, w->r, t_max, t_near);
-    return bvh_take(w, mask, n->child, n->count, t_near, next);
+    return bvh_visit2(w, now.child, t_max, next);
 }
 
 /* best widened by BVH_SLACK, in float, within the ray's own bound; made

@@ -368,8 +368,6 @@ void mesh_free_tree(mesh *m)
     m->leaf_corners = NULL;
     /* <<free the mesh's other trees>> ch09 */
     bvh_free(&m->bvh);
-    free(m->bvh_packets);
-    m->bvh_packets = NULL, m->bvh_packet_count = 0, m->bvh_in_float = false;
 }
 
 long long mesh_tree_bytes(const mesh *m)
@@ -378,9 +376,8 @@ long long mesh_tree_bytes(const mesh *m)
     long long bytes = kdtree_bytes(&m->tree) +
                       corners * (long long)sizeof *m->leaf_corners;
     /* <<the bytes of the mesh's other trees>> ch09 */
-    if (m->bvh_packets != NULL)
-        bytes += bvh_bytes(&m->bvh) +
-                 m->bvh_packet_count * (long long)sizeof *m->bvh_packets;
+    if (m->bvh.node_count > 0)
+        bytes += bvh_bytes(&m->bvh);
     return bytes;
 }
 
@@ -455,8 +452,9 @@ bool mesh_occluded(const mesh *m, const mesh_ray *mr, double t_min,
 /* <<intersecting a mesh>> += ch09 */
 
 /* In the order of mesh_accelerator, from MESH_ACCELERATOR_KDTREE. */
-static const char *const accelerator_names[] = {"kdtree", "bvh",
-                                                "bvh-float"};
+static const char *const accelerator_names[] = {
+    "kdtree", "bvh",
+};
 
 const char *mesh_accelerator_name(mesh_accelerator a)
 {
@@ -464,32 +462,10 @@ const char *mesh_accelerator_name(mesh_accelerator a)
                                          : accelerator_names[a - 1];
 }
 
-/* The work around a mesh's build, in pieces for the build's threads:
- * pieces of its triangles for their boxes, then of the tree's nodes for
- * their packets. */
-typedef struct {
-    mesh *m;
-    box *bounds;
-    triangle_packet *packets;
-    int pieces;
-    int first[MESH_BVH_PIECES + 1]; /* the first packet of each piece */
-} mesh_pieces;
-
-/* Where piece k of n of count things begins. */
-static int piece_start(int count, int k, int n)
+/* The bounding boxes of m's triangles [first, end), into bounds. */
+static void triangle_boxes(const mesh *m, box *bounds, int first, int end)
 {
-    return (int)((long long)count * k / n);
-}
-
-/* The bounding boxes of piece k of m's triangles, into bounds. */
-static void triangle_boxes(void *pieces, int piece)
-{
-    mesh_pieces *w = pieces;
-    const mesh *m = w->m;
-    box *bounds = w->bounds;
-    int end = piece_start(m->triangle_count, piece + 1, w->pieces);
-    for (int k = piece_start(m->triangle_count, piece, w->pieces); k < end;
-         k++) {
+    for (int k = first; k < end; k++) {
         const int *v = m->triangles[k].v;
         vec3 a = m->vertices[v[0]], b = m->vertices[v[1]];
         vec3 c = m->vertices[v[2]];
@@ -498,111 +474,22 @@ static void triangle_boxes(void *pieces, int piece)
     }
 }
 
-/* Where reference c of node k of t to a leaf keeps the leaf's first item
- * (or packet), and its count (0: no leaf). */
-static uint32_t *leaf_start(bvh *t, int k, int c, uint32_t *count)
-{
-    if (t->width == 2)
-        return *count = t->nodes[k].count, &t->nodes[k].index;
-    if (t->width == 4)
-        return *count = t->nodes4[k].count[c], &t->nodes4[k].child[c];
-    return *count = t->nodes8[k].count[c], &t->nodes8[k].child[c];
-}
-
-/* Packs each leaf of m's BVH in nodes [from, to) into packets of its
- * own from packets[next] on, leaf after leaf, and points the leaf at its
- * first packet (packets NULL: only counts); the packet after the last. */
-static int pack_leaves(mesh *m, triangle_packet *packets, int from, int to,
-                       int next)
-{
-    bvh *t = &m->bvh;
-    int refs = t->width == 2 ? 1 : t->width;
-    for (int k = from; k < to; k++)
-        for (int c = 0; c < refs; c++) {
-            uint32_t count, *first = leaf_start(t, k, c, &count);
-            if (count == 0)
-                continue;
-            if (packets != NULL)
-                triangle_packets_fill(packets + next, m->vertices,
-                                      m->triangles, t->items + *first,
-                                      (int)count),
-                    *first = (uint32_t)next;
-            next += triangle_packets_needed((int)count);
-        }
-    return next;
-}
-
-static void pack_piece(void *pieces, int piece)
-{
-    mesh_pieces *w = pieces;
-    int nodes = w->m->bvh.node_count;
-    pack_leaves(w->m, w->packets, piece_start(nodes, piece, w->pieces),
-                piece_start(nodes, piece + 1, w->pieces), w->first[piece]);
-}
-
-/* m's BVH's packets, piece by piece on threads threads, each piece's
- * first packet counted beforehand; false: no memory. */
-static bool make_packets(mesh_pieces *w, int threads)
-{
-    int nodes = w->m->bvh.node_count;
-    for (int k = 0; k < w->pieces; k++)
-        w->first[k + 1] =
-            pack_leaves(w->m, NULL, piece_start(nodes, k, w->pieces),
-                        piece_start(nodes, k + 1, w->pieces), w->first[k]);
-    w->packets = memory_alloc_aligned(_Alignof(triangle_packet),
-                                      (size_t)w->first[w->pieces],
-                                      sizeof(triangle_packet));
-    if (w->packets == NULL)
-        return false;
-    bvh_run_jobs(w->pieces, threads, pack_piece, w);
-    w->m->bvh_packets = w->packets;
-    w->m->bvh_packet_count = w->first[w->pieces];
-    return true;
-}
 
 bool mesh_build_bvh(mesh *m, const bvh_params *p)
 {
     mesh_free_tree(m);
     bvh_params q = *p;
     q.min_items = q.min_items > 0 ? q.min_items : MESH_TREE_MIN_TRIANGLES;
-    q.item_group = q.item_group > 0 ? q.item_group : PACKET_W;
-    int pieces = 1 + m->triangle_count / BVH_SHARED_ITEMS;
-    mesh_pieces w = {.m = m, .pieces = pieces < MESH_BVH_PIECES
-                                           ? pieces : MESH_BVH_PIECES};
-    w.bounds = memory_alloc((size_t)m->triangle_count, sizeof *w.bounds);
-    if (w.bounds != NULL)
-        bvh_run_jobs(w.pieces, q.threads, triangle_boxes, &w);
-    bool ok = w.bounds != NULL &&
-              bvh_build(&m->bvh, m->triangle_count, w.bounds, &q);
-    free(w.bounds);
+    box *bounds = memory_alloc((size_t)m->triangle_count, sizeof *bounds);
+    if (bounds != NULL)
+        /* <<the boxes of a mesh's triangles>> ch09 */
+        triangle_boxes(m, bounds, 0, m->triangle_count);
+    bool ok = bounds != NULL &&
+              bvh_build(&m->bvh, m->triangle_count, bounds, &q);
+    free(bounds);
     if (!ok || m->bvh.node_count == 0)
         return ok;
-    if (!make_packets(&w, q.threads))
-        return bvh_free(&m->bvh), false;
     return true;
-}
-
-/* The triangles of a leaf, its packets: the nearest hit by the tie rule
- * (best: the nearest triangle so far, -1: none) into *out, or with out
- * NULL any hit; its index in m, or -1. */
-static int bvh_leaf_test(const mesh *m, const packet_ray *r, bvh_leaf leaf,
-                         double t_min, double t_max, int best,
-                         triangle_hit *out, long long *decided)
-{
-    const triangle_packet *p = m->bvh_packets + leaf.first;
-    int n = triangle_packets_needed(leaf.count);
-    if (m->bvh_in_float && out == NULL)
-        return triangle_packets_any_float(r, p, n, t_min, t_max) ? 0 : -1;
-    if (m->bvh_in_float)
-        return triangle_packets_nearest_float(r, p, n, t_min, t_max, best,
-                                              out);
-    if (out == NULL)
-        return triangle_packets_any_in_mesh(r, p, n, m->vertices,
-                                            m->triangles, t_min, t_max,
-                                            decided) ? 0 : -1;
-    return triangle_packets_nearest_in_mesh(r, p, n, m->vertices,
-                                            m->triangles, t_min, t_max,
-                                            best, out, decided);
 }
 
 /* Every triangle of m, for a ray the float tests cannot take. */
@@ -617,11 +504,46 @@ static int mesh_search_all(const mesh *m, const mesh_ray *mr, double t_min,
                                        out != NULL ? out : &unused);
 }
 
-/* The walk of m's BVH for mr, its eight-wide nodes tested with AVX2 when
- * avx2 (which the caller's instructions must allow). */
-static inline int search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
-                             double t_max, triangle_hit *out,
-                             render_stats *stats, bool avx2)
+/* <<the search of a mesh's BVH>> ch09 */
+/* The nearest triangle of leaf that w hits in (t_min, t_max], a hit at
+ * t_max itself only when its index is below best (-1: none yet, t_max
+ * excluded): its index in m and its hit in *out; or -1. */
+static int leaf_nearest(const mesh *m, const watertight_ray *w,
+                        bvh_leaf leaf, double t_min, double t_max, int best,
+                        triangle_hit *out)
+{
+    int nearest = -1;
+    double reach = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
+    for (int k = 0; k < leaf.count; k++) {
+        int i = m->bvh.items[leaf.first + k];
+        const int *v = m->triangles[i].v;
+        triangle_hit th;
+        if (triangle_hit_prepared(w, m->vertices[v[0]], m->vertices[v[1]],
+                                  m->vertices[v[2]], t_min, reach, &th) &&
+            (th.t < t_max || i < best)) { /* a tie: the lower index */
+            *out = th, t_max = th.t, best = i, nearest = i;
+            reach = nextafter(t_max, INFINITY);
+        }
+    }
+    return nearest;
+}
+
+/* Does w hit any triangle of leaf in (t_min, t_max)? */
+static bool leaf_any(const mesh *m, const watertight_ray *w, bvh_leaf leaf,
+                     double t_min, double t_max)
+{
+    triangle_hit unused;
+    for (int k = 0; k < leaf.count; k++) {
+        const int *v = m->triangles[m->bvh.items[leaf.first + k]].v;
+        if (triangle_hit_prepared(w, m->vertices[v[0]], m->vertices[v[1]],
+                                  m->vertices[v[2]], t_min, t_max, &unused))
+            return true;
+    }
+    return false;
+}
+
+int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
+                    double t_max, triangle_hit *out, render_stats *stats)
 {
     bvh_ray r;
     if (!bvh_ray_of(mr->r.origin, mr->inv_dir, t_min, t_max, &r))
@@ -629,53 +551,23 @@ static inline int search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
     bvh_walk w;
     bvh_leaf leaf;
     int found = -1;
-    long long decided = 0;
-    packet_ray pr = {0};
-    bool made = false; /* pr: made at the first leaf, if any */
     bvh_walk_start(&w, &m->bvh, &r);
     w.sorted = out != NULL; /* any hit will do: no order to keep */
-    w.avx2 = avx2;
     while (bvh_walk_next(&w, t_max, &leaf)) {
-        if (!made)
-            pr = packet_ray_of(&mr->shear), made = true;
         stats->triangle_tests += leaf.count;
-        int k = bvh_leaf_test(m, &pr, leaf, t_min, t_max, found, out,
-                              &decided);
-        if (k < 0)
+        if (out == NULL) {
+            if (leaf_any(m, &mr->shear, leaf, t_min, t_max)) {
+                found = 0; /* any hit blocks a shadow ray */
+                break;
+            }
             continue;
-        found = k;
-        if (out == NULL)
-            break; /* any hit blocks a shadow ray */
-        t_max = out->t;
+        }
+        int k = leaf_nearest(m, &mr->shear, leaf, t_min, t_max, found, out);
+        if (k >= 0)
+            found = k, t_max = out->t;
     }
     stats->bvh_nodes += w.visited;
     return found;
-}
-
-/* The search compiled for AVX2, every call in it inlined (flatten): called
- * only where the processor has it. */
-BVH_AVX2_TARGET __attribute__((flatten)) static int
-search_bvh_avx2(const mesh *m, const mesh_ray *mr, double t_min,
-                double t_max, triangle_hit *out, render_stats *stats)
-{
-    return search_bvh(m, mr, t_min, t_max, out, stats, true);
-}
-
-/* The search compiled for the build's own instructions (flattened, it
- * was slower: the compiler inlines what pays there by itself). */
-static int search_bvh_plain(const mesh *m, const mesh_ray *mr,
-                            double t_min, double t_max, triangle_hit *out,
-                            render_stats *stats)
-{
-    return search_bvh(m, mr, t_min, t_max, out, stats, false);
-}
-
-int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
-                    double t_max, triangle_hit *out, render_stats *stats)
-{
-    if (m->bvh.width == 8 && bvh_walks_with_avx2())
-        return search_bvh_avx2(m, mr, t_min, t_max, out, stats);
-    return search_bvh_plain(m, mr, t_min, t_max, out, stats);
 }
 
 /* <<the triangle's hit-point bound>> ch06 */

@@ -14,7 +14,6 @@
 #include "kdtree.h"
 /* <<mesh includes>> += ch09 */
 #include "bvh.h"
-#include "triangle_packet.h"
 
 #define MESH_MAX_VERTICES (1 << 22)  /* 4.2 million: 100 MB of vertices */
 #define MESH_MAX_TRIANGLES (1 << 23) /* 8.4 million */
@@ -46,10 +45,7 @@ typedef struct {
     kdtree tree;                    /* no nodes: no tree, brute force */
     triangle_corners *leaf_corners; /* tree.items' triangles, leaf by leaf */
     /* <<mesh members>> += ch09 */
-    bvh bvh;                     /* no nodes: no BVH; its leaves: packets */
-    triangle_packet *bvh_packets; /* the leaves' triangles, leaf by leaf */
-    int bvh_packet_count;
-    bool bvh_in_float; /* its leaves decided in float alone (bvh-float) */
+    bvh bvh; /* no nodes: no BVH */
 } mesh;
 
 void mesh_free(mesh *m);
@@ -160,24 +156,15 @@ typedef enum {
     MESH_ACCELERATOR_DEFAULT,
     MESH_ACCELERATOR_KDTREE,
     MESH_ACCELERATOR_BVH,
-    MESH_ACCELERATOR_BVH_FLOAT /* the BVH, its leaves decided in float */
+    MESH_ACCELERATORS /* the number of names, and one more */
 } mesh_accelerator;
 
-#define MESH_DEFAULT_ACCELERATOR MESH_ACCELERATOR_BVH
+/* <<the meshes' default tree>> ch09 */
+#define MESH_DEFAULT_ACCELERATOR MESH_ACCELERATOR_KDTREE
 
-/* The name of an accelerator in the scene ("kdtree", "bvh",
- * "bvh-float"); "default" for MESH_ACCELERATOR_DEFAULT. */
+/* The name of an accelerator in the scene ("kdtree", "bvh", ...);
+ * "default" for MESH_ACCELERATOR_DEFAULT. */
 const char *mesh_accelerator_name(mesh_accelerator a);
-
-/* The bytes a triangle that a mesh's BVH holds at most, on meshes of
- * triangles of like sizes (the bunny, the teapot): packets of 44 bytes a
- * lane with a leaf's last packet partly empty, 4 for its item, and the
- * nodes. A copy of the double corners alone would be 72. */
-#define MESH_BVH_MAX_BYTES_PER_TRIANGLE 100
-
-/* The build's threads make a large mesh's boxes and packets in up to
- * this many pieces, of about BVH_SHARED_ITEMS triangles. */
-#define MESH_BVH_PIECES 64
 
 /* Builds m's BVH with p, in place of any tree it had (none for fewer
  * than MESH_TREE_MIN_TRIANGLES); false when out of memory, and then m

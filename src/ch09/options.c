@@ -18,8 +18,8 @@ void options_usage(FILE *out, const char *program)
         "  --size WxH   image size in pixels, overriding the scene's\n"
         "  --stats      print rays traced and time per phase on stderr\n"
         /* <<usage of more options>> ch09 */
-        "  --threads N  render on N threads, 1 to 256 (default: one per core)\n"
-        "  --accelerator kdtree|bvh|bvh-float\n"
+        /* <<the usage of --accelerator>> ch09 */
+        "  --accelerator kdtree|bvh\n"
         "                        the meshes' trees, overriding the scene's\n"
         "  --help       this text\n",
         program);
@@ -87,31 +87,22 @@ bool options_parse(int argc, char **argv, options *opt)
                     value);
         }
         /* <<more options>> ch09 */
-        else if (strcmp(arg, "--threads") == 0) {
-            if (k + 1 == argc)
-                return option_error(argv[0], "this option needs a value", arg);
-            char *end;
-            const char *value = argv[++k];
-            long n = strtol(value, &end, 10);
-            bool digits = value[0] >= '0' && value[0] <= '9'; /* no blank, sign */
-            if (!digits || *end != '\0' || n < 1 || n > 256)
-                return option_error(argv[0], "--threads expects a whole number "
-                                             "from 1 to 256", value);
-            opt->threads = (int)n;
-        }
         else if (strcmp(arg, "--accelerator") == 0) {
             if (k + 1 == argc)
                 return option_error(argv[0], "this option needs a value", arg);
             const char *value = argv[++k];
             /* mesh_accelerator's names, from 1: options.c does not see mesh.h */
-            const char *names[] = {"kdtree", "bvh", "bvh-float"};
+            const char *names[] = {
+                "kdtree", "bvh",
+            };
             opt->accelerator = 0;
-            for (int j = 0; j < 3; j++)
+            for (int j = 0; j < (int)(sizeof names / sizeof *names); j++)
                 if (strcmp(value, names[j]) == 0)
                     opt->accelerator = j + 1;
+            /* <<what --accelerator expects>> ch09 */
+            const char *expects = "--accelerator expects kdtree or bvh";
             if (opt->accelerator == 0)
-                return option_error(argv[0], "--accelerator expects kdtree, bvh "
-                                    "or bvh-float", value);
+                return option_error(argv[0], expects, value);
         }
         else if (arg[0] == '-' && arg[1] != '\0') {
             return option_error(argv[0], "unknown option", arg);

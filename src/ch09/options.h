@@ -12,7 +12,6 @@ typedef struct {
     int width, height;      /* 0: as the scene says */
     bool stats, help;
     /* <<option members>> ch09 */
-    int threads; /* 0: one per core */
     int accelerator; /* 0: the scene's; else a mesh_accelerator */
 } options;
 

@@ -6,14 +6,6 @@
 #include "shade.h"
 /* <<render includes>> += ch08 */
 #include "search.h"
-/* <<render includes>> += ch09 */
-#include <pthread.h>
-#include <stdatomic.h>
-#include <stdlib.h>
-#include <string.h>
-#include <time.h>
-#include <unistd.h>
-#include "memory.h"
 
 /* What the pixel whose primary ray is r shows. */
 static vec3 pixel_color(const scene *s, ray r, render_stats *stats)
@@ -57,178 +49,16 @@ void render(const scene *s, image *img, render_stats *stats)
     render_rows(s, img, 0, img->height, stats);
 }
 
-/* <<rendering in bands>> ch09 */
-/* <<the threads' shared work>> ch09 */
-/* What every thread shares: the image, handed out band by band, and how
- * far it has come, which the reporter reads. */
-typedef struct {
-    const scene *s;
-    image *img;
-    int band_rows; /* rows_per_band of the image */
-    atomic_int next_band, rows_done;
-    atomic_llong rays_done;
-    const render_settings *how;
-    pthread_mutex_t lock; /* one report at a time; guards finished */
-    pthread_cond_t wake;  /* the reporter's, when the image is done */
-    bool finished;
-} band_queue;
-
-/* Rows a band: BAND_ROWS, or fewer in a picture of fewer than BAND_ROWS
- * bands, so that several threads share even a small one. A function of
- * the height alone: the bands, and what they count, are the same on any
- * number of threads. */
-static int rows_per_band(int height)
-{
-    int rows = height / BAND_ROWS; /* for BAND_ROWS bands at least */
-    return rows < 1 ? 1 : rows < BAND_ROWS ? rows : BAND_ROWS;
-}
-
-/* Every ray a render has traced: primary, shadow and secondary. */
-static long long rays_of(const render_stats *st)
-{
-    return st->primary_rays + st->shadow_rays + st->reflection_rays +
-           st->refraction_rays;
-}
-
-/* A thread's part: its own counts, on a cache line of their own. */
-typedef struct {
-    _Alignas(64) render_stats stats;
-    band_queue *queue;
-    pthread_t thread;
-} band_worker;
-
-static int cores_online(void)
-{
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n < 1 ? 1 : n > 256 ? 256 : (int)n;
-}
-
-/* <<a thread's bands>> ch09 */
-/* The next band of rows [*first, *last); false when none is left. */
-static bool take_band(band_queue *q, int *first, int *last)
-{
-    int band = atomic_fetch_add(&q->next_band, 1);
-    if (band >= (q->img->height + q->band_rows - 1) / q->band_rows)
-        return false;
-    *first = band * q->band_rows;
-    *last = *first + q->band_rows < q->img->height ? *first + q->band_rows
-                                                   : q->img->height;
-    return true;
-}
-
-static void render_band(band_worker *w, int first, int last)
-{
-    long long before = rays_of(&w->stats);
-    render_rows(w->queue->s, w->queue->img, first, last, &w->stats);
-    atomic_fetch_add(&w->queue->rays_done, rays_of(&w->stats) - before);
-    atomic_fetch_add(&w->queue->rows_done, last - first);
-}
-
-static void *band_thread(void *worker)
-{
-    band_worker *w = worker;
-    int first, last;
-    while (take_band(w->queue, &first, &last))
-        render_band(w, first, last);
-    return NULL;
-}
-
-/* <<the reporter>> ch09 */
-/* The progress so far, shown by one thread at a time. */
-static void report(band_queue *q)
-{
-    pthread_mutex_lock(&q->lock);
-    q->how->progress(q->how->progress_context, atomic_load(&q->rows_done),
-                     q->img->height, atomic_load(&q->rays_done));
-    pthread_mutex_unlock(&q->lock);
-}
-
-/* The reporter's life: the progress four times a second, until the image
- * is finished (the whole image's is the calling thread's to show). */
-static void *report_thread(void *queue)
-{
-    band_queue *q = queue;
-    pthread_mutex_lock(&q->lock);
-    while (!q->finished) {
-        struct timespec until;
-        clock_gettime(CLOCK_REALTIME, &until); /* the condition's clock */
-        until.tv_nsec += 250000000;
-        if (until.tv_nsec >= 1000000000)
-            until.tv_sec++, until.tv_nsec -= 1000000000;
-        pthread_cond_timedwait(&q->wake, &q->lock, &until);
-        if (!q->finished && atomic_load(&q->rows_done) < q->img->height)
-            q->how->progress(q->how->progress_context,
-                             atomic_load(&q->rows_done), q->img->height,
-                             atomic_load(&q->rays_done));
-    }
-    pthread_mutex_unlock(&q->lock);
-    return NULL;
-}
-
-/* Tells the reporter that the image is done, and waits for it. */
-static void stop_reporter(band_queue *q, pthread_t reporter)
-{
-    pthread_mutex_lock(&q->lock);
-    q->finished = true;
-    pthread_cond_signal(&q->wake);
-    pthread_mutex_unlock(&q->lock);
-    pthread_join(reporter, NULL);
-}
-
-/* <<adding up the threads' counts>> ch09 */
-_Static_assert(sizeof(render_stats) % sizeof(long long) == 0,
-               "render_stats holds counts (long long) only");
-
-/* Adds the counts of part to sum. */
-static void add_stats(render_stats *sum, const render_stats *part)
-{
-    enum { N = sizeof(render_stats) / sizeof(long long) };
-    long long a[N], b[N];
-    memcpy(a, sum, sizeof a), memcpy(b, part, sizeof b);
-    for (int k = 0; k < N; k++)
-        a[k] += b[k];
-    memcpy(sum, a, sizeof a);
-}
-
-/* <<the threads at work>> ch09 */
+/* <<rendering in bands>> ch01 */
 void render_in_bands(const scene *s, image *img, const render_settings *how,
                      render_stats *stats)
 {
-    band_queue q = {.s = s, .img = img, .how = how,
-                    .band_rows = rows_per_band(img->height)};
-    atomic_init(&q.next_band, 0), atomic_init(&q.rows_done, 0);
-    atomic_init(&q.rays_done, 0);
-    pthread_mutex_init(&q.lock, NULL), pthread_cond_init(&q.wake, NULL);
-    band_worker one, *w = NULL;
-    int n = how->threads > 0 ? how->threads : cores_online();
-    int started = 1, first, last;
-    if (n > 1)
-        w = memory_alloc_aligned(64, (size_t)n, sizeof *w);
-    if (w == NULL)
-        w = &one, n = 1; /* out of memory: this thread alone */
-    for (int k = 0; k < n; k++)
-        w[k] = (band_worker){.queue = &q};
-    while (started < n &&
-           pthread_create(&w[started].thread, NULL, band_thread,
-                          &w[started]) == 0)
-        started++; /* a thread that cannot start leaves its share to us */
-    pthread_t reporter; /* none: the progress between our bands only */
-    bool reporting = how->progress != NULL &&
-                     pthread_create(&reporter, NULL, report_thread, &q) == 0;
-    while (take_band(&q, &first, &last)) { /* this thread is worker 0 */
-        render_band(&w[0], first, last);
-        if (how->progress != NULL && !reporting)
-            report(&q);
+    for (int first = 0; first < img->height; first += BAND_ROWS) {
+        int last = first + BAND_ROWS < img->height ? first + BAND_ROWS
+                                                   : img->height;
+        render_rows(s, img, first, last, stats);
+        if (how->progress != NULL)
+            how->progress(how->progress_context, last, img->height,
+                          stats->primary_rays);
     }
-    for (int k = 1; k < started; k++)
-        pthread_join(w[k].thread, NULL);
-    if (reporting) {
-        stop_reporter(&q, reporter);
-        report(&q); /* the whole image: a terminal's bar ends */
-    }
-    for (int k = 0; k < started; k++)
-        add_stats(stats, &w[k].stats);
-    pthread_mutex_destroy(&q.lock), pthread_cond_destroy(&q.wake);
-    if (w != &one)
-        free(w);
 }

@@ -106,8 +106,9 @@ void report_bvhs(const scene *s)
     scene_bvh_summary b = scene_bvhs(s);
     if (b.trees == 0)
         return;
-    fprintf(stderr, "bvhs               %d, %d wide (%s): %lld nodes, %lld "
-                    "leaves, %.1f bytes a triangle\n",
-            b.trees, b.width, bvh_vector_width_name(), b.nodes, b.leaves,
+    /* <<the line of the BVHs>> ch09 */
+    fprintf(stderr, "bvhs               %d, %d wide: %lld nodes, %lld leaves, "
+                    "%.1f bytes a triangle\n",
+            b.trees, b.width, b.nodes, b.leaves,
             (double)b.bytes / (double)b.triangles);
 }

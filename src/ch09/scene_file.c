@@ -121,6 +121,7 @@ static bool parse_image(parser *p, scene *s)
                               IMAGE_MAX_PIXELS, w, h, w * h);
     s->cam.width = (int)w;
     s->cam.height = (int)h;
+    s->image_line = p->line_number;
     return true;
 }
 
@@ -435,15 +436,15 @@ static bool parse_accelerator(parser *p, scene *s)
                              "statement, found a second (the first is on "
                              "line %d)", s->accelerator_line);
     if (parse_next_token(p))
-        for (int k = MESH_ACCELERATOR_KDTREE; k <= MESH_ACCELERATOR_BVH_FLOAT;
-             k++)
+        for (int k = MESH_ACCELERATOR_KDTREE; k < MESH_ACCELERATORS; k++)
             if (parse_token_is(p, mesh_accelerator_name(k))) {
                 s->accelerator = (mesh_accelerator)k;
                 s->accelerator_line = p->line_number;
                 return true;
             }
-    return parse_expected(p, "expected an accelerator (kdtree, bvh, "
-                             "bvh-float)");
+    /* <<the accelerators in words>> ch09 */
+    const char *words = "kdtree, bvh"; /* for the message */
+    return parse_expected(p, "expected an accelerator (%s)", words);
 }
 
 /* <<the statement loop>> ch01 */
@@ -553,6 +554,7 @@ bool scene_parse(scene *s, const char *text, size_t length, const char *name,
     fit_shadow_budget(s);
     /* <<finish the scene>> += ch08 */
     scene_tree_failure why;
+    scene_phase(s, "building the trees");
     if (!scene_build_trees(s, &why))
         return tree_error(s, name, &why, err);
     /* <<finish the scene>> += ch09 */
@@ -571,6 +573,7 @@ bool scene_load(scene *s, const char *path, scene_error *err)
 {
     char *text;
     size_t length;
+    scene_phase(s, "reading the scene"); /* its meshes too, from chapter 4 */
     if (!parse_read_file(path, SCENE_MAX_BYTES, &text, &length, err))
         return false;
     bool ok = scene_parse(s, text, length, path, err);

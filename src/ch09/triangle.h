@@ -100,12 +100,5 @@ int triangle_nearest_of_leaf(const watertight_ray *w,
 bool triangle_any_corners(const watertight_ray *w,
                           const triangle_corners *triangles, int count,
                           double t_min, double t_max);
-/* <<the watertight test for one ray and many triangles>> += ch09 */
-
-/* triangle_hit_prepared, tightened as a leaf's tests are: the same t and
- * barycentric coordinates to the last bit. */
-bool triangle_hit_tightened(const watertight_ray *w, const vec3 *a,
-                            const vec3 *b, const vec3 *c, double t_min,
-                            double t_max, triangle_hit *out);
 
 #endif

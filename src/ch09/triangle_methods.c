@@ -232,91 +232,19 @@ int triangle_nearest_corners(const watertight_ray *w,
     return nearest;
 }
 
-/* <<the tests of a leaf's triangles>> ch09 */
-/* <<a sheared triangle read from its corners>> ch09 */
-_Static_assert(sizeof(vec3) == 3 * sizeof(double), "x, y, z in a row");
-_Static_assert(sizeof(rvec) == 3 * sizeof(double), "x, y, z in a row");
-
-/* The ray's origin along its axes kx, ky, kz: once per leaf. */
-static inline void origin_on_axes(const sheared_ray *s, double o[3])
-{
-    const double *origin = &s->origin.x;
-    o[0] = origin[s->kx], o[1] = origin[s->ky], o[2] = origin[s->kz];
-}
-
-/* A triangle's corners in the ray's frame: chapter 4's shear. */
-typedef struct {
-    double ax, ay, az, bx, by, bz, cx, cy, cz;
-} sheared_corners;
-
-/* <<the tightened test of a sheared triangle>> ch09 */
-/* Chapter 4's test of the sheared triangle q, tightened; pa, pb, pc are
- * its corners as they were, for the check of a zero area. */
-static inline bool hit_sheared_corners(const sheared_ray *s,
-                                       const sheared_corners *q,
-                                       const vec3 *pa, const vec3 *pb,
-                                       const vec3 *pc, double t_min,
-                                       double t_max, triangle_hit *out)
-{
-    double ax = q->ax, ay = q->ay, bx = q->bx, by = q->by;
-    double cx = q->cx, cy = q->cy;
-    double u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
-    if ((u == 0) | (v == 0) | (w == 0)) { /* on an edge: more precisely */
-        u = (double)((wider)cx * by - (wider)cy * bx);
-        v = (double)((wider)ax * cy - (wider)ay * cx);
-        w = (double)((wider)bx * ay - (wider)by * ax);
-    }
-    if (((u < 0) | (v < 0) | (w < 0)) & ((u > 0) | (v > 0) | (w > 0)))
-        return false; /* signs differ: the ray passes outside an edge */
-    double det = u + v + w;
-    double t = (u * s->sz * q->az + v * s->sz * q->bz + w * s->sz * q->cz) /
-               det;
-    if (!(t > t_min && t < t_max) || det == 0)
-        return false; /* outside the interval; or parallel, or degenerate */
-    rvec da = rvec_sub(rvec_from(*pa), s->origin);
-    rvec db = rvec_sub(rvec_from(*pb), s->origin);
-    if (is_degenerate(da, db, rvec_sub(rvec_from(*pc), s->origin)))
-        return false;
-    out->t = t; /* the barycentric coordinates: */
-    out->b[0] = u / det, out->b[1] = v / det, out->b[2] = w / det;
-    return true;
-}
-
-/* hit_sheared for the triangle (pa, pb, pc), the same operations in the
- * same order; o is origin_on_axes. */
-static inline bool hit_corners(const sheared_ray *s, const double o[3],
-                               const vec3 *pa, const vec3 *pb,
-                               const vec3 *pc, double t_min, double t_max,
-                               triangle_hit *out)
-{
-    const double *a = &pa->x, *b = &pb->x, *c = &pc->x; /* x, y, z each */
-    int kx = s->kx, ky = s->ky, kz = s->kz;
-    sheared_corners q;
-    q.az = a[kz] - o[2], q.bz = b[kz] - o[2], q.cz = c[kz] - o[2];
-    q.ax = (a[kx] - o[0]) - s->sx * q.az;
-    q.ay = (a[ky] - o[1]) - s->sy * q.az;
-    q.bx = (b[kx] - o[0]) - s->sx * q.bz;
-    q.by = (b[ky] - o[1]) - s->sy * q.bz;
-    q.cx = (c[kx] - o[0]) - s->sx * q.cz;
-    q.cy = (c[ky] - o[1]) - s->sy * q.cz;
-    return hit_sheared_corners(s, &q, pa, pb, pc, t_min, t_max, out);
-}
-
-/* <<the nearest of a leaf's triangles, tightened>> ch09 */
+/* <<the tests of a leaf's triangles>> ch08 */
 int triangle_nearest_of_leaf(const watertight_ray *w,
                              const triangle_corners *triangles,
                              const int *items, int count, double t_min,
                              double t_max, int best, triangle_hit *out)
 {
     sheared_ray s = sheared_from(w);
-    double o[3];
-    origin_on_axes(&s, o);
     int nearest = -1;
     double reach = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
     for (int k = 0; k < count; k++) {
-        triangle_hit th;
         const vec3 *p = triangles[k].p;
-        if (hit_corners(&s, o, &p[0], &p[1], &p[2], t_min, reach, &th) &&
+        triangle_hit th;
+        if (hit_sheared(&s, p[0], p[1], p[2], t_min, reach, &th) &&
             (th.t < t_max || items[k] < best)) { /* a tie: the lower index */
             *out = th, t_max = th.t, best = items[k], nearest = k;
             reach = nextafter(t_max, INFINITY);
@@ -325,29 +253,16 @@ int triangle_nearest_of_leaf(const watertight_ray *w,
     return nearest;
 }
 
-/* <<any of a leaf's triangles, tightened>> ch09 */
 bool triangle_any_corners(const watertight_ray *w,
                           const triangle_corners *triangles, int count,
                           double t_min, double t_max)
 {
     sheared_ray s = sheared_from(w);
-    double o[3];
-    origin_on_axes(&s, o);
     triangle_hit unused;
     for (int k = 0; k < count; k++) {
         const vec3 *p = triangles[k].p;
-        if (hit_corners(&s, o, &p[0], &p[1], &p[2], t_min, t_max, &unused))
+        if (hit_sheared(&s, p[0], p[1], p[2], t_min, t_max, &unused))
             return true;
     }
     return false;
-}
-
-bool triangle_hit_tightened(const watertight_ray *w, const vec3 *a,
-                            const vec3 *b, const vec3 *c, double t_min,
-                            double t_max, triangle_hit *out)
-{
-    sheared_ray s = sheared_from(w);
-    double o[3];
-    origin_on_axes(&s, o);
-    return hit_corners(&s, o, a, b, c, t_min, t_max, out);
 }

@@ -1,13 +1,14 @@
 /* bvh.h: bounding volume hierarchies over items with boxes, built by the
- * binned surface area heuristic, and their nodes' ray tests (chapter 9).
+ * binned surface area heuristic, and the walk of a ray through them
+ * (chapter 9).
  *
  * A bvh sorts count items (triangles of a mesh), each with a bounding
  * box, into a tree of boxes: every node's box holds its items' boxes, in
  * float, rounded outward. bvh_build makes one (false only when out of
  * memory); the tree knows nothing else of its items. Zero means default
- * in bvh_params. A tree with no nodes is "no tree". Nodes have 2, 4 or 8
- * children (p->width); a bvh_walk hands out the leaves whose boxes a ray
- * meets, nearest box first, and the caller tests their items. */
+ * in bvh_params. A tree with no nodes is "no tree". A bvh_walk hands out
+ * the leaves whose boxes a ray meets, nearest box first, and the caller
+ * tests their items. */
 #ifndef BVH_H
 #define BVH_H
 
@@ -20,22 +21,17 @@
 /* <<bvh parameters>> ch09 */
 /* How to build a bvh; zero means default, in every member. */
 typedef struct {
-    int width;                /* children a node: 2, 4 or 8; 0: BVH_WIDTH */
+    int width;                /* children a node: 2; 0: the default */
     int bins;                 /* candidate planes + 1, 2 to BVH_MAX_BINS;
                                  0: 32 */
     int max_leaf_items;       /* 1 to 15; 0: 8 */
     double traversal_cost;    /* K_T: one node's box test; 0: 1 */
     double intersection_cost; /* K_I: one item's test; 0: 1 */
-    int threads;              /* of the build; 0: one per core */
     int min_items;            /* fewer items get no tree; 0: 1 */
-    int item_group;           /* items a leaf tests at once (a packet's
-                                 lanes): the costs count groups; 0: 1 */
+    int item_group;           /* items a leaf tests at once: the costs
+                                 count groups; 0: 1 */
 } bvh_params;
 
-/* The width without AVX2: eight is no faster on the bunny where a node of
- * eight is two tests of four (measured below), and four is half the node.
- * Where the processor has AVX2, the default is eight (bvh_default_params). */
-#define BVH_WIDTH 4
 #define BVH_MAX_BINS 64
 /* The build cuts in the middle below this depth: the walk's stack has
  * room for BVH_MAX_DEPTH levels. */
@@ -45,14 +41,13 @@ typedef struct {
  * all items: as chapter 8's planes are thick (KDTREE_THICKNESS), for the
  * rounding of the triangle tests. */
 #define BVH_THICKNESS 0x1p-32
-/* A node of more items has its passes over them shared by the threads
- * at the top of the tree, and keeps its items' order as it partitions:
- * a pass over fewer is not worth a thread's start. */
-#define BVH_SHARED_ITEMS (1 << 16)
 
-/* The defaults, every member filled: eight wide where the walk may use
- * AVX2 (bvh_walks_with_avx2), BVH_WIDTH elsewhere. */
+/* The defaults, every member filled. */
 bvh_params bvh_default_params(void);
+/* <<bvh parameters>> += ch10 */
+
+/* The width without AVX2, where a node of eight is two tests of four. */
+#define BVH_WIDTH 4
 
 /* Does the walk test eight-wide nodes with AVX2's eight lanes? Where the
  * processor has AVX2 and bvh_allow_avx2 has not forbidden it; the build's
@@ -76,7 +71,7 @@ typedef struct {
 
 _Static_assert(sizeof(bvh_node) == 32, "a node is 32 bytes");
 
-/* <<bvh wide nodes>> ch09 */
+/* <<more kinds of bvh node>> ch10 */
 /* A node of four or eight children: their boxes as a structure of
  * arrays, box[face][child], faces as in bvh_node, so that one vector
  * reads one face of every child. Child c is node child[c] (count[c] 0),
@@ -97,40 +92,35 @@ typedef struct {
 _Static_assert(sizeof(bvh_node4) == 128, "two cache lines");
 _Static_assert(sizeof(bvh_node8) == 256, "four cache lines");
 
+/* <<a bvh>> ch09 */
 typedef struct bvh {
-    int width;             /* 2, 4 or 8 */
-    bvh_node *nodes;       /* width 2; node 0 is the root */
-    bvh_node4 *nodes4;     /* width 4 */
-    bvh_node8 *nodes8;     /* width 8 */
-    int node_count;        /* of the width's kind; 0: no tree */
-    int node_capacity;     /* allocated */
-    int *items;            /* leaf after leaf */
+    int width;         /* children a node: 2 */
+    bvh_node *nodes;   /* node 0 is the root */
+    int node_count;    /* 0: no tree */
+    int node_capacity; /* allocated */
+    int *items;        /* leaf after leaf */
     int item_count, leaf_count, depth;
-    int build_threads;     /* the threads its build ran on */
+    /* <<more of a bvh>> ch10 */
+    bvh_node4 *nodes4; /* width 4; node 0 is the root */
+    bvh_node8 *nodes8; /* width 8 */
 } bvh;
 
 /* <<bvh building>> ch09 */
 /* Builds t over count items whose bounding boxes are bounds[0..count)
- * by p: no tree when count < p->min_items. The same tree whatever
- * p->threads. False only when out of memory (and then no tree). */
+ * by p: no tree when count < p->min_items. False only when out of
+ * memory (and then no tree). */
 bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p);
 
 void bvh_free(bvh *t);
 
 /* The bytes t holds: its nodes and its items. */
 long long bvh_bytes(const bvh *t);
+/* <<bvh building>> += ch10 */
 
 /* Which node test the walk uses: "scalar", the vector instructions the
  * compiler was allowed ("SSE2", "AVX2", ...), or AVX2 chosen when the
  * program runs. */
 const char *bvh_vector_width_name(void);
-
-/* Runs job(context, k) for every k in [0, count) on threads threads (0:
- * one per core; never more than count), this one among them, each taking
- * the next k left: for the work around a build (a mesh's boxes, its
- * packets). */
-void bvh_run_jobs(int count, int threads, void (*job)(void *, int),
-                  void *context);
 
 /* <<bvh ray tests>> ch09 */
 /* <<the ray's float constants>> ch09 */
@@ -197,7 +187,8 @@ static inline unsigned bvh_lanes_test_scalar(const float *box, int stride,
     return mask;
 }
 
-/* <<the vector node tests>> ch09 */
+/* <<more node tests>> ch10 */
+/* <<the vector node tests>> ch10 */
 typedef float bvh_f4 __attribute__((vector_size(16)));
 typedef int32_t bvh_i4 __attribute__((vector_size(16)));
 
@@ -239,6 +230,7 @@ static inline unsigned bvh_mask4(bvh_i4 hit)
 #endif
 }
 
+/* <<the slab test in four lanes>> ch10 */
 /* The slab of axis a narrows [*t0, *t1], lane by lane. */
 static inline void bvh_slab4(const float *box, int stride, const bvh_ray *r,
                              int a, bvh_f4 *t0, bvh_f4 *t1)
@@ -285,7 +277,7 @@ static inline unsigned bvh_node8_test_vector(const bvh_node8 *n,
     return bvh_lanes4_test_vector(box, 8, r, t_max, t_near) |
            bvh_lanes4_test_vector(box + 4, 8, r, t_max, t_near + 4) << 4;
 #else
-    /* <<the slab test in eight lanes>> ch09 */
+    /* <<the slab test in eight lanes>> ch10 */
     float lo = r->t_min, hi = t_max;
     bvh_f8 t0 = {lo, lo, lo, lo, lo, lo, lo, lo};
     bvh_f8 t1 = {hi, hi, hi, hi, hi, hi, hi, hi}, face;
@@ -302,7 +294,7 @@ static inline unsigned bvh_node8_test_vector(const bvh_node8 *n,
 #endif
 }
 
-/* <<the node tests this build uses>> ch09 */
+/* <<the node tests this build uses>> ch10 */
 /* The vector tests, unless the program is built with -DRT_SCALAR. */
 static inline unsigned bvh_node4_test(const bvh_node4 *n, const bvh_ray *r,
                                       float t_max, float t_near[4])
@@ -339,7 +331,7 @@ bvh_node8_test_avx2(const bvh_node8 *n, const bvh_ray *r, float t_max,
                     float t_near[8])
 {
 #if BVH_HAS_AVX2_PATH /* the text of the eight-wide test with AVX */
-    /* <<the slab test in eight lanes>> ch09 */
+    /* <<the slab test in eight lanes>> ch10 */
     float lo = r->t_min, hi = t_max;
     bvh_f8 t0 = {lo, lo, lo, lo, lo, lo, lo, lo};
     bvh_f8 t1 = {hi, hi, hi, hi, hi, hi, hi, hi}, face;
@@ -366,6 +358,7 @@ typedef struct {
     float t_near;
 } bvh_todo;
 
+/* <<the walk's stack>> ch10 */
 /* Each level pushes at most seven children more than it takes. */
 #define BVH_STACK (7 * BVH_MAX_DEPTH + 1)
 
@@ -378,8 +371,9 @@ typedef struct {
     double best;       /* the last nearest hit given to bvh_walk_next */
     float t_max;       /* and its bound in float */
     bool sorted;       /* nearest child first; false: any order (any hit) */
-    bool avx2;         /* eight-wide nodes tested with AVX2 (the caller's
-                          code compiled for it: bvh_node8_test_avx2) */
+    /* <<more of a walk>> ch10 */
+    bool avx2; /* eight-wide nodes tested with AVX2 (the caller's code
+                  compiled for it: bvh_node8_test_avx2) */
 } bvh_walk;
 
 /* A leaf: its items are items[first .. first + count). */
@@ -392,15 +386,18 @@ typedef struct {
 static inline void bvh_walk_start(bvh_walk *w, const bvh *t,
                                   const bvh_ray *r)
 {
+    /* a binary tree's root may be a leaf, of a tree of few items */
     const bvh_node *root = t->width == 2 ? &t->nodes[0] : NULL;
-    bool leaf = root != NULL && root->count > 0; /* a tree of one leaf */
+    bool leaf = root != NULL && root->count > 0;
     w->t = t, w->r = r, w->pending = 1, w->visited = 0, w->sorted = true;
-    w->avx2 = false; /* the caller's code may say otherwise: see bvh_visit */
     w->best = NAN, w->t_max = r->t_max; /* no bound yet: made at first */
     w->stack[0] = (bvh_todo){leaf ? root->index : 0, leaf ? root->count : 0,
                              r->t_min};
+    /* <<start more of a walk>> ch10 */
+    w->avx2 = false; /* the caller's code may say otherwise: see bvh_visit */
 }
 
+/* <<taking the children a node's test found>> ch09 */
 /* The children in mask: the nearest into *next, the others pushed onto
  * w's stack, farthest on the bottom (unsorted: in the order of their
  * lanes); false when mask is empty. */
@@ -408,9 +405,6 @@ static inline bool bvh_take(bvh_walk *w, unsigned mask, const uint32_t *child,
                             const uint32_t *count, const float *t_near,
                             bvh_todo *next)
 {
-    /* An unused child is never in mask: its empty box (lo +inf, hi -inf)
-     * gives every ray t_near = +inf and t_far = -inf, whatever the sign
-     * of 1 / d, for the finite origins bvh_ray_of accepts. */
     if (mask == 0)
         return false;
     int c = __builtin_ctz(mask), first = w->pending;
@@ -453,19 +447,21 @@ static inline bool bvh_visit2(bvh_walk *w, uint32_t k, float t_max,
 static inline bool bvh_visit(bvh_walk *w, bvh_todo now, float t_max,
                              bvh_todo *next)
 {
-    float t_near[8];
     w->visited++;
-    if (w->t->width == 2)
-        return bvh_visit2(w, now.child, t_max, next);
+    /* <<visit a node of another width>> ch10 */
+    float t_near[8];
     if (w->t->width == 4) {
         const bvh_node4 *n = &w->t->nodes4[now.child];
         unsigned mask = bvh_node4_test(n, w->r, t_max, t_near);
         return bvh_take(w, mask, n->child, n->count, t_near, next);
     }
-    const bvh_node8 *n = &w->t->nodes8[now.child];
-    unsigned mask = w->avx2 ? bvh_node8_test_avx2(n, w->r, t_max, t_near)
-                            : bvh_node8_test(n, w->r, t_max, t_near);
-    return bvh_take(w, mask, n->child, n->count, t_near, next);
+    if (w->t->width == 8) {
+        const bvh_node8 *n = &w->t->nodes8[now.child];
+        unsigned mask = w->avx2 ? bvh_node8_test_avx2(n, w->r, t_max, t_near)
+                                : bvh_node8_test(n, w->r, t_max, t_near);
+        return bvh_take(w, mask, n->child, n->count, t_near, next);
+    }
+    return bvh_visit2(w, now.child, t_max, next);
 }
 
 /* best widened by BVH_SLACK, in float, within the ray's own bound; made

@@ -46,27 +46,25 @@ static const char DEFAULT_SCENE[] =
         "sphere center -0.08 -0.80 4.67 radius 0.20 color 0.55 0.25 0.90\n"
         "light directional direction 1 -1.5 1.2 intensity 0.5 0.5 0.5\n"
         "light point position -3 3 2 intensity 0.8 0.8 0.8\n"
-    /* <<default scene>> += ch10 */
-    "pixel pattern adaptive\n"
     ;
 
 /* <<loading the scene>> ch01 */
-/* The scene file (or the built-in scene) with --size applied; on bad input
- * prints the located error and returns false. */
-static bool load_scene(const options *opt, scene *s)
+/* The scene file (or the built-in scene) with --size applied, its phases
+ * told to shown; on bad input prints the located error and returns
+ * false. */
+static bool load_scene(const options *opt, scene *s, progress *shown)
 {
     scene_error err;
     scene_init(s);
+    s->on_phase = progress_phase, s->phase_context = shown;
     /* <<what the command line tells the scene>> ch09 */
     s->accelerator_option = (mesh_accelerator)opt->accelerator;
-    s->bvh_settings.threads = opt->threads; /* its reading and build too */
-    /* <<what the command line tells the scene>> += ch10 */
-    s->pixel_option = opt->pixel;
-    s->width_option = opt->width, s->height_option = opt->height;
     bool ok = opt->scene_path != NULL
                   ? scene_load(s, opt->scene_path, &err)
                   : scene_parse(s, DEFAULT_SCENE, sizeof DEFAULT_SCENE - 1,
                                 "(built-in scene)", &err);
+    progress_phase(shown, NULL); /* loaded or not: what follows is ours */
+    s->on_phase = NULL;
     if (!ok) {
         message_print_error(err.file, err.line, err.col, err.message);
         return false;
@@ -125,12 +123,13 @@ int main(int argc, char **argv)
     image img = {0};
     png_output out = {0};
     render_stats stats = {0};
-    progress shown = {0};
+    progress shown;
+    progress_begin(&shown);
     render_settings how = {.progress = progress_show,
                            .progress_context = &shown};
-    char why[PARSE_MAX_NAME + 256], size[64];
+    char why[PARSE_MAX_NAME + 256], size[80];
     int status = 1;
-    if (!load_scene(&opt, &s))
+    if (!load_scene(&opt, &s, &shown))
         goto done;
     /* <<once the scene is loaded>> ch04 */
     warn_of_empty_meshes(&s);
@@ -140,7 +139,6 @@ int main(int argc, char **argv)
     if (opt.stats)
         report_mesh_hints(&s);
     /* <<once the scene is loaded>> += ch09 */
-    how.threads = opt.threads;
     if (opt.stats)
         report_bvhs(&s);
     const char *input =
@@ -158,10 +156,11 @@ int main(int argc, char **argv)
         message_print_error(opt.output, 0, 0, why);
         goto done;
     }
-    shown = progress_start(); /* the image is made, then drawn */
-    if (!image_init(&img, s.cam.width, s.cam.height)) {
-        snprintf(size, sizeof size, "no memory for a %dx%d image",
-                 s.cam.width, s.cam.height);
+    progress_render(&shown); /* the image is made, then drawn */
+    if (!image_init(&img, s.cam.width, s.cam.height) ||
+        !png_output_reserve(&out, s.cam.width, s.cam.height)) {
+        snprintf(size, sizeof size, "no memory for a %dx%d image and its "
+                 "PNG", s.cam.width, s.cam.height);
         message_print_error(argv[0], 0, 0, size);
         goto done;
     }
@@ -180,6 +179,7 @@ int main(int argc, char **argv)
         report_stats(&stats, at);
     status = 0;
 done:
+    progress_end(&shown);
     output_close(&out);
     image_free(&img);
     scene_free(&s);

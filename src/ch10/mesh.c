@@ -368,6 +368,7 @@ void mesh_free_tree(mesh *m)
     m->leaf_corners = NULL;
     /* <<free the mesh's other trees>> ch09 */
     bvh_free(&m->bvh);
+    /* <<free the mesh's other trees>> += ch10 */
     free(m->bvh_packets);
     m->bvh_packets = NULL, m->bvh_packet_count = 0, m->bvh_in_float = false;
 }
@@ -378,9 +379,11 @@ long long mesh_tree_bytes(const mesh *m)
     long long bytes = kdtree_bytes(&m->tree) +
                       corners * (long long)sizeof *m->leaf_corners;
     /* <<the bytes of the mesh's other trees>> ch09 */
+    if (m->bvh.node_count > 0)
+        bytes += bvh_bytes(&m->bvh);
+    /* <<the bytes of the mesh's other trees>> += ch10 */
     if (m->bvh_packets != NULL)
-        bytes += bvh_bytes(&m->bvh) +
-                 m->bvh_packet_count * (long long)sizeof *m->bvh_packets;
+        bytes += m->bvh_packet_count * (long long)sizeof *m->bvh_packets;
     return bytes;
 }
 
@@ -455,8 +458,11 @@ bool mesh_occluded(const mesh *m, const mesh_ray *mr, double t_min,
 /* <<intersecting a mesh>> += ch09 */
 
 /* In the order of mesh_accelerator, from MESH_ACCELERATOR_KDTREE. */
-static const char *const accelerator_names[] = {"kdtree", "bvh",
-                                                "bvh-float"};
+static const char *const accelerator_names[] = {
+    "kdtree", "bvh",
+    /* <<more accelerator names>> ch10 */
+    "bvh-float",
+};
 
 const char *mesh_accelerator_name(mesh_accelerator a)
 {
@@ -464,32 +470,10 @@ const char *mesh_accelerator_name(mesh_accelerator a)
                                          : accelerator_names[a - 1];
 }
 
-/* The work around a mesh's build, in pieces for the build's threads:
- * pieces of its triangles for their boxes, then of the tree's nodes for
- * their packets. */
-typedef struct {
-    mesh *m;
-    box *bounds;
-    triangle_packet *packets;
-    int pieces;
-    int first[MESH_BVH_PIECES + 1]; /* the first packet of each piece */
-} mesh_pieces;
-
-/* Where piece k of n of count things begins. */
-static int piece_start(int count, int k, int n)
+/* The bounding boxes of m's triangles [first, end), into bounds. */
+static void triangle_boxes(const mesh *m, box *bounds, int first, int end)
 {
-    return (int)((long long)count * k / n);
-}
-
-/* The bounding boxes of piece k of m's triangles, into bounds. */
-static void triangle_boxes(void *pieces, int piece)
-{
-    mesh_pieces *w = pieces;
-    const mesh *m = w->m;
-    box *bounds = w->bounds;
-    int end = piece_start(m->triangle_count, piece + 1, w->pieces);
-    for (int k = piece_start(m->triangle_count, piece, w->pieces); k < end;
-         k++) {
+    for (int k = first; k < end; k++) {
         const int *v = m->triangles[k].v;
         vec3 a = m->vertices[v[0]], b = m->vertices[v[1]];
         vec3 c = m->vertices[v[2]];
@@ -498,6 +482,7 @@ static void triangle_boxes(void *pieces, int piece)
     }
 }
 
+/* <<what a mesh's BVH is made with>> ch10 */
 /* Where reference c of node k of t to a leaf keeps the leaf's first item
  * (or packet), and its count (0: no leaf). */
 static uint32_t *leaf_start(bvh *t, int k, int c, uint32_t *count)
@@ -532,31 +517,17 @@ static int pack_leaves(mesh *m, triangle_packet *packets, int from, int to,
     return next;
 }
 
-static void pack_piece(void *pieces, int piece)
+/* <<making a mesh's packets>> ch10 */
+/* m's BVH's packets, counted first, then filled; false: no memory. */
+static bool make_packets(mesh *m)
 {
-    mesh_pieces *w = pieces;
-    int nodes = w->m->bvh.node_count;
-    pack_leaves(w->m, w->packets, piece_start(nodes, piece, w->pieces),
-                piece_start(nodes, piece + 1, w->pieces), w->first[piece]);
-}
-
-/* m's BVH's packets, piece by piece on threads threads, each piece's
- * first packet counted beforehand; false: no memory. */
-static bool make_packets(mesh_pieces *w, int threads)
-{
-    int nodes = w->m->bvh.node_count;
-    for (int k = 0; k < w->pieces; k++)
-        w->first[k + 1] =
-            pack_leaves(w->m, NULL, piece_start(nodes, k, w->pieces),
-                        piece_start(nodes, k + 1, w->pieces), w->first[k]);
-    w->packets = memory_alloc_aligned(_Alignof(triangle_packet),
-                                      (size_t)w->first[w->pieces],
-                                      sizeof(triangle_packet));
-    if (w->packets == NULL)
+    int count = pack_leaves(m, NULL, 0, m->bvh.node_count, 0);
+    triangle_packet *packets = memory_alloc_aligned(
+        _Alignof(triangle_packet), (size_t)count, sizeof(triangle_packet));
+    if (packets == NULL)
         return false;
-    bvh_run_jobs(w->pieces, threads, pack_piece, w);
-    w->m->bvh_packets = w->packets;
-    w->m->bvh_packet_count = w->first[w->pieces];
+    pack_leaves(m, packets, 0, m->bvh.node_count, 0);
+    m->bvh_packets = packets, m->bvh_packet_count = count;
     return true;
 }
 
@@ -565,23 +536,36 @@ bool mesh_build_bvh(mesh *m, const bvh_params *p)
     mesh_free_tree(m);
     bvh_params q = *p;
     q.min_items = q.min_items > 0 ? q.min_items : MESH_TREE_MIN_TRIANGLES;
+    /* <<a mesh's own bvh parameters>> ch10 */
     q.item_group = q.item_group > 0 ? q.item_group : PACKET_W;
-    int pieces = 1 + m->triangle_count / BVH_SHARED_ITEMS;
-    mesh_pieces w = {.m = m, .pieces = pieces < MESH_BVH_PIECES
-                                           ? pieces : MESH_BVH_PIECES};
-    w.bounds = memory_alloc((size_t)m->triangle_count, sizeof *w.bounds);
-    if (w.bounds != NULL)
-        bvh_run_jobs(w.pieces, q.threads, triangle_boxes, &w);
-    bool ok = w.bounds != NULL &&
-              bvh_build(&m->bvh, m->triangle_count, w.bounds, &q);
-    free(w.bounds);
+    box *bounds = memory_alloc((size_t)m->triangle_count, sizeof *bounds);
+    if (bounds != NULL)
+        /* <<the boxes of a mesh's triangles>> ch09 */
+        triangle_boxes(m, bounds, 0, m->triangle_count);
+    bool ok = bounds != NULL &&
+              bvh_build(&m->bvh, m->triangle_count, bounds, &q);
+    free(bounds);
     if (!ok || m->bvh.node_count == 0)
         return ok;
-    if (!make_packets(&w, q.threads))
+    /* <<the leaves of a mesh's BVH made>> ch10 */
+    if (!make_packets(m))
         return bvh_free(&m->bvh), false;
     return true;
 }
 
+/* Every triangle of m, for a ray the float tests cannot take. */
+static int mesh_search_all(const mesh *m, const mesh_ray *mr, double t_min,
+                           double t_max, triangle_hit *out,
+                           render_stats *stats)
+{
+    triangle_hit unused;
+    stats->triangle_tests += m->triangle_count;
+    return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
+                                       m->triangle_count, t_min, t_max,
+                                       out != NULL ? out : &unused);
+}
+
+/* <<the search of a mesh's BVH>> ch10 */
 /* The triangles of a leaf, its packets: the nearest hit by the tie rule
  * (best: the nearest triangle so far, -1: none) into *out, or with out
  * NULL any hit; its index in m, or -1. */
@@ -603,18 +587,6 @@ static int bvh_leaf_test(const mesh *m, const packet_ray *r, bvh_leaf leaf,
     return triangle_packets_nearest_in_mesh(r, p, n, m->vertices,
                                             m->triangles, t_min, t_max,
                                             best, out, decided);
-}
-
-/* Every triangle of m, for a ray the float tests cannot take. */
-static int mesh_search_all(const mesh *m, const mesh_ray *mr, double t_min,
-                           double t_max, triangle_hit *out,
-                           render_stats *stats)
-{
-    triangle_hit unused;
-    stats->triangle_tests += m->triangle_count;
-    return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
-                                       m->triangle_count, t_min, t_max,
-                                       out != NULL ? out : &unused);
 }
 
 /* The walk of m's BVH for mr, its eight-wide nodes tested with AVX2 when

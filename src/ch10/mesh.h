@@ -14,6 +14,7 @@
 #include "kdtree.h"
 /* <<mesh includes>> += ch09 */
 #include "bvh.h"
+/* <<mesh includes>> += ch10 */
 #include "triangle_packet.h"
 
 #define MESH_MAX_VERTICES (1 << 22)  /* 4.2 million: 100 MB of vertices */
@@ -46,8 +47,9 @@ typedef struct {
     kdtree tree;                    /* no nodes: no tree, brute force */
     triangle_corners *leaf_corners; /* tree.items' triangles, leaf by leaf */
     /* <<mesh members>> += ch09 */
-    bvh bvh;                     /* no nodes: no BVH; its leaves: packets */
-    triangle_packet *bvh_packets; /* the leaves' triangles, leaf by leaf */
+    bvh bvh; /* no nodes: no BVH */
+    /* <<mesh members>> += ch10 */
+    triangle_packet *bvh_packets; /* the BVH's leaves' triangles, leaf by leaf */
     int bvh_packet_count;
     bool bvh_in_float; /* its leaves decided in float alone (bvh-float) */
 } mesh;
@@ -160,24 +162,17 @@ typedef enum {
     MESH_ACCELERATOR_DEFAULT,
     MESH_ACCELERATOR_KDTREE,
     MESH_ACCELERATOR_BVH,
-    MESH_ACCELERATOR_BVH_FLOAT /* the BVH, its leaves decided in float */
+    /* <<more accelerators>> ch10 */
+    MESH_ACCELERATOR_BVH_FLOAT, /* the BVH, its leaves decided in float */
+    MESH_ACCELERATORS /* the number of names, and one more */
 } mesh_accelerator;
 
+/* <<the meshes' default tree>> ch10 */
 #define MESH_DEFAULT_ACCELERATOR MESH_ACCELERATOR_BVH
 
-/* The name of an accelerator in the scene ("kdtree", "bvh",
- * "bvh-float"); "default" for MESH_ACCELERATOR_DEFAULT. */
+/* The name of an accelerator in the scene ("kdtree", "bvh", ...);
+ * "default" for MESH_ACCELERATOR_DEFAULT. */
 const char *mesh_accelerator_name(mesh_accelerator a);
-
-/* The bytes a triangle that a mesh's BVH holds at most, on meshes of
- * triangles of like sizes (the bunny, the teapot): packets of 44 bytes a
- * lane with a leaf's last packet partly empty, 4 for its item, and the
- * nodes. A copy of the double corners alone would be 72. */
-#define MESH_BVH_MAX_BYTES_PER_TRIANGLE 100
-
-/* The build's threads make a large mesh's boxes and packets in up to
- * this many pieces, of about BVH_SHARED_ITEMS triangles. */
-#define MESH_BVH_PIECES 64
 
 /* Builds m's BVH with p, in place of any tree it had (none for fewer
  * than MESH_TREE_MIN_TRIANGLES); false when out of memory, and then m
@@ -189,5 +184,12 @@ bool mesh_build_bvh(mesh *m, const bvh_params *p);
  * any triangle hit will do. */
 int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
                     double t_max, triangle_hit *out, render_stats *stats);
+/* <<mesh intersection declarations>> += ch10 */
+
+/* The bytes a triangle that a mesh's BVH holds at most, on meshes of
+ * triangles of like sizes (the bunny, the teapot): packets of 44 bytes a
+ * lane with a leaf's last packet partly empty, 4 for its item, and the
+ * nodes. A copy of the double corners alone would be 72. */
+#define MESH_BVH_MAX_BYTES_PER_TRIANGLE 100
 
 #endif

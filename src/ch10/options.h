@@ -12,10 +12,7 @@ typedef struct {
     int width, height;      /* 0: as the scene says */
     bool stats, help;
     /* <<option members>> ch09 */
-    int threads; /* 0: one per core */
     int accelerator; /* 0: the scene's; else a mesh_accelerator */
-    /* <<option members>> += ch10 */
-    const char *pixel; /* --pixel's settings; NULL: the scene's */
 } options;
 
 /* The help text, on out. */

@@ -4,8 +4,6 @@
 #include <stdio.h>
 /* <<report includes>> ch08 */
 #include "trees.h"
-/* <<report includes>> += ch10 */
-#include "pixel.h"
 
 /* <<the statistics report>> ch01 */
 void report_stats(const render_stats *st, const moment at[4])
@@ -55,8 +53,6 @@ void report_stats(const render_stats *st, const moment at[4])
     fprintf(stderr, "bvh nodes          %lld (%.1f a primary ray)\n",
             st->bvh_nodes,
             (double)st->bvh_nodes / (st->primary_rays ? st->primary_rays : 1));
-    /* <<print statistics>> += ch10 */
-    report_pixels(st);
     double render_s = at[2].wall - at[1].wall;
     if (render_s > 0)
         fprintf(stderr, "primary rays/s     %.3g\n",
@@ -110,32 +106,9 @@ void report_bvhs(const scene *s)
     scene_bvh_summary b = scene_bvhs(s);
     if (b.trees == 0)
         return;
+    /* <<the line of the BVHs>> ch10 */
     fprintf(stderr, "bvhs               %d, %d wide (%s): %lld nodes, %lld "
                     "leaves, %.1f bytes a triangle\n",
             b.trees, b.width, bvh_vector_width_name(), b.nodes, b.leaves,
             (double)b.bytes / (double)b.triangles);
-}
-/* <<other reports>> += ch10 */
-
-void report_pixels(const render_stats *st)
-{
-    long long pixels = 0, largest = 0, divided = 0;
-    for (int n = 0; n <= PIXEL_MAX_RAYS; n++)
-        if (st->pixel_rays[n] > 0)
-            pixels += st->pixel_rays[n], largest = n;
-    if (pixels == 0)
-        return; /* one ray through each centre: nothing to tell */
-    fprintf(stderr, "rays per pixel     %.2f mean, %lld largest\n",
-            (double)st->primary_rays / (double)pixels, largest);
-    int deepest = 0;
-    for (int d = 0; d <= PIXEL_MAX_DEPTH; d++)
-        if (st->pixel_depths[d] > 0)
-            divided += st->pixel_depths[d], deepest = d;
-    for (int d = 0; divided > 0 && d <= deepest; d++) {
-        double share = (double)st->pixel_depths[d] / (double)divided;
-        fprintf(stderr, "%s%d %10lld %5.1f%% %.*s\n",
-                d == 0 ? "pixels by depth    " : "                   ", d,
-                st->pixel_depths[d], 100 * share, (int)(30 * share + 0.5),
-                "##############################");
-    }
 }

@@ -21,10 +21,5 @@ void report_mesh_hints(const scene *s);
 
 /* The BVHs of s's meshes: their nodes, leaves and bytes a triangle. */
 void report_bvhs(const scene *s);
-/* <<report declarations>> += ch10 */
-
-/* Rays per pixel (mean, largest) and, for the adaptive pattern, the
- * pixels by depth reached; nothing for one ray through each centre. */
-void report_pixels(const render_stats *st);
 
 #endif

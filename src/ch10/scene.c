@@ -34,8 +34,6 @@ void scene_init(scene *s)
     s->cutoff = 0.01;
     /* <<scene member defaults>> += ch08 */
     s->tree_params = kdtree_default_params();
-    /* <<scene member defaults>> += ch10 */
-    s->pixels = PIXEL_DEFAULTS;
 }
 
 void scene_free(scene *s)
@@ -55,6 +53,12 @@ void scene_free(scene *s)
     /* <<free scene members>> += ch08 */
     kdtree_free(&s->object_tree);
     memset(s, 0, sizeof *s); /* a second scene_free finds nothing to free */
+}
+
+void scene_phase(const scene *s, const char *what)
+{
+    if (s->on_phase != NULL)
+        s->on_phase(s->phase_context, what);
 }
 
 /* <<scene arrays>> ch02 */

@@ -18,8 +18,6 @@
 #include "material.h"
 /* <<scene includes>> += ch04 */
 #include "mesh.h"
-/* <<scene includes>> += ch10 */
-#include "antialias.h"
 
 typedef enum { BACKGROUND_SOLID, BACKGROUND_GRADIENT } background_kind;
 
@@ -60,6 +58,11 @@ typedef struct {
 typedef struct {
     camera cam;
     background bg;
+    /* told when a phase of the loading begins ("reading the scene"), for
+     * the progress line; NULL: no one is told */
+    void (*on_phase)(void *context, const char *phase);
+    void *phase_context;
+    int image_line; /* the line of the image statement; 0: none */
     /* <<scene members>> ch02 */
     object *objects;
     int object_count, object_capacity;
@@ -99,16 +102,13 @@ typedef struct {
     mesh_accelerator accelerator_option; /* --accelerator's, which wins */
     int accelerator_line;                /* of the accelerator statement */
     bvh_params bvh_settings;             /* zero: the defaults */
-    /* <<scene members>> += ch10 */
-    pixel_sampling pixels; /* the pixel statement's */
-    int pixel_line;        /* its line; 0: the file has none */
-    const char *pixel_option;        /* --pixel's settings, which win; NULL */
-    int width_option, height_option; /* --size's, which win; 0: none */
-    long long ray_budget; /* each primary ray's share of the image's rays */
 } scene;
 
 void scene_init(scene *s);
 void scene_free(scene *s);
+
+/* Tells s->on_phase, if there is one, that the loading now does what. */
+void scene_phase(const scene *s, const char *what);
 
 /* <<scene array declarations>> ch02 */
 /* A million: far beyond what a renderer without a tree can draw. */

@@ -90,6 +90,7 @@ static bool build_mesh_tree(const scene *s, mesh *m)
     /* <<the scene's other trees of a mesh>> ch09 */
     if (scene_mesh_accelerator(s) == MESH_ACCELERATOR_BVH)
         return mesh_build_bvh(m, &s->bvh_settings);
+    /* <<the scene's other trees of a mesh>> += ch10 */
     if (scene_mesh_accelerator(s) == MESH_ACCELERATOR_BVH_FLOAT) {
         bool built = mesh_build_bvh(m, &s->bvh_settings);
         m->bvh_in_float = built;

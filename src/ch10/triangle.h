@@ -100,7 +100,7 @@ int triangle_nearest_of_leaf(const watertight_ray *w,
 bool triangle_any_corners(const watertight_ray *w,
                           const triangle_corners *triangles, int count,
                           double t_min, double t_max);
-/* <<the watertight test for one ray and many triangles>> += ch09 */
+/* <<the watertight test for one ray and many triangles>> += ch10 */
 
 /* triangle_hit_prepared, tightened as a leaf's tests are: the same t and
  * barycentric coordinates to the last bit. */

@@ -232,8 +232,8 @@ int triangle_nearest_corners(const watertight_ray *w,
     return nearest;
 }
 
-/* <<the tests of a leaf's triangles>> ch09 */
-/* <<a sheared triangle read from its corners>> ch09 */
+/* <<the tests of a leaf's triangles>> ch10 */
+/* <<a sheared triangle read from its corners>> ch10 */
 _Static_assert(sizeof(vec3) == 3 * sizeof(double), "x, y, z in a row");
 _Static_assert(sizeof(rvec) == 3 * sizeof(double), "x, y, z in a row");
 
@@ -249,7 +249,7 @@ typedef struct {
     double ax, ay, az, bx, by, bz, cx, cy, cz;
 } sheared_corners;
 
-/* <<the tightened test of a sheared triangle>> ch09 */
+/* <<the tightened test of a sheared triangle>> ch10 */
 /* Chapter 4's test of the sheared triangle q, tightened; pa, pb, pc are
  * its corners as they were, for the check of a zero area. */
 static inline bool hit_sheared_corners(const sheared_ray *s,
@@ -302,7 +302,7 @@ static inline bool hit_corners(const sheared_ray *s, const double o[3],
     return hit_sheared_corners(s, &q, pa, pb, pc, t_min, t_max, out);
 }
 
-/* <<the nearest of a leaf's triangles, tightened>> ch09 */
+/* <<the nearest of a leaf's triangles, tightened>> ch10 */
 int triangle_nearest_of_leaf(const watertight_ray *w,
                              const triangle_corners *triangles,
                              const int *items, int count, double t_min,
@@ -325,7 +325,7 @@ int triangle_nearest_of_leaf(const watertight_ray *w,
     return nearest;
 }
 
-/* <<any of a leaf's triangles, tightened>> ch09 */
+/* <<any of a leaf's triangles, tightened>> ch10 */
 bool triangle_any_corners(const watertight_ray *w,
                           const triangle_corners *triangles, int count,
                           double t_min, double t_max)

@@ -1,10 +1,10 @@
-/* triangle_packet.c: triangles W at a time, in float (chapter 9). */
+/* triangle_packet.c: triangles W at a time, in float (chapter 10). */
 #include <float.h>
 #include <math.h>
 #include <string.h>
 #include "triangle_packet.h"
 
-/* <<filling packets>> ch09 */
+/* <<filling packets>> ch10 */
 int triangle_packets_needed(int count)
 {
     return (count + PACKET_W - 1) / PACKET_W;
@@ -44,7 +44,7 @@ int triangle_packets_fill(triangle_packet *packets, const vec3 *vertices,
     return n;
 }
 
-/* <<a ray for packets, made>> ch09 */
+/* <<a ray for packets, made>> ch10 */
 packet_ray packet_ray_of(const watertight_ray *w)
 {
     packet_ray r = {w->kx, w->ky, w->kz, (float)w->sx, (float)w->sy,
@@ -58,7 +58,7 @@ packet_ray packet_ray_of(const watertight_ray *w)
     return r;
 }
 
-/* <<the float test's helpers>> ch09 */
+/* <<the float test's helpers>> ch10 */
 /* pbrt's gamma(n): n float roundings stay within a factor 1 +- gamma(n). */
 static inline float gamma_of(int n)
 {
@@ -95,7 +95,7 @@ static inline int packet_all_set(packet_int m)
 }
 #define lanes_all(m) _Generic((m), int: lane_set, default: packet_all_set)(m)
 
-/* <<the float filter, lane by lane and in vectors>> ch09 */
+/* <<the float filter, lane by lane and in vectors>> ch10 */
 /* The lanes of p that chapter 4's test could hit: -1 in each. */
 static inline packet_int kept_in_vectors(const triangle_packet *p,
                                          const packet_ray *r, float t_max,
@@ -106,9 +106,9 @@ static inline packet_int kept_in_vectors(const triangle_packet *p,
     const lanes *a = p->corner[0], *b = p->corner[1], *c = p->corner[2];
     lanes p_reach = p->reach;
     lane_mask empty = p->triangle < 0; /* -1 where no triangle is */
-    /* <<the float filter>> ch09 */
-    /* <<the float filter's edge functions>> ch09 */
-    /* <<the edge functions in float>> ch09 */
+    /* <<the float filter>> ch10 */
+    /* <<the float filter's edge functions>> ch10 */
+    /* <<the edge functions in float>> ch10 */
     int kx = r->kx, ky = r->ky, kz = r->kz;
     float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
     lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;
@@ -116,7 +116,7 @@ static inline packet_int kept_in_vectors(const triangle_packet *p,
     lanes bx = (b[kx] - ox) - r->sx * bz, by = (b[ky] - oy) - r->sy * bz;
     lanes cx = (c[kx] - ox) - r->sx * cz, cy = (c[ky] - oy) - r->sy * cz;
     lanes u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
-    /* <<the edge functions' error bound>> ch09 */
+    /* <<the edge functions' error bound>> ch10 */
     lanes reach = p_reach + r->origin_reach; /* >= |corner| + |origin| */
     lanes e_s = gamma_of(11) * reach;        /* a sheared x or y */
     lanes xm = lanes_abs(ax) + lanes_abs(bx) + lanes_abs(cx); /* >= max |x| */
@@ -131,7 +131,7 @@ static inline packet_int kept_in_vectors(const triangle_packet *p,
     lanes det = u + v + w;
     lanes za = r->sz * az, zb = r->sz * bz, zc = r->sz * cz;
     lanes n = u * za + v * zb + w * zc; /* t times det */
-    /* <<the float test's error bounds>> ch09 */
+    /* <<the float test's error bounds>> ch10 */
     lanes zm = lanes_abs(za) + lanes_abs(zb) + lanes_abs(zc);
     lanes sum = lanes_abs(u) + lanes_abs(v) + lanes_abs(w);
     lanes e_d = (3 * e_e + gamma_of(2) * sum) * BOUND_MARGIN + FLT_MIN;
@@ -157,9 +157,9 @@ static inline int kept_alone(const triangle_packet *p, int k,
         a[axis] = p->corner[0][axis][k], b[axis] = p->corner[1][axis][k],
         c[axis] = p->corner[2][axis][k];
     int empty = p->triangle[k] < 0;
-    /* <<the float filter>> ch09 */
-    /* <<the float filter's edge functions>> ch09 */
-    /* <<the edge functions in float>> ch09 */
+    /* <<the float filter>> ch10 */
+    /* <<the float filter's edge functions>> ch10 */
+    /* <<the edge functions in float>> ch10 */
     int kx = r->kx, ky = r->ky, kz = r->kz;
     float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
     lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;
@@ -167,7 +167,7 @@ static inline int kept_alone(const triangle_packet *p, int k,
     lanes bx = (b[kx] - ox) - r->sx * bz, by = (b[ky] - oy) - r->sy * bz;
     lanes cx = (c[kx] - ox) - r->sx * cz, cy = (c[ky] - oy) - r->sy * cz;
     lanes u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
-    /* <<the edge functions' error bound>> ch09 */
+    /* <<the edge functions' error bound>> ch10 */
     lanes reach = p_reach + r->origin_reach; /* >= |corner| + |origin| */
     lanes e_s = gamma_of(11) * reach;        /* a sheared x or y */
     lanes xm = lanes_abs(ax) + lanes_abs(bx) + lanes_abs(cx); /* >= max |x| */
@@ -182,7 +182,7 @@ static inline int kept_alone(const triangle_packet *p, int k,
     lanes det = u + v + w;
     lanes za = r->sz * az, zb = r->sz * bz, zc = r->sz * cz;
     lanes n = u * za + v * zb + w * zc; /* t times det */
-    /* <<the float test's error bounds>> ch09 */
+    /* <<the float test's error bounds>> ch10 */
     lanes zm = lanes_abs(za) + lanes_abs(zb) + lanes_abs(zc);
     lanes sum = lanes_abs(u) + lanes_abs(v) + lanes_abs(w);
     lanes e_d = (3 * e_e + gamma_of(2) * sum) * BOUND_MARGIN + FLT_MIN;
@@ -205,8 +205,8 @@ bool triangle_packet_stops_at_edges(const triangle_packet *p,
     const lanes *a = p->corner[0], *b = p->corner[1], *c = p->corner[2];
     lanes p_reach = p->reach;
     lane_mask empty = p->triangle < 0;
-    /* <<the float filter's edge functions>> ch09 */
-    /* <<the edge functions in float>> ch09 */
+    /* <<the float filter's edge functions>> ch10 */
+    /* <<the edge functions in float>> ch10 */
     int kx = r->kx, ky = r->ky, kz = r->kz;
     float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
     lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;
@@ -214,7 +214,7 @@ bool triangle_packet_stops_at_edges(const triangle_packet *p,
     lanes bx = (b[kx] - ox) - r->sx * bz, by = (b[ky] - oy) - r->sy * bz;
     lanes cx = (c[kx] - ox) - r->sx * cz, cy = (c[ky] - oy) - r->sy * cz;
     lanes u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
-    /* <<the edge functions' error bound>> ch09 */
+    /* <<the edge functions' error bound>> ch10 */
     lanes reach = p_reach + r->origin_reach; /* >= |corner| + |origin| */
     lanes e_s = gamma_of(11) * reach;        /* a sheared x or y */
     lanes xm = lanes_abs(ax) + lanes_abs(bx) + lanes_abs(cx); /* >= max |x| */
@@ -227,7 +227,7 @@ bool triangle_packet_stops_at_edges(const triangle_packet *p,
     return lanes_all(outside);
 }
 
-/* <<the tests of packets, made>> ch09 */
+/* <<the tests of packets, made>> ch10 */
 /* What the filter reads of (t_min, t_max): t_max rounded up to float, and
  * whether t may be tested (t_min >= 0). */
 typedef struct {
@@ -287,7 +287,7 @@ unsigned triangle_packet_candidates_scalar(const triangle_packet *p,
     return candidates_scalar(p, r, float_interval_of(t_min, t_max));
 }
 
-/* <<where the kept lanes' corners are read>> ch09 */
+/* <<where the kept lanes' corners are read>> ch10 */
 /* Where a kept lane's corners are: a copy beside the packets, in their
  * order, or (copy NULL) the mesh, through the lane's triangle index. */
 typedef struct {
@@ -313,7 +313,7 @@ static bool hit_lane(const packet_ray *r, const lane_corners *from, int p,
     return triangle_hit_tightened(r->exact, a, b, c, t_min, t_max, out);
 }
 
-/* <<deciding the kept lanes>> ch09 */
+/* <<deciding the kept lanes>> ch10 */
 static int nearest_of_packets(const packet_ray *r,
                               const triangle_packet *packets, int count,
                               const lane_corners *from, double t_min,
@@ -358,7 +358,7 @@ static bool any_of_packets(const packet_ray *r,
     return false;
 }
 
-/* <<deciding the kept lanes of packets and corners>> ch09 */
+/* <<deciding the kept lanes of packets and corners>> ch10 */
 int triangle_packets_nearest(const packet_ray *r,
                              const triangle_packet *packets, int count,
                              const triangle_corners *corners, double t_min,
@@ -401,7 +401,7 @@ bool triangle_packets_any_in_mesh(const packet_ray *r,
     return any_of_packets(r, packets, count, &from, t_min, t_max, decided);
 }
 
-/* <<the float decision, made>> ch09 */
+/* <<the float decision, made>> ch10 */
 /* What the lanes hit in float need for their answers: t = n / det, and
  * u / det, v / det, w / det. */
 typedef struct {
@@ -418,8 +418,8 @@ static inline packet_int float_hits_in_vectors(const triangle_packet *p,
     typedef packet_int lane_mask;
     const lanes *a = p->corner[0], *b = p->corner[1], *c = p->corner[2];
     lane_mask empty = p->triangle < 0;
-    /* <<the float decision>> ch09 */
-    /* <<the edge functions in float>> ch09 */
+    /* <<the float decision>> ch10 */
+    /* <<the edge functions in float>> ch10 */
     int kx = r->kx, ky = r->ky, kz = r->kz;
     float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
     lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;
@@ -453,8 +453,8 @@ static inline int float_hit_alone(const triangle_packet *p, int k,
         a[axis] = p->corner[0][axis][k], b[axis] = p->corner[1][axis][k],
         c[axis] = p->corner[2][axis][k];
     int empty = p->triangle[k] < 0;
-    /* <<the float decision>> ch09 */
-    /* <<the edge functions in float>> ch09 */
+    /* <<the float decision>> ch10 */
+    /* <<the edge functions in float>> ch10 */
     int kx = r->kx, ky = r->ky, kz = r->kz;
     float ox = r->origin[0], oy = r->origin[1], oz = r->origin[2];
     lanes az = a[kz] - oz, bz = b[kz] - oz, cz = c[kz] - oz;

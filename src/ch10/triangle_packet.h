@@ -1,5 +1,5 @@
 /* triangle_packet.h: triangles TRIANGLE_PACKET_WIDTH at a time, in float
- * (chapter 9).
+ * (chapter 10).
  *
  * A triangle_packet holds W triangles of a mesh in structure of arrays:
  * their corners rounded to float, lane by lane, and their indices in the
@@ -26,7 +26,7 @@
 #include <stdint.h>
 #include "triangle.h"
 
-/* <<a packet of triangles>> ch09 */
+/* <<a packet of triangles>> ch10 */
 #ifndef TRIANGLE_PACKET_WIDTH
 #define TRIANGLE_PACKET_WIDTH 4 /* lanes of a packet: 4, or 8 with AVX */
 #endif
@@ -64,7 +64,7 @@ int triangle_packets_fill(triangle_packet *packets, const vec3 *vertices,
                           const mesh_triangle *triangles, const int *items,
                           int count);
 
-/* <<a ray for packets>> ch09 */
+/* <<a ray for packets>> ch10 */
 typedef struct {
     int kx, ky, kz;
     float sx, sy, sz;     /* chapter 4's shear, rounded to float */
@@ -77,7 +77,7 @@ typedef struct {
  * them). */
 packet_ray packet_ray_of(const watertight_ray *w);
 
-/* <<the tests of packets>> ch09 */
+/* <<the tests of packets>> ch10 */
 /* The lanes of p that chapter 4's test could hit in (t_min, t_max), lane
  * k in bit k; in vectors, and lane by lane. The two are equal. */
 unsigned triangle_packet_candidates_simd(const triangle_packet *p,

@@ -1,0 +1,605 @@
+/* ch10_embree.c: every step of chapters 9 and 10 against Intel Embree 3, on the
+ * same rays, one thread each, timed together.
+ *
+ *   build/rel/bench/ch10_embree [BUNNY.obj TEAPOT.obj] > figures/ch10-embree.csv
+ *
+ * Built only where Embree 3 is installed (Debian: libembree-dev); without
+ * it, `make charts` draws the chart from chapter 8's rates alone and says
+ * that Embree was absent.
+ *
+ * The meshes: the Stanford bunny, the teapot, the bunny cut into four
+ * times as many triangles ("scanned", ch09_meshes.h), and two meshes
+ * where a BVH is weak: 4,000 needles across a cube and a cylinder of
+ * 4,000 slivers. For each, at K = 1 and K = 2.5 (the failure meshes at
+ * K = 1 only, and 256 x 256 rays), the 1024 x 1024 rays of ch08_rays.h
+ * are traced by closest
+ * hit by every method of METHODS:
+ *   kdtree-ch08  chapter 8's kd-tree with chapter 8's leaves (chapter 4's
+ *                test called once a triangle, triangle_hit_prepared);
+ *   kdtree       the same tree with chapter 10's tightened leaves;
+ *   bvh4-double  the BVH 4 wide as first built: leaves of triangles in
+ *                double, every one tested (chapter 10's tightened leaves);
+ *   bvh4-double-mesh  the same, the corners read from the mesh through
+ *                the triangles' indices instead of a copy;
+ *   bvh2|4|8     the BVH, binary, 4 and 8 wide, with leaves of packets;
+ *   embree       rtcIntersect1 (Embree's BVH, RTC_BUILD_QUALITY_HIGH, its
+ *                spatial-split builder, a device with threads=1; the
+ *                scene without RTC_SCENE_FLAG_ROBUST, as Embree's
+ *                default: its faster, not watertight, traversal);
+ *   embree-medium  the same at RTC_BUILD_QUALITY_MEDIUM, Embree's default
+ *                build (binned SAH, no spatial splits);
+ *   fast         the BVH of the default width, its leaves decided in float
+ *                alone (accelerator bvh-float): not the exact answers;
+ * and by any hit (shadow rays, to infinity): kdtree-any, bvh-any (the
+ * default width), fast-any and embree-any (rtcOccluded1). Times come from the
+ * harness (bench/timing.h): one operation is one ray, every batch whole
+ * passes over the rays, and all the cases of one mesh are timed together,
+ * interleaved, in thread CPU time. The builds (kdtree-build, bvh-build on
+ * one thread, embree-build) are timed the same way, per mesh. The hits
+ * come from one untimed pass of each method.
+ *
+ * Rows (method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns),
+ * after the "# machine:" line:
+ *   METHOD-build,MESH,ns_per_build,ms,build_ms,q1,q3,wall
+ *   METHOD,MESH-K,ns_per_ray,Mrays/s,mrays_per_s,q1,q3,wall
+ *   ratio,METHOD@MESH-K,0,its rate / Embree's,over_embree  (medians; the
+ *       exact BVH of the default width again as METHOD default)
+ *   ratio,METHOD-build@MESH,0,its time / Embree's,build_over_embree
+ *   hits,MESH-K,0,count,rays  (traced by each method)
+ *   hits,MESH-K,0,count,METHOD_hits
+ *   hits,MESH-K,0,mean,METHOD_nodes_per_ray  (a BVH's: nodes whose children
+ *       a ray tested, and the triangles of the leaves it met, a ray)
+ *   hits,MESH-K,0,mean,METHOD_leaf_triangles_per_ray
+ *   hits,MESH-K,0,count,METHOD_disagrees_with_kdtree  (a ray one hits and
+ *       the other does not, or a different t, bit for bit)
+ *   hits,MESH-K,0,count,rays_that_disagree  (bvh against embree: one hits
+ *       and the other not, or distances more than 1e-5 apart, relatively)
+ *   hits,MESH-K,0,count,METHOD_other_answers  (fast, embree, embree-medium
+ *       against the exact answers, the kd-tree's: a ray one hits and the
+ *       other not, or a different triangle)
+ *   hits,MESH-K,0,error,METHOD_largest_t_error  (their largest relative
+ *       difference of t from the exact one, where both hit)
+ *   vector,WIDTH_NAME,0,0,bvh_vector_width  (the node test's instructions)
+ *   default,bvhN,0,0,default_method  (the program's default: N wide, where
+ *       bvh-any, fast and fast-any are N wide as well) */
+#include <embree3/rtcore.h>
+#include <string.h>
+
+#include "ch09_meshes.h"
+#include "timing.h"
+
+/* The rays a side of the image: the failure meshes, where a ray costs
+ * microseconds, get a sixteenth as many. */
+enum { SIDE = 1024, FAILURE_SIDE = 256 };
+
+/* ---------------------------------------------------------------- Embree */
+
+static RTCScene embree_scene(RTCDevice device, const mesh *m,
+                             enum RTCBuildQuality quality)
+{
+    RTCScene scene = rtcNewScene(device);
+    rtcSetSceneBuildQuality(scene, quality);
+    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    float *v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                       3 * sizeof(float), (size_t)m->vertex_count);
+    for (int k = 0; k < m->vertex_count; k++) {
+        v[3 * k] = (float)m->vertices[k].x;
+        v[3 * k + 1] = (float)m->vertices[k].y;
+        v[3 * k + 2] = (float)m->vertices[k].z;
+    }
+    unsigned *ix = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                           3 * sizeof(unsigned), (size_t)m->triangle_count);
+    for (int k = 0; k < m->triangle_count; k++)
+        for (int c = 0; c < 3; c++)
+            ix[3 * k + c] = (unsigned)m->triangles[k].v[c];
+    rtcSetGeometryBuildQuality(g, quality);
+    rtcCommitGeometry(g);
+    rtcAttachGeometry(scene, g);
+    rtcReleaseGeometry(g);
+    return scene;
+}
+
+/* ---------------------------------------------------------------- the methods */
+
+typedef enum { KDTREE_CH08, KDTREE, BVH, BVH_DOUBLE, BVH_DOUBLE_MESH, EMBREE } kind;
+
+typedef struct {
+    const char *name;
+    kind kind;
+    int width; /* of a BVH; 0: the program's default (default_width) */
+    bool any;  /* shadow rays: any hit */
+    bool medium; /* Embree: its default build, MEDIUM, not HIGH */
+    bool in_float; /* the BVH's leaves decided in float alone */
+} method;
+
+static const method METHODS[] = {
+    {"kdtree-ch08", KDTREE_CH08, 0, false, false, false},
+    {"kdtree", KDTREE, 0, false, false, false},
+    {"bvh4-double", BVH_DOUBLE, 4, false, false, false},
+    {"bvh4-double-mesh", BVH_DOUBLE_MESH, 4, false, false, false},
+    {"bvh2", BVH, 2, false, false, false},
+    {"bvh4", BVH, 4, false, false, false},
+    {"bvh8", BVH, 8, false, false, false},
+    {"fast", BVH, 0, false, false, true},
+    {"embree", EMBREE, 0, false, false, false},
+    {"embree-medium", EMBREE, 0, false, true, false},
+    {"kdtree-any", KDTREE, 0, true, false, false},
+    {"bvh-any", BVH, 0, true, false, false},
+    {"fast-any", BVH, 0, true, false, true},
+    {"embree-any", EMBREE, 0, true, false, false},
+};
+enum { N_METHODS = sizeof METHODS / sizeof METHODS[0] };
+
+/* The width of how's BVH: its own, or the program's default (eight where
+ * the walk uses AVX2, four elsewhere). */
+static int width_of(const method *how)
+{
+    return how->width ? how->width : bvh_default_params().width;
+}
+
+/* Is how the program's default: the exact BVH of the default width? */
+static bool is_default(const method *how)
+{
+    return how->kind == BVH && !how->any && !how->in_float &&
+           width_of(how) == bvh_default_params().width;
+}
+
+/* A mesh and everything built over it: its kd-tree (in m), a copy of it
+ * for each BVH width, and Embree's scene. */
+typedef struct {
+    const char *name;
+    mesh m;
+    mesh bvh_of_width[9]; /* [2], [4], [8] */
+    mesh bvh_float;       /* the default width's, decided in float */
+    mesh bvh_double;      /* 4 wide, leaves of doubles: see double_leaves */
+    triangle_corners *corners; /* bvh_double's, lane by lane */
+    int *lane_items;           /* the triangle of each lane */
+    RTCScene scene, scene_medium; /* HIGH, MEDIUM */
+    bool few_methods; /* the failure meshes: kdtree, bvh4, embree */
+} subject;
+
+/* What one case traces: a method over a subject's rays of one K. */
+typedef struct {
+    const method *how;
+    const subject *s;
+    const float_ray *rays;
+    long n_rays;
+} trace_ctx;
+
+/* Chapter 8's leaves: chapter 4's test for each triangle, keeping the tie
+ * rule across leaves (a hit at t_max itself wins for a lower index). */
+static int chapter8_leaf(const watertight_ray *w, const triangle_corners *c,
+                         const int *items, int count, double t_min, double t_max,
+                         int best, triangle_hit *out)
+{
+    int nearest = -1;
+    double reach = nextafter(t_max, INFINITY);
+    for (int k = 0; k < count; k++) {
+        triangle_hit th;
+        if (triangle_hit_prepared(w, c[k].p[0], c[k].p[1], c[k].p[2], t_min, reach, &th) &&
+            (th.t < t_max || items[k] < best)) {
+            *out = th, t_max = th.t, best = items[k], nearest = k;
+            reach = nextafter(t_max, INFINITY);
+        }
+    }
+    return nearest;
+}
+
+/* Chapter 8's kd-tree walk with chapter 8's leaves: the nearest t, or
+ * infinity. */
+static double chapter8_ray(const mesh *m, const mesh_ray *mr)
+{
+    double near = 0, far = INFINITY, t_max = INFINITY;
+    if (!box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
+        return INFINITY;
+    kdtree_walk w;
+    kdtree_leaf leaf;
+    int found = -1;
+    triangle_hit th;
+    kdtree_walk_start(&w, &m->tree, mr->r.origin, mr->inv_dir, near, far);
+    while (kdtree_walk_next(&w, t_max, &leaf)) {
+        int k = chapter8_leaf(&mr->shear, m->leaf_corners + leaf.first,
+                              m->tree.items + leaf.first, leaf.count, 0, t_max, found, &th);
+        if (k >= 0)
+            found = m->tree.items[leaf.first + k], t_max = th.t;
+    }
+    return t_max;
+}
+
+/* The BVH's walk with the leaves of the BVH's first form: every triangle
+ * of a leaf tested by chapter 4's test in double, on corners copied leaf
+ * by leaf (chapter 8's leaves, tightened), in a tree built for them
+ * (items counted one by one). The nearest t, or infinity. */
+/* A leaf of double_leaves_ray with the corners read from the mesh through
+ * the lanes' triangles (no copy): chapter 8's tie rule. */
+static int mesh_corners_leaf(const mesh *m, const watertight_ray *w, const int *items,
+                             int count, double t_max, int best, triangle_hit *out)
+{
+    int nearest = -1;
+    double reach = nextafter(t_max, INFINITY);
+    for (int k = 0; k < count; k++) {
+        triangle_hit th;
+        const int *v = m->triangles[items[k]].v;
+        if (triangle_hit_prepared(w, m->vertices[v[0]], m->vertices[v[1]], m->vertices[v[2]],
+                                  0, reach, &th) &&
+            (th.t < t_max || items[k] < best)) {
+            *out = th, t_max = th.t, best = items[k], nearest = k;
+            reach = nextafter(t_max, INFINITY);
+        }
+    }
+    return nearest;
+}
+
+static double double_leaves_ray(const subject *s, const mesh_ray *mr, bool from_mesh)
+{
+    const mesh *m = &s->bvh_double;
+    double t_max = INFINITY, near = 0, far = INFINITY;
+    bvh_ray r;
+    if (!box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far) ||
+        !bvh_ray_of(mr->r.origin, mr->inv_dir, 0, INFINITY, &r))
+        return INFINITY;
+    bvh_walk w;
+    bvh_leaf leaf;
+    int found = -1;
+    triangle_hit th;
+    bvh_walk_start(&w, &m->bvh, &r);
+    while (bvh_walk_next(&w, t_max, &leaf)) {
+        int first = leaf.first * PACKET_W; /* the lane of its first packet */
+        int k = from_mesh ? mesh_corners_leaf(m, &mr->shear, s->lane_items + first,
+                                              leaf.count, t_max, found, &th)
+                          : triangle_nearest_of_leaf(&mr->shear, s->corners + first,
+                                                     s->lane_items + first, leaf.count, 0,
+                                                     t_max, found, &th);
+        if (k >= 0)
+            found = s->lane_items[first + k], t_max = th.t;
+    }
+    return t_max;
+}
+
+/* Ray k by Embree: its distance, or infinity (any: 0 for a hit); the
+ * triangle hit in *triangle (-1: none), unless NULL. */
+static double embree_ray(const trace_ctx *c, long k, struct RTCIntersectContext *context,
+                         int *triangle)
+{
+    const float_ray *f = &c->rays[k];
+    RTCScene scene = c->how->medium ? c->s->scene_medium : c->s->scene;
+    struct RTCRayHit rh;
+    rh.ray.org_x = f->o[0], rh.ray.org_y = f->o[1], rh.ray.org_z = f->o[2];
+    rh.ray.dir_x = f->d[0], rh.ray.dir_y = f->d[1], rh.ray.dir_z = f->d[2];
+    rh.ray.tnear = 0, rh.ray.tfar = INFINITY;
+    rh.ray.mask = 0xffffffffu, rh.ray.flags = 0, rh.ray.time = 0;
+    if (c->how->any) {
+        rtcOccluded1(scene, context, &rh.ray);
+        return rh.ray.tfar < 0 ? 0 : INFINITY; /* -inf marks a hit */
+    }
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene, context, &rh);
+    bool hit = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+    if (triangle != NULL)
+        *triangle = hit ? (int)rh.hit.primID : -1;
+    return hit ? rh.ray.tfar : INFINITY;
+}
+
+/* Ray k by one of ours: its distance, or infinity (any: 0 for a hit);
+ * the triangle hit in *triangle where the method says (else -1), unless
+ * NULL. */
+static double our_ray(const trace_ctx *c, long k, render_stats *stats, int *triangle)
+{
+    const mesh *m = c->how->kind != BVH ? &c->s->m
+                    : c->how->in_float  ? &c->s->bvh_float
+                                        : &c->s->bvh_of_width[width_of(c->how)];
+    if (triangle != NULL)
+        *triangle = -1;
+    mesh_ray mr = mesh_ray_of(ray_of(&c->rays[k]));
+    if (c->how->kind == KDTREE_CH08)
+        return chapter8_ray(m, &mr);
+    if (c->how->kind == BVH_DOUBLE || c->how->kind == BVH_DOUBLE_MESH)
+        return double_leaves_ray(c->s, &mr, c->how->kind == BVH_DOUBLE_MESH);
+    if (c->how->any)
+        return mesh_occluded(m, &mr, 0, INFINITY, stats) ? 0 : INFINITY;
+    triangle_hit th;
+    int found = mesh_nearest(m, &mr, 0, INFINITY, &th, stats);
+    if (triangle != NULL)
+        *triangle = found;
+    return found >= 0 ? th.t : INFINITY;
+}
+
+/* reps rays, whole passes over the rays (the harness's cycle). */
+static void run_rays(void *ctx, long reps)
+{
+    const trace_ctx *c = ctx;
+    render_stats stats = {0}; /* once a batch, as the renderer's once a band */
+    struct RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    double sum = 0;
+    for (long k = 0; k < reps; k++)
+        sum += (c->how->kind == EMBREE ? embree_ray(c, k % c->n_rays, &context, NULL)
+                                       : our_ray(c, k % c->n_rays, &stats, NULL)) < INFINITY;
+    bench_sink += sum;
+}
+
+/* ---------------------------------------------------------------- the builds */
+
+typedef struct {
+    const mesh *m;
+    RTCDevice device;
+    kind kind;
+    enum RTCBuildQuality quality; /* Embree's */
+} build_ctx;
+
+static void run_build(void *ctx, long reps)
+{
+    const build_ctx *c = ctx;
+    for (long r = 0; r < reps; r++) {
+        if (c->kind == EMBREE) {
+            RTCScene scene = embree_scene(c->device, c->m, c->quality);
+            rtcCommitScene(scene);
+            rtcReleaseScene(scene);
+            continue;
+        }
+        mesh copy = *c->m; /* the tree is built into a copy's members */
+        copy.tree = (kdtree){0}, copy.leaf_corners = NULL;
+        copy.bvh = (bvh){0}, copy.bvh_packets = NULL;
+        kdtree_params kp = kdtree_default_params();
+        bvh_params bp = {0}; /* zeros: the mesh's defaults, on one thread */
+        if (!(c->kind == KDTREE ? mesh_build_tree(&copy, &kp) : mesh_build_bvh(&copy, &bp)))
+            exit(1);
+        bench_sink += copy.triangle_count;
+        mesh_free_tree(&copy);
+    }
+}
+
+static void time_builds(const subject *s, RTCDevice device)
+{
+    enum { N = 4, YARDSTICK = 2 };
+    const char *names[N] = {"kdtree-build", "bvh-build", "embree-build",
+                            "embree-medium-build"};
+    const kind kinds[N] = {KDTREE, BVH, EMBREE, EMBREE};
+    build_ctx ctx[N];
+    bench_case c[N];
+    bench_timing t[N];
+    for (int k = 0; k < N; k++) {
+        ctx[k] = (build_ctx){&s->m, device, kinds[k],
+                             k == 3 ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_HIGH};
+        c[k] = (bench_case){names[k], s->name, run_build, &ctx[k], 1};
+    }
+    bench_time_cases(c, N, t);
+    for (int k = 0; k < N; k++)
+        bench_row(c[k].method, s->name, &t[k], "%.3f", t[k].median / 1e6, "build_ms");
+    for (int k = 0; k < N; k++)
+        if (k != YARDSTICK)
+            printf("ratio,%s@%s,0,%.4f,build_over_embree\n", names[k], s->name,
+                   t[k].median / t[YARDSTICK].median);
+    fflush(stdout);
+}
+
+/* ---------------------------------------------------------------- the rows */
+
+static bool is_used(const subject *s, const method *how)
+{
+    return !s->few_methods || how->kind == EMBREE ||
+           (how->kind == KDTREE && !how->any) || (how->kind == BVH && width_of(how) == bvh_default_params().width);
+}
+
+/* Where method j's answers are not the exact ones (the kd-tree's, kd): a
+ * ray that one hits and the other does not, or that they see hit
+ * different triangles; and the largest relative difference of their t
+ * where both hit. */
+static void print_inexactness(const trace_ctx *c, int j, int kd, double *const t[],
+                              int *const id[], const char *param)
+{
+    long n_rays = c[0].n_rays, other = 0;
+    double largest = 0;
+    for (long k = 0; k < n_rays; k++) {
+        double a = t[j][k], b = t[kd][k];
+        other += id[j][k] != id[kd][k];
+        if (isfinite(a) && isfinite(b) && fabs(a - b) > largest * b)
+            largest = fabs(a - b) / b;
+    }
+    printf("hits,%s,0,%ld,%s_other_answers\n", param, other, c[j].how->name);
+    printf("hits,%s,0,%.3g,%s_largest_t_error\n", param, largest, c[j].how->name);
+}
+
+/* One untimed pass of every case over its rays: the hits, and where each
+ * method disagrees with the kd-tree (ours) or with ours (Embree's); for
+ * the float path and Embree, how far they are from the exact answers. */
+static void print_agreement(const trace_ctx *c, int n, const char *param)
+{
+    long n_rays = c[0].n_rays;
+    printf("hits,%s,0,%ld,rays\n", param, n_rays);
+    double *t[N_METHODS];
+    int *id[N_METHODS];
+    struct RTCIntersectContext context;
+    rtcInitIntersectContext(&context);
+    render_stats stats = {0};
+    int kd = -1, ours = -1;
+    for (int j = 0; j < n; j++) {
+        long hits = 0;
+        t[j] = malloc((size_t)n_rays * sizeof *t[j]);
+        id[j] = malloc((size_t)n_rays * sizeof *id[j]);
+        if (t[j] == NULL || id[j] == NULL)
+            exit(1);
+        for (long k = 0; k < n_rays; k++) {
+            double d = c[j].how->kind == EMBREE ? embree_ray(&c[j], k, &context, &id[j][k])
+                                                : our_ray(&c[j], k, &stats, &id[j][k]);
+            t[j][k] = d, hits += d < INFINITY;
+        }
+        printf("hits,%s,0,%ld,%s_hits\n", param, hits, c[j].how->name);
+        if (c[j].how->kind == BVH) /* what a ray of the walk visits */
+            printf("hits,%s,0,%.2f,%s_nodes_per_ray\n"
+                   "hits,%s,0,%.2f,%s_leaf_triangles_per_ray\n",
+                   param, (double)stats.bvh_nodes / (double)n_rays, c[j].how->name, param,
+                   (double)stats.triangle_tests / (double)n_rays, c[j].how->name);
+        stats = (render_stats){0};
+        kd = strcmp(c[j].how->name, "kdtree") == 0 ? j : kd;
+        ours = is_default(c[j].how) ? j : ours;
+    }
+    for (int j = 0; j < n; j++) {
+        if (c[j].how->any || c[j].how->kind == EMBREE || c[j].how->in_float || j == kd)
+            continue;
+        long differ = 0;
+        for (long k = 0; k < n_rays; k++) { /* as float, bit for bit */
+            float a = (float)t[j][k], b = (float)t[kd][k];
+            differ += memcmp(&a, &b, sizeof a) != 0;
+        }
+        printf("hits,%s,0,%ld,%s_disagrees_with_kdtree\n", param, differ, c[j].how->name);
+    }
+    for (int j = 0; j < n; j++)
+        if ((c[j].how->kind == EMBREE || c[j].how->in_float) && !c[j].how->any)
+            print_inexactness(c, j, kd, t, id, param);
+    for (int j = 0; j < n; j++)
+        if (c[j].how->kind == EMBREE && !c[j].how->any && !c[j].how->medium) {
+            long differ = 0;
+            for (long k = 0; k < n_rays; k++) {
+                float a = (float)t[ours][k], b = (float)t[j][k];
+                bool hit_a = isfinite(a), hit_b = isfinite(b);
+                differ += hit_a != hit_b || (hit_a && fabsf(a - b) > 1e-5f * b);
+            }
+            printf("hits,%s,0,%ld,rays_that_disagree\n", param, differ);
+        }
+    for (int j = 0; j < n; j++)
+        free(t[j]), free(id[j]);
+}
+
+static void print_rays(const trace_ctx *c, const bench_case *cases, const bench_timing *t, int n)
+{
+    for (int j = 0; j < n; j++)
+        bench_row(cases[j].method, cases[j].param, &t[j], "%.4f", 1e3 / t[j].median,
+                  "mrays_per_s");
+    for (int j = 0; j < n; j++) {
+        const char *yardstick = c[j].how->any ? "embree-any" : "embree";
+        if (strcmp(c[j].how->name, yardstick) == 0)
+            continue;
+        for (int e = 0; e < n; e++)
+            if (strcmp(c[e].how->name, yardstick) == 0)
+                printf("ratio,%s@%s,0,%.4f,over_embree\n", c[j].how->name, cases[j].param,
+                       t[e].median / t[j].median);
+        if (is_default(c[j].how)) /* the program's default, named as such */
+            for (int e = 0; e < n; e++)
+                if (strcmp(c[e].how->name, yardstick) == 0)
+                    printf("ratio,default@%s,0,%.4f,over_embree\n", cases[j].param,
+                           t[e].median / t[j].median);
+    }
+}
+
+/* Every method's rays of subject s at distance K, timed together. */
+static void time_rays(const subject *s, double K)
+{
+    char param[48];
+    snprintf(param, sizeof param, "%s-%.1f", s->name, K);
+    int side = s->few_methods ? FAILURE_SIDE : SIDE;
+    long n_rays = (long)side * side;
+    float_ray *rays = make_rays(&s->m, K, side);
+    trace_ctx c[N_METHODS];
+    bench_case cases[N_METHODS];
+    bench_timing t[N_METHODS];
+    int n = 0;
+    for (int j = 0; j < N_METHODS; j++)
+        if (is_used(s, &METHODS[j])) {
+            c[n] = (trace_ctx){&METHODS[j], s, rays, n_rays};
+            cases[n] = (bench_case){METHODS[j].name, param, run_rays, &c[n], n_rays};
+            n++;
+        }
+    bench_time_cases(cases, n, t);
+    print_rays(c, cases, t, n);
+    print_agreement(c, n, param);
+    fflush(stdout);
+    free(rays);
+}
+
+/* ---------------------------------------------------------------- main */
+
+/* s's BVH of the first form: items counted one by one, its leaves' corners
+ * copied lane by lane of its packets (an empty lane's are never read). */
+static void double_leaves(subject *s)
+{
+    mesh *copy = &s->bvh_double;
+    *copy = s->m;
+    copy->tree = (kdtree){0}, copy->leaf_corners = NULL;
+    bvh_params bp = bvh_default_params();
+    bp.width = 4, bp.item_group = 1;
+    if (!mesh_build_bvh(copy, &bp))
+        exit(1);
+    size_t lanes = (size_t)copy->bvh_packet_count * PACKET_W;
+    s->corners = calloc(lanes, sizeof *s->corners);
+    s->lane_items = calloc(lanes, sizeof *s->lane_items);
+    if (s->corners == NULL || s->lane_items == NULL)
+        exit(1);
+    for (size_t j = 0; j < lanes; j++) {
+        int i = copy->bvh_packets[j / PACKET_W].triangle[j % PACKET_W];
+        s->lane_items[j] = i;
+        for (int c = 0; c < 3 && i >= 0; c++)
+            s->corners[j].p[c] = copy->vertices[copy->triangles[i].v[c]];
+    }
+}
+
+static void prepare(subject *s, RTCDevice device)
+{
+    kdtree_params kp = kdtree_default_params();
+    if (!mesh_build_tree(&s->m, &kp))
+        exit(1);
+    for (int w = 2; w <= 8; w *= 2) {
+        mesh *copy = &s->bvh_of_width[w];
+        *copy = s->m;
+        copy->tree = (kdtree){0}, copy->leaf_corners = NULL;
+        bvh_params bp = {.width = w}; /* zeros: the mesh's defaults */
+        if (!mesh_build_bvh(copy, &bp))
+            exit(1);
+    }
+    s->bvh_float = s->bvh_of_width[bvh_default_params().width]; /* shared */
+    s->bvh_float.bvh_in_float = true;
+    double_leaves(s);
+    s->scene = embree_scene(device, &s->m, RTC_BUILD_QUALITY_HIGH);
+    rtcCommitScene(s->scene);
+    s->scene_medium = embree_scene(device, &s->m, RTC_BUILD_QUALITY_MEDIUM);
+    rtcCommitScene(s->scene_medium);
+}
+
+static void release(subject *s)
+{
+    for (int w = 2; w <= 8; w *= 2)
+        mesh_free_tree(&s->bvh_of_width[w]);
+    mesh_free_tree(&s->bvh_double);
+    free(s->corners), free(s->lane_items);
+    rtcReleaseScene(s->scene), rtcReleaseScene(s->scene_medium);
+    mesh_free(&s->m);
+}
+
+int main(int argc, char **argv)
+{
+    RTCDevice device = rtcNewDevice("threads=1");
+    if (device == NULL) {
+        fprintf(stderr, "ch10_embree: Embree has no device\n");
+        return 1;
+    }
+    enum { N_SUBJECTS = 5 };
+    static subject subjects[N_SUBJECTS] = {{.name = "bunny"},
+                                           {.name = "teapot"},
+                                           {.name = "scanned"},
+                                           {.name = "needles", .few_methods = true},
+                                           {.name = "slivers", .few_methods = true}};
+    load_float_mesh(argc > 1 ? argv[1] : "meshes/bunny.obj", &subjects[0].m);
+    load_float_mesh(argc > 2 ? argv[2] : "meshes/teapot-8.obj", &subjects[1].m);
+    load_float_mesh(argc > 1 ? argv[1] : "meshes/bunny.obj", &subjects[2].m);
+    subdivided(&subjects[2].m, 1);
+    subjects[3].m = needles_mesh(4000, 1e-3);
+    subjects[4].m = slivers_mesh(4000);
+    bench_print_machine();
+    bench_csv_header();
+    printf("vector,%s,0,0,bvh_vector_width\n", bvh_vector_width_name());
+    printf("default,bvh%d,0,0,default_method\n", bvh_default_params().width);
+    /* CH09_QUICK=1: the bunny at K = 1 alone, no builds (a quick look) */
+    bool quick = getenv("CH09_QUICK") != NULL;
+    for (int k = 0; k < (quick ? 1 : N_SUBJECTS); k++) {
+        subject *s = &subjects[k];
+        if (!s->few_methods && !quick)
+            time_builds(s, device);
+        prepare(s, device);
+        time_rays(s, 1.0);
+        if (!s->few_methods && !quick)
+            time_rays(s, 2.5);
+        release(s);
+    }
+    rtcReleaseDevice(device);
+    return 0;
+}

@@ -1,0 +1,434 @@
+/* render.c: rendering a scene into an image, band by band (chapter 1). */
+#include "render.h"
+
+#include <assert.h>
+/* <<render includes>> ch03 */
+#include "shade.h"
+/* <<render includes>> += ch08 */
+#include "search.h"
+/* <<render includes>> += ch11 */
+#include <pthread.h>
+#include <stdatomic.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "memory.h"
+#include "moment.h"
+/* <<render includes>> += ch12 */
+#include "antialias.h"
+
+/* What the pixel whose primary ray is r shows. */
+static vec3 pixel_color(const scene *s, ray r, render_stats *stats)
+{
+    /* <<show something other than light>> ch08 */
+    if (s->heatmap > 0) { /* the kdtree statement's heat map: work, not light */
+        long long before = stats->kd_nodes;
+        hit h;
+        scene_intersect(s, r, 0, INFINITY, &h, stats);
+        double x = fmin((double)(stats->kd_nodes - before) / s->heatmap, 1);
+        return (vec3){fmin(3 * x, 1), fmin(fmax(3 * x - 1, 0), 1),
+                      fmax(3 * x - 2, 0)}; /* black, red, yellow, white */
+    }
+    vec3 c = trace(s, r, 0, stats);
+    /* <<map the pixel's light for display>> ch03 */
+    if (s->tone.alpha != 1 || s->tone.beta != 1) /* the defaults only clip */
+        c = (vec3){tone_map(c.x, s->tone.alpha, s->tone.beta),
+                   tone_map(c.y, s->tone.alpha, s->tone.beta),
+                   tone_map(c.z, s->tone.alpha, s->tone.beta)};
+    return c;
+}
+/* <<ways to draw a pixel>> ch12 */
+_Static_assert(sizeof(((render_stats *)0)->pixel_rays) ==
+                       (PIXEL_MAX_RAYS + 1) * sizeof(long long) &&
+                   sizeof(((render_stats *)0)->pixel_depths) ==
+                       (PIXEL_MAX_DEPTH + 1) * sizeof(long long),
+               "the counters of stats.h have room for every count");
+
+/* What the image shows at the point (u, v), and the ray counted. */
+static vec3 color_at(const scene *s, const camera_view *view, double u,
+                     double v, render_stats *stats)
+{
+    stats->primary_rays++;
+    return pixel_color(s, camera_view_ray_at(view, u, v), stats);
+}
+
+/* The grid or jittered rays of pixel (i, j), averaged: weights 1/N. */
+static vec3 sampled_pixel(const scene *s, const camera_view *view, int i,
+                          int j, render_stats *stats, int *rays)
+{
+    int n = pixel_sample_count(&s->pixels);
+    vec3 sum = {0, 0, 0};
+    for (int k = 0; k < n; k++) {
+        double u, v;
+        pixel_sample_at(&s->pixels, i, j, k, &u, &v);
+        sum = vec3_add(sum, color_at(s, view, u, v, stats));
+    }
+    *rays = n;
+    return vec3_scale(sum, 1.0 / n);
+}
+
+/* rays against the heat map's white: black, red, yellow, white. */
+static vec3 rays_heat(int rays, int white)
+{
+    double x = fmin((double)rays / white, 1);
+    return (vec3){fmin(3 * x, 1), fmin(fmax(3 * x - 1, 0), 1),
+                  fmax(3 * x - 2, 0)};
+}
+/* <<the corners of a band>> ch12 */
+
+enum { STRIP = 256 }; /* columns of corners a band keeps at a time */
+
+/* The corners (i, j) of corner row j, i0 <= i <= i1, into row. */
+static void corner_row(const scene *s, const camera_view *view, int i0,
+                       int i1, int j, vec3 *row, render_stats *stats)
+{
+    for (int i = i0; i <= i1; i++) {
+        double u, v;
+        pixel_point_at(&s->pixels, i, j, 0, 0, &u, &v);
+        row[i - i0] = color_at(s, view, u, v, stats);
+    }
+}
+/* <<the points of a pixel>> ch12 */
+
+enum { FINEST = 1 << PIXEL_MAX_DEPTH }; /* squares a side, at most */
+
+/* Pixel (i, j)'s points (i + a/cells, j + b/cells), traced when needed. */
+typedef struct {
+    const scene *s;
+    const camera_view *view;
+    render_stats *stats;
+    int i, j, cells;   /* cells = 2^depth squares a side */
+    int rays, deepest; /* traced for this pixel; the depth reached */
+    bool traced[FINEST + 1][FINEST + 1];
+    vec3 color[FINEST + 1][FINEST + 1];
+} pixel_points;
+
+static vec3 point_color(pixel_points *p, int a, int b)
+{
+    if (!p->traced[b][a]) {
+        double u, v;
+        pixel_point_at(&p->s->pixels, p->i, p->j, a, b, &u, &v);
+        p->color[b][a] = color_at(p->s, p->view, u, v, p->stats);
+        p->traced[b][a] = true;
+        p->rays++;
+    }
+    return p->color[b][a];
+}
+/* <<a square's mean>> ch12 */
+
+/* The mean colour of the square of size x size steps whose top left
+ * point is (a, b), at depth. */
+static vec3 square_mean(pixel_points *p, int a, int b, int size, int depth)
+{
+    const pixel_sampling *ps = &p->s->pixels;
+    vec3 c[4] = {point_color(p, a, b), point_color(p, a + size, b),
+                 point_color(p, a, b + size),
+                 point_color(p, a + size, b + size)};
+    bool divide = depth < ps->depth &&
+                  (depth < ps->min_depth || pixel_corners_differ(ps, c));
+    if (!divide) {
+        p->deepest = depth > p->deepest ? depth : p->deepest;
+        return vec3_scale(vec3_add(vec3_add(c[0], c[1]),
+                                   vec3_add(c[2], c[3])), 0.25);
+    }
+    int h = size / 2;
+    vec3 top = vec3_add(square_mean(p, a, b, h, depth + 1),
+                        square_mean(p, a + h, b, h, depth + 1));
+    vec3 bottom = vec3_add(square_mean(p, a, b + h, h, depth + 1),
+                           square_mean(p, a + h, b + h, h, depth + 1));
+    return vec3_scale(vec3_add(top, bottom), 0.25);
+}
+/* <<an adaptive pixel>> ch12 */
+
+/* Pixel (i, j) by Whitted's scheme; top[0], top[1] are its upper corners,
+ * bottom[0], bottom[1] its lower ones. */
+static vec3 adaptive_pixel(const scene *s, const camera_view *view, int i,
+                           int j, const vec3 *top, const vec3 *bottom,
+                           render_stats *stats, int *rays)
+{
+    pixel_points p; /* only the marks of this depth's points are cleared */
+    int n = 1 << s->pixels.depth;
+    p.s = s, p.view = view, p.stats = stats, p.i = i, p.j = j, p.cells = n;
+    p.rays = 0, p.deepest = 0;
+    for (int b = 0; b <= n; b++)
+        memset(p.traced[b], 0, (size_t)(n + 1) * sizeof p.traced[b][0]);
+    p.color[0][0] = top[0], p.color[0][n] = top[1];
+    p.color[n][0] = bottom[0], p.color[n][n] = bottom[1];
+    p.traced[0][0] = p.traced[0][n] = p.traced[n][0] = p.traced[n][n] =
+        true;
+    vec3 c = square_mean(&p, 0, 0, n, 0);
+    stats->pixel_depths[p.deepest]++;
+    *rays = p.rays + 1; /* and its share of the corners: one */
+    return c;
+}
+/* <<rows of sampled pixels>> ch12 */
+
+/* Pixel (i, j) into img: its colour c, or its rays on the heat map. */
+static void show_pixel(const scene *s, image *img, int i, int j, vec3 c,
+                       int rays, render_stats *stats)
+{
+    stats->pixel_rays[rays]++;
+    if (s->pixels.heatmap > 0)
+        c = rays_heat(rays, s->pixels.heatmap);
+    image_set(img, i, j, c);
+}
+
+/* Pixels i0 <= i < i1 of rows [first, last), adaptive: the corners kept
+ * two rows at a time, the row above and the row below. */
+static void adaptive_strip(const scene *s, image *img,
+                           const camera_view *view, int i0, int i1,
+                           int first, int last, render_stats *stats)
+{
+    vec3 rows[2][STRIP + 1], *top = rows[0], *bottom = rows[1];
+    corner_row(s, view, i0, i1, first, top, stats);
+    for (int j = first; j < last; j++) {
+        corner_row(s, view, i0, i1, j + 1, bottom, stats);
+        for (int i = i0; i < i1; i++) {
+            int rays;
+            vec3 c = adaptive_pixel(s, view, i, j, &top[i - i0],
+                                    &bottom[i - i0], stats, &rays);
+            show_pixel(s, img, i, j, c, rays, stats);
+        }
+        vec3 *above = top;
+        top = bottom, bottom = above; /* this row's bottom is the next top */
+    }
+}
+
+static void render_rows_sampled(const scene *s, image *img,
+                                const camera_view *view, int first,
+                                int last, render_stats *stats)
+{
+    if (s->pixels.pattern == PIXEL_ADAPTIVE) {
+        for (int i0 = 0; i0 < img->width && first < last; i0 += STRIP)
+            adaptive_strip(s, img, view, i0,
+                           img->width - i0 < STRIP ? img->width : i0 + STRIP,
+                           first, last, stats);
+        return;
+    }
+    for (int j = first; j < last; j++)
+        for (int i = 0; i < img->width; i++) {
+            int rays;
+            vec3 c = sampled_pixel(s, view, i, j, stats, &rays);
+            show_pixel(s, img, i, j, c, rays, stats);
+        }
+}
+
+void render_rows(const scene *s, image *img, int first, int last,
+                 render_stats *stats)
+{
+    /* the contract, checked: a caller's mistake, not bad input */
+    assert(img->width == s->cam.width && img->height == s->cam.height);
+    assert(0 <= first && first <= last && last <= img->height);
+    camera_view view = camera_view_of(&s->cam);
+    /* <<draw the rows another way>> ch12 */
+    if (s->pixels.pattern != PIXEL_CENTER || s->pixels.heatmap > 0) {
+        render_rows_sampled(s, img, &view, first, last, stats);
+        return;
+    }
+    for (int j = first; j < last; j++) {
+        for (int i = 0; i < img->width; i++) {
+            ray r = camera_view_ray(&view, i, j);
+            stats->primary_rays++;
+            image_set(img, i, j, pixel_color(s, r, stats));
+        }
+    }
+}
+
+void render(const scene *s, image *img, render_stats *stats)
+{
+    render_rows(s, img, 0, img->height, stats);
+}
+
+/* <<rendering in bands>> ch11 */
+/* <<the threads' shared work>> ch11 */
+/* What every thread shares: the image, handed out band by band, and how
+ * far it has come, which the reporter reads. */
+typedef struct {
+    const scene *s;
+    image *img;
+    int band_rows; /* rows_per_band of the image */
+    atomic_int next_band, rows_done;
+    atomic_llong rays_done;
+    const render_settings *how;
+    pthread_mutex_t lock; /* one report at a time; guards finished */
+    pthread_cond_t wake;  /* the reporter's, when the image is done */
+    bool finished;
+} band_queue;
+
+/* Rows a band: BAND_ROWS, or fewer in a picture of fewer than BAND_ROWS
+ * bands, so that several threads share even a small one. A function of
+ * the height alone: the bands, and what they count, are the same on any
+ * number of threads. */
+static int rows_per_band(int height)
+{
+    int rows = height / BAND_ROWS; /* for BAND_ROWS bands at least */
+    return rows < 1 ? 1 : rows < BAND_ROWS ? rows : BAND_ROWS;
+}
+
+static long long greatest_common_divisor(long long a, long long b)
+{
+    while (b != 0) {
+        long long r = a % b;
+        a = b, b = r;
+    }
+    return a;
+}
+
+/* The band drawn at turn t of n: each turn steps about 0.618 of the image
+ * down from the last, wrapping around (a step that shares no factor with
+ * n, so that n turns draw every band once), which spreads the bands done
+ * at any moment evenly over the image. */
+static int band_of_turn(int t, int n)
+{
+    long long step = (long long)(0.6180339887 * n);
+    while (greatest_common_divisor(step, n) != 1)
+        step++; /* 1 and n share none: it ends */
+    return (int)((long long)t * step % n);
+}
+
+/* Every ray a render has traced: primary, shadow and secondary. */
+static long long rays_of(const render_stats *st)
+{
+    return st->primary_rays + st->shadow_rays + st->reflection_rays +
+           st->refraction_rays;
+}
+
+/* A thread's part: its own counts, on a cache line of their own. */
+typedef struct {
+    _Alignas(64) render_stats stats;
+    band_queue *queue;
+    pthread_t thread;
+} band_worker;
+
+static int cores_online(void)
+{
+    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    return n < 1 ? 1 : n > 256 ? 256 : (int)n;
+}
+
+/* <<a thread's bands>> ch11 */
+/* The next band of rows [*first, *last); false when none is left. */
+static bool take_band(band_queue *q, int *first, int *last)
+{
+    int turn = atomic_fetch_add(&q->next_band, 1);
+    int bands = (q->img->height + q->band_rows - 1) / q->band_rows;
+    if (turn >= bands)
+        return false;
+    *first = band_of_turn(turn, bands) * q->band_rows;
+    *last = *first + q->band_rows < q->img->height ? *first + q->band_rows
+                                                   : q->img->height;
+    return true;
+}
+
+static void render_band(band_worker *w, int first, int last)
+{
+    long long before = rays_of(&w->stats);
+    render_rows(w->queue->s, w->queue->img, first, last, &w->stats);
+    atomic_fetch_add(&w->queue->rays_done, rays_of(&w->stats) - before);
+    atomic_fetch_add(&w->queue->rows_done, last - first);
+}
+
+static void *band_thread(void *worker)
+{
+    band_worker *w = worker;
+    int first, last;
+    while (take_band(w->queue, &first, &last))
+        render_band(w, first, last);
+    return NULL;
+}
+
+/* <<the reporter>> ch11 */
+/* The progress so far, shown by one thread at a time. */
+static void report(band_queue *q)
+{
+    pthread_mutex_lock(&q->lock);
+    q->how->progress(q->how->progress_context, atomic_load(&q->rows_done),
+                     q->img->height, atomic_load(&q->rays_done));
+    pthread_mutex_unlock(&q->lock);
+}
+
+/* The reporter's life: the progress four times a second, until the image
+ * is finished (the whole image's is the calling thread's to show). */
+static void *report_thread(void *queue)
+{
+    band_queue *q = queue;
+    pthread_mutex_lock(&q->lock);
+    while (!q->finished) {
+        struct timespec until = moment_deadline(0.25);
+        pthread_cond_timedwait(&q->wake, &q->lock, &until);
+        if (!q->finished && atomic_load(&q->rows_done) < q->img->height)
+            q->how->progress(q->how->progress_context,
+                             atomic_load(&q->rows_done), q->img->height,
+                             atomic_load(&q->rays_done));
+    }
+    pthread_mutex_unlock(&q->lock);
+    return NULL;
+}
+
+/* Tells the reporter that the image is done, and waits for it. */
+static void stop_reporter(band_queue *q, pthread_t reporter)
+{
+    pthread_mutex_lock(&q->lock);
+    q->finished = true;
+    pthread_cond_signal(&q->wake);
+    pthread_mutex_unlock(&q->lock);
+    pthread_join(reporter, NULL);
+}
+
+/* <<adding up the threads' counts>> ch11 */
+_Static_assert(sizeof(render_stats) % sizeof(long long) == 0,
+               "render_stats holds counts (long long) only");
+
+/* Adds the counts of part to sum. */
+static void add_stats(render_stats *sum, const render_stats *part)
+{
+    enum { N = sizeof(render_stats) / sizeof(long long) };
+    long long a[N], b[N];
+    memcpy(a, sum, sizeof a), memcpy(b, part, sizeof b);
+    for (int k = 0; k < N; k++)
+        a[k] += b[k];
+    memcpy(sum, a, sizeof a);
+}
+
+/* <<the threads at work>> ch11 */
+void render_in_bands(const scene *s, image *img, const render_settings *how,
+                     render_stats *stats)
+{
+    band_queue q = {.s = s, .img = img, .how = how,
+                    .band_rows = rows_per_band(img->height)};
+    atomic_init(&q.next_band, 0), atomic_init(&q.rows_done, 0);
+    atomic_init(&q.rays_done, 0);
+    pthread_mutex_init(&q.lock, NULL), moment_condition_init(&q.wake);
+    band_worker one, *w = NULL;
+    int n = how->threads > 0 ? how->threads : cores_online();
+    int started = 1, first, last;
+    if (n > 1)
+        w = memory_alloc_aligned(64, (size_t)n, sizeof *w);
+    if (w == NULL)
+        w = &one, n = 1; /* out of memory: this thread alone */
+    for (int k = 0; k < n; k++)
+        w[k] = (band_worker){.queue = &q};
+    while (started < n &&
+           pthread_create(&w[started].thread, NULL, band_thread,
+                          &w[started]) == 0)
+        started++; /* a thread that cannot start leaves its share to us */
+    pthread_t reporter; /* none: the progress between our bands only */
+    bool reporting = how->progress != NULL &&
+                     pthread_create(&reporter, NULL, report_thread, &q) == 0;
+    while (take_band(&q, &first, &last)) { /* this thread is worker 0 */
+        render_band(&w[0], first, last);
+        if (how->progress != NULL && !reporting)
+            report(&q);
+    }
+    for (int k = 1; k < started; k++)
+        pthread_join(w[k].thread, NULL);
+    if (reporting) {
+        stop_reporter(&q, reporter);
+        report(&q); /* the whole image: a terminal's bar ends */
+    }
+    for (int k = 0; k < started; k++)
+        add_stats(stats, &w[k].stats);
+    pthread_mutex_destroy(&q.lock), pthread_cond_destroy(&q.wake);
+    if (w != &one)
+        free(w);
+}

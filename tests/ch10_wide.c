@@ -1,0 +1,368 @@
+/* ch10_wide.c: chapter 10's wide nodes and packet leaves: the same
+ * answers as brute force and as chapter 8's kd-tree, bit for bit, at
+ * widths 4 and 8 (with AVX2 chosen at run time and without); vector and
+ * scalar node tests that agree; wide nodes and packets that hold their
+ * items; the BVH's bytes; and the accelerator bvh-float. */
+#include <check.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bvh.h"
+#include "memory.h"
+#include "mesh.h"
+#include "rng.h"
+#include "scene_file.h"
+#include "test_util.h"
+
+_Static_assert(sizeof(bvh_node4) == 128, "a 4-wide node, two lines");
+_Static_assert(sizeof(bvh_node8) == 256, "an 8-wide node, four lines");
+
+/* From tests/ch09_bvh.c. */
+mesh ch09_load(const char *path);
+mesh ch09_bare(const mesh *m);
+mesh ch09_with_bvh(const mesh *m, const bvh_params *p);
+void ch09_expect_agreement(const mesh *m, int count, const char *what,
+                           const bvh_params *p);
+mesh ch09_plane_mesh(int n, vec3 offset, double size);
+mesh ch09_fan_mesh(int n, vec3 centre);
+void ch09_expect_edges_and_faces(const bvh_params *p);
+box *ch09_random_boxes(rng_state *r, int count, vec3 centre, double spread,
+                       double size);
+bool ch09_holds(const float f[6], const box *b);
+
+static const rng_state RNG_START = {0xB7Bu};
+static rng_state rng;
+
+/* Each test draws the same numbers, whichever tests ran before it. */
+static void reseed(void) { rng = RNG_START; }
+
+/* m's BVH 4 and 8 wide, and 8 again with the walk kept from AVX2,
+ * against brute force and the kd-tree. */
+static void expect_agreement(const mesh *m, int count, const char *what)
+{
+    for (int run = 0; run < 3; run++) {
+        bvh_allow_avx2(run < 2);
+        ch09_expect_agreement(m, count, what,
+                              &(bvh_params){.width = run == 0 ? 4 : 8});
+        bvh_allow_avx2(true);
+    }
+}
+
+START_TEST(test_wide_bvh_agrees_with_brute_force_and_kdtree_on_the_teapot)
+{
+    mesh m = ch09_load("meshes/teapot-8.obj");
+    expect_agreement(&m, 400, "teapot");
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_wide_bvh_agrees_with_brute_force_and_kdtree_on_the_bunny)
+{
+    mesh m = ch09_load("meshes/bunny.obj");
+    expect_agreement(&m, 30, "bunny"); /* brute force: 1 ms a ray */
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_wide_bvh_agrees_on_coincident_triangles_near_and_far)
+{
+    const vec3 at[3] = {{0, 0, 0}, {1e6, -1e6, 1e6}, {3e-3, 0, 0}};
+    const double size[3] = {1, 10, 1e-5};
+    for (int k = 0; k < 3; k++) {
+        mesh m = ch09_plane_mesh(12, at[k], size[k]);
+        expect_agreement(&m, 300, "coincident planes");
+        mesh_free(&m);
+    }
+}
+END_TEST
+
+START_TEST(test_wide_bvh_agrees_on_fans_through_one_vertex)
+{
+    mesh m = ch09_fan_mesh(300, (vec3){0.25, -0.5, 4});
+    expect_agreement(&m, 300, "fan");
+    mesh_free(&m);
+    m = ch09_fan_mesh(64, (vec3){2e6, 1e6, -3e6});
+    expect_agreement(&m, 300, "far fan");
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_wide_rays_along_edges_and_faces_find_their_hits)
+{
+    ch09_expect_edges_and_faces(&(bvh_params){.width = 4});
+    ch09_expect_edges_and_faces(&(bvh_params){.width = 8});
+}
+END_TEST
+
+/* ------------------------------------------------------------ nodes */
+
+/* A random float in [-1, 1] times a random power of two, or a face. */
+static float random_coordinate(void)
+{
+    return (float)((2 * rng_uniform01(&rng) - 1) *
+                   pow(2, (int)(rng_uniform01(&rng) * 40) - 20));
+}
+
+static void random_node(bvh_node8 *n, int lanes)
+{
+    for (int c = 0; c < 8; c++) {
+        for (int a = 0; a < 3; a++) {
+            float x = random_coordinate(), y = random_coordinate();
+            n->box[a][c] = x < y ? x : y, n->box[a + 3][c] = x < y ? y : x;
+            if (c >= lanes) /* unused: empty */
+                n->box[a][c] = INFINITY, n->box[a + 3][c] = -INFINITY;
+        }
+        n->child[c] = c < lanes ? (uint32_t)c : BVH_NO_CHILD, n->count[c] = 0;
+    }
+}
+
+/* A ray at the node: from one of its faces, along an axis, or random. */
+static ray random_ray(const bvh_node8 *n, int k)
+{
+    ray r = {{random_coordinate(), random_coordinate(), random_coordinate()},
+             {random_coordinate(), random_coordinate(), random_coordinate()}};
+    if (k % 3 == 0) /* on a face's plane and parallel to it: 0 * inf */
+        r.origin.x = n->box[k % 2 ? 0 : 3][k % 8], r.dir.x = 0;
+    if (k % 5 == 0) /* from a corner, along an edge */
+        r.origin = (vec3){n->box[0][k % 8], n->box[1][k % 8], n->box[5][k % 8]},
+        r.dir = (vec3){k % 2 ? 1 : -0.0, 0, 0};
+    return r;
+}
+
+START_TEST(test_vector_and_scalar_node_tests_agree)
+{
+    bvh_node8 n8;
+    bvh_node4 n4;
+    int hits = 0;
+    for (int k = 0; k < 20000; k++) {
+        random_node(&n8, 1 + k % 8);
+        for (int f = 0; f < 6; f++)
+            memcpy(n4.box[f], n8.box[f], sizeof n4.box[f]);
+        ray r = random_ray(&n8, k);
+        bvh_ray br;
+        if (!bvh_ray_of(r.origin, ray_inverse_dir(r), 0, INFINITY, &br))
+            continue;
+        float t_max = k % 4 ? INFINITY : (float)rng_uniform01(&rng);
+        float v8[8], s8[8], v4[4], s4[4];
+        unsigned m8 = bvh_node8_test_vector(&n8, &br, t_max, v8);
+        if (bvh_walks_with_avx2()) { /* AVX2's eight lanes as well */
+            float a8[8];
+            ck_assert_uint_eq(bvh_node8_test_avx2(&n8, &br, t_max, a8), m8);
+            ck_assert(memcmp(a8, v8, sizeof a8) == 0);
+        }
+        unsigned m4 = bvh_node4_test_vector(&n4, &br, t_max, v4);
+        ck_assert_uint_eq(m8, bvh_lanes_test_scalar(&n8.box[0][0], 8, 8, &br,
+                                                    t_max, s8));
+        ck_assert_uint_eq(m4, bvh_lanes_test_scalar(&n4.box[0][0], 4, 4, &br,
+                                                    t_max, s4));
+        ck_assert(memcmp(v8, s8, sizeof v8) == 0);
+        ck_assert(memcmp(v4, s4, sizeof v4) == 0);
+        hits += __builtin_popcount(m8);
+    }
+    ck_assert_int_gt(hits, 1000); /* the rays meet boxes, not only miss */
+}
+END_TEST
+
+/* The wide nodes' lanes hold the items of their leaves. */
+START_TEST(test_wide_nodes_hold_their_leaves_items)
+{
+    box *b = ch09_random_boxes(&rng, 3000, (vec3){1e6, 2, -3}, 10, 0.5);
+    for (int width = 4; width <= 8; width *= 2) {
+        bvh t;
+        ck_assert(bvh_build(&t, 3000, b, &(bvh_params){.width = width}));
+        int items = 0;
+        for (int k = 0; k < t.node_count; k++)
+            for (int c = 0; c < width; c++) {
+                const float *box = width == 4 ? &t.nodes4[k].box[0][0]
+                                              : &t.nodes8[k].box[0][0];
+                uint32_t first = width == 4 ? t.nodes4[k].child[c]
+                                            : t.nodes8[k].child[c];
+                uint32_t n = width == 4 ? t.nodes4[k].count[c]
+                                        : t.nodes8[k].count[c];
+                for (uint32_t i = 0; i < n; i++, items++) {
+                    float f[6];
+                    for (int face = 0; face < 6; face++)
+                        f[face] = box[face * width + c];
+                    ck_assert(ch09_holds(f, &b[t.items[first + i]]));
+                }
+            }
+        ck_assert_int_eq(items, 3000); /* every item in exactly one leaf */
+        bvh_free(&t);
+    }
+    free(b);
+}
+END_TEST
+
+/* The leaf of reference c of node k of t (count 0: none): its first
+ * packet and its triangles. */
+static uint32_t leaf_of(const bvh *t, int k, int c, uint32_t *count)
+{
+    if (t->width == 2)
+        return *count = t->nodes[k].count, t->nodes[k].index;
+    if (t->width == 4)
+        return *count = t->nodes4[k].count[c], t->nodes4[k].child[c];
+    return *count = t->nodes8[k].count[c], t->nodes8[k].child[c];
+}
+
+START_TEST(test_every_leaf_s_packets_hold_its_triangles)
+{
+    mesh m = ch09_load("meshes/teapot-8.obj");
+    for (int width = 2; width <= 8; width *= 2) {
+        mesh b = ch09_with_bvh(&m, &(bvh_params){.width = width});
+        int *seen = memory_alloc((size_t)m.triangle_count, sizeof *seen);
+        ck_assert_ptr_nonnull(seen);
+        memset(seen, 0, (size_t)m.triangle_count * sizeof *seen);
+        int packets = 0, refs = width == 2 ? 1 : width;
+        for (int k = 0; k < b.bvh.node_count; k++)
+            for (int c = 0; c < refs; c++) {
+                uint32_t count, first = leaf_of(&b.bvh, k, c, &count);
+                int n = (int)(count + PACKET_W - 1) / PACKET_W;
+                for (int lane = 0; lane < n * PACKET_W; lane++) {
+                    const triangle_packet *q = &b.bvh_packets[first +
+                                                lane / PACKET_W];
+                    int i = q->triangle[lane % PACKET_W];
+                    ck_assert_int_eq(i >= 0, lane < (int)count);
+                    if (i < 0)
+                        continue;
+                    seen[i]++;
+                    vec3 v = m.vertices[m.triangles[i].v[2]];
+                    ck_assert(q->corner[2][1][lane % PACKET_W] == (float)v.y);
+                }
+                packets += n;
+            }
+        for (int i = 0; i < m.triangle_count; i++)
+            ck_assert_int_eq(seen[i], 1); /* each in exactly one lane */
+        ck_assert_int_eq(packets, b.bvh_packet_count);
+        free(seen);
+        mesh_free_tree(&b);
+    }
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_the_bvh_of_a_mesh_stays_within_its_bytes)
+{
+    const char *paths[] = {"meshes/bunny.obj", "meshes/teapot-8.obj"};
+    for (int k = 0; k < 2; k++) {
+        mesh m = ch09_load(paths[k]);
+        mesh b = ch09_bare(&m);
+        ck_assert(mesh_build_bvh(&b, &(bvh_params){0}));
+        double bytes = (double)mesh_tree_bytes(&b) / m.triangle_count;
+        ck_assert_msg(bytes <= MESH_BVH_MAX_BYTES_PER_TRIANGLE,
+                      "%s: %.1f bytes a triangle", paths[k], bytes);
+        mesh_free_tree(&b);
+        mesh_free(&m);
+    }
+}
+END_TEST
+
+START_TEST(test_running_out_of_memory_in_a_wide_build_leaves_no_tree)
+{
+    mesh m = ch09_load("meshes/teapot-8.obj");
+    int failed = 0;
+    for (long n = 0; n < 12; n++) {
+        mesh b = ch09_bare(&m);
+        memory_fail_after(n);
+        bool ok = mesh_build_bvh(&b, &(bvh_params){.width = 4 << (n % 2)});
+        memory_fail_after(-1);
+        failed += !ok;
+        ck_assert(ok || (b.bvh.node_count == 0 && b.bvh_packets == NULL));
+        mesh_free_tree(&b);
+    }
+    ck_assert_int_gt(failed, 3);
+    mesh_free(&m);
+}
+END_TEST
+
+/* ------------------------------------------------------------ in float */
+
+START_TEST(test_bvh_float_decides_the_bvh_s_leaves_in_float)
+{
+    link_meshes();
+    /* the statement, and --accelerator bvh over it */
+    for (int k = 0; k < 2; k++) {
+        scene s;
+        scene_error err;
+        char *path = (char *)write_file(
+            "choose.scene",
+            "accelerator bvh-float\nmesh file meshes/teapot-8.obj\n");
+        scene_init(&s);
+        if (k == 1)
+            s.accelerator_option = MESH_ACCELERATOR_BVH;
+        ck_assert_msg(scene_load(&s, path, &err), "%s", err.message);
+        ck_assert(s.meshes[0].bvh.node_count > 0);
+        ck_assert_int_eq(s.meshes[0].bvh_in_float, k == 0);
+        scene_free(&s);
+    }
+}
+END_TEST
+
+START_TEST(test_bad_accelerator_words_name_all_three)
+{
+    expect_parse_error("accelerator bvh-double\n", 1, 13,
+                       "accelerator (kdtree, bvh, bvh-float)");
+    char errors[1024];
+    const char *out = tmp_path("never.png");
+    const char *args[] = {"--accelerator", "bvh-floats", "-o", out, NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+    ck_assert_msg(strstr(errors, "--accelerator expects kdtree, bvh or "
+                                 "bvh-float"),
+                  "%s", errors);
+    ck_assert(!file_exists(out));
+}
+END_TEST
+
+START_TEST(test_a_kd_tree_heat_map_over_float_bvhs_is_refused)
+{
+    char errors[1024], out[200], scene[200]; /* tmp_path's buffer is reused */
+    snprintf(scene, sizeof scene, "%s",
+             write_file("heat.scene", "kdtree heatmap 60\n"));
+    snprintf(out, sizeof out, "%s", tmp_path("never.png"));
+    const char *args[] = {scene, "--accelerator", "bvh-float", "-o", out,
+                          NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 1);
+    ck_assert_msg(strstr(errors, "--accelerator bvh-float gives the meshes"),
+                  "%s", errors);
+    ck_assert(!file_exists(out));
+    expect_parse_error("kdtree heatmap 60\naccelerator bvh-float\n", 2, 1,
+                       "heat map draws kd-tree nodes");
+}
+END_TEST
+
+Suite *ch10_wide_suite(void)
+{
+    Suite *s = suite_create("ch10 wide");
+    TCase *agree = tcase_create("agreement");
+    tcase_add_checked_fixture(agree, reseed, NULL);
+    tcase_set_timeout(agree, 120);
+    tcase_add_test(
+        agree, test_wide_bvh_agrees_with_brute_force_and_kdtree_on_the_teapot);
+    tcase_add_slow_test(
+        agree, test_wide_bvh_agrees_with_brute_force_and_kdtree_on_the_bunny);
+    tcase_add_test(agree,
+                   test_wide_bvh_agrees_on_coincident_triangles_near_and_far);
+    tcase_add_test(agree, test_wide_bvh_agrees_on_fans_through_one_vertex);
+    tcase_add_test(agree, test_wide_rays_along_edges_and_faces_find_their_hits);
+    suite_add_tcase(s, agree);
+    TCase *nodes = tcase_create("nodes and packets");
+    tcase_add_checked_fixture(nodes, reseed, NULL);
+    tcase_set_timeout(nodes, 120);
+    tcase_add_test(nodes, test_vector_and_scalar_node_tests_agree);
+    tcase_add_test(nodes, test_wide_nodes_hold_their_leaves_items);
+    tcase_add_test(nodes, test_every_leaf_s_packets_hold_its_triangles);
+    tcase_add_test(nodes, test_the_bvh_of_a_mesh_stays_within_its_bytes);
+    tcase_add_test(nodes,
+                   test_running_out_of_memory_in_a_wide_build_leaves_no_tree);
+    suite_add_tcase(s, nodes);
+    TCase *in_float = tcase_create("in float");
+    tcase_add_checked_fixture(in_float, make_tmpdir, remove_tmpdir);
+    tcase_add_test(in_float, test_bvh_float_decides_the_bvh_s_leaves_in_float);
+    tcase_add_test(in_float, test_bad_accelerator_words_name_all_three);
+    tcase_add_test(in_float,
+                   test_a_kd_tree_heat_map_over_float_bvhs_is_refused);
+    suite_add_tcase(s, in_float);
+    return s;
+}
