@@ -311,7 +311,7 @@ multiplier=$(awk -v g="$GRADE_TIMEOUT" -v b="$busy" 'BEGIN { printf "%.3g", g / 
 run_tests() {
     RUNNER_ONLY=${4:-} CK_FORK=yes CK_VERBOSITY=verbose \
     CK_DEFAULT_TIMEOUT=10 CK_TIMEOUT_MULTIPLIER=$multiplier \
-    CHAPTER_BIN=$2 timeout 1800 sh "$tools_dir/run_shards.sh" "$1" > "$3" 2>&1
+    CHAPTER_BIN=$2 timeout 1800 sh "$tools_dir/../checks/run_shards.sh" "$1" > "$3" 2>&1
 }
 
 run_suites() {
