@@ -43,6 +43,7 @@ function attribute(line, key) {
 # TeX of inline math ($...$) as plain text, for a file read as it is:
 # $2^{-53}$ is 2^-53, $t_\text{max}$ t_max, $\lceil n/W \rceil$ ceil(n/W).
 function plain_math(tex) {
+    gsub(/\\[,;:!]/, "", tex)
     gsub(/\\text\{/, "{", tex)
     gsub(/\\lceil */, "ceil(", tex)
     gsub(/ *\\rceil/, ")", tex)
@@ -67,9 +68,9 @@ function plain_line(line,    out) {
     return out line
 }
 
-# The notes' text so far, joined into paragraphs.
+# The notes' text so far, joined into paragraphs (their math made plain
+# when written: a formula may span lines).
 function add_note(line) {
-    line = plain_line(line)
     if (section == "task")
         task = task line "\n"
     else if (section == "hint")
@@ -193,7 +194,7 @@ function write_exercise(    code, tests_list, fence_attr, note) {
     tests_list = tests
     gsub(/ +/, "`\n- `", tests_list)
     printf "## Exercise %s: %s \"%s\"\n\n", id, kind, key
-    printf "%s\n\n", trim_end(task)
+    printf "%s\n\n", plain_line(trim_end(task))
     note = keep_note()
     if (note != "")
         printf "%s\n\n", wrapped(note)
@@ -203,7 +204,7 @@ function write_exercise(    code, tests_list, fence_attr, note) {
     printf "Graded by `make grade-ch%02d`, with the tests:\n\n- `%s`\n\n", \
         number, tests_list
     printf "<details><summary>Hint (also: make hint EX=%s)</summary>\n\n", id
-    printf "%s\n\n</details>\n\n", trim_end(hint)
+    printf "%s\n\n</details>\n\n", plain_line(trim_end(hint))
     code = exercise_code(key)
     fence_attr = kind "=\"" key "\" .replace .exercise ex=\"" id "\""
     printf "```{.c %s}\n%s\n", fence_attr, code
