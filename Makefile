@@ -432,7 +432,8 @@ chart-ch10_profile-plain: $(B)/bench/ch10_profile | deps
 
 # Chapter 12's chart of the programs in the page: each chapter's own scene
 # rendered in the book's page (headless Chromium) and by bin/chNN, the
-# everyday build, on one thread (tools/checks/page_check.sh --speed). It needs
+# everyday build, and by the same programs built by clang, the page's
+# compiler, on one thread (tools/checks/page_check.sh --speed). It needs
 # Chromium and the programs for the page; make charts draws it where it can.
 .PHONY: chart-ch12_page chart-ch12_page-plain
 PAGE_SPEED_SIZE := 640x480
@@ -440,6 +441,8 @@ PAGE_SPEED_ROUNDS := 11
 chart-ch12_page: | deps
 	+@$(MAKE) --no-print-directory LTO= chart-ch12_page-plain
 chart-ch12_page-plain: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n)) | deps
+	+$(MAKE) --no-print-directory CC=clang $(foreach n,$(NUMS),build/rel-clang/bin/ch$(n))
+	PAGE_SPEED_CLANG_BIN=build/rel-clang/bin \
 	sh tools/checks/page_check.sh --speed figures/ch12-page.csv.tmp $(PAGE_SPEED_ROUNDS) \
 	  build/book.html $(BIN) $(PAGE_SPEED_SIZE) $(NUMS)
 	mv figures/ch12-page.csv.tmp figures/ch12-page.csv

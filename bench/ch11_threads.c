@@ -20,9 +20,19 @@
  *   terrain-render,1|2,ns_per_render,ms,render_ms
  *   terrain-build,1|2,ns_per_build,ms,build_ms (its trees, as --stats says)
  *   terrain-read,1|2,ns_per_read,ms,read_ms (the loading but the trees)
- * and the serial share of the whole run and of each phase that Amdahl's
- * law gives for the medians on two cores (2 t2 / t1 - 1, in per cent):
- *   serial,whole|terrain|terrain-read|terrain-build|terrain-render,0,
+ * the parts of a run that stay on one thread, as --stats times them (its
+ * "one-thread time" line and the PNG's writing), and the rest of the
+ * whole run that no phase holds (the process's start and end):
+ *   terrain-file|terrain-arrays|terrain-gaps|terrain-collapse|
+ *   terrain-write|terrain-rest,1|2,ns,ms,ms
+ *   terrain-serial,1|2,ns,ms,ms (their sum, run by run)
+ * the share of the whole run on one core that they take, and the time on
+ * two cores that Amdahl's law gives for that share:
+ *   serial,measured,0,percent,percent   amdahl,2,ns,ms,predicted_ms
+ * and Karp and Flatt's experimentally determined serial fraction of the
+ * whole run and of each phase, from the medians on one core and on two
+ * (2 t2 / t1 - 1, in per cent):
+ *   karp-flatt,whole|terrain|terrain-read|terrain-build|terrain-render,0,
  *   percent,percent */
 #include <stdbool.h>
 #include <stdio.h>
@@ -35,27 +45,35 @@
 
 enum { THREAD_ROUNDS = 7, WHOLE_ROUNDS = 5, TERRAIN_SIDE = 1000 };
 
-/* Runs bin SCENE --threads N --stats once: the render phase and the scene
- * phase (reading the files, building the trees), and the trees' build in
- * it, as it reports them, in ms of the wall clock; false when the binary
+/* What one run of bin --stats reports, in ms of the wall clock: its
+ * phases, the trees' build in the scene's, and the steps on one thread. */
+typedef struct {
+    double render, load, build, write;
+    double file, arrays, gaps, collapse; /* "one-thread time" */
+} run_report;
+
+/* Runs bin SCENE --threads N --stats once, into *r; false when the binary
  * or the scene is not there, or it fails. */
-static bool run_renderer(const char *bin, const char *scene, int threads, double *render,
-                         double *load, double *build)
+static bool run_renderer(const char *bin, const char *scene, int threads, run_report *r)
 {
     char command[512];
     snprintf(command, sizeof command, "%s %s --threads %d --stats -o /dev/null 2>&1", bin,
              scene, threads);
     FILE *p = popen(command, "r");
     char line[256];
-    *render = 0, *load = 0, *build = 0;
+    *r = (run_report){0};
     while (p != NULL && fgets(line, sizeof line, p) != NULL) {
         if (strncmp(line, "trees built in ", 15) == 0)
-            *build = atof(line + 15);
+            r->build = atof(line + 15);
         const char *at = strstr(line, "render "), *scene_at = strstr(line, "scene ");
-        if (strncmp(line, "time ", 5) == 0 && at && scene_at) /* the wall clock's line */
-            *render = atof(at + 7), *load = atof(scene_at + 6);
+        const char *write_at = strstr(line, "write ");
+        if (strncmp(line, "time ", 5) == 0 && at && scene_at && write_at) /* the wall clock's */
+            r->render = atof(at + 7), r->load = atof(scene_at + 6), r->write = atof(write_at + 6);
+        if (strncmp(line, "one-thread time ", 16) == 0)
+            sscanf(strstr(line, "file read"), "file read %lf ms, arrays %lf ms, gaps %lf ms, "
+                   "collapse %lf ms", &r->file, &r->arrays, &r->gaps, &r->collapse);
     }
-    return p != NULL && pclose(p) == 0 && *render > 0;
+    return p != NULL && pclose(p) == 0 && r->render > 0;
 }
 
 /* The bunny scene, rendered on one core and on two in turns: the render
@@ -68,12 +86,12 @@ static int threads(void)
     for (int r = 0; r < THREAD_ROUNDS; r++)
         for (int j = 0; j < 2; j++) {
             int k = (r + j) % 2; /* 1 then 2 threads, then 2 then 1 */
-            double ms = 0, load_ms = 0, build_ms;
-            if (!run_renderer(bin, scene, k + 1, &ms, &load_ms, &build_ms)) {
+            run_report run;
+            if (!run_renderer(bin, scene, k + 1, &run)) {
                 fprintf(stderr, "ch11_threads: cannot run %s %s\n", bin, scene);
                 return 1; /* run from the top of the repository, after make */
             }
-            render[k][r] = 1e6 * ms, load[2 * r + k] = 1e6 * load_ms;
+            render[k][r] = 1e6 * run.render, load[2 * r + k] = 1e6 * run.load;
         }
     bench_timing t[2], loading;
     for (int k = 0; k < 2; k++) {
@@ -117,6 +135,33 @@ static double wall_ms(void)
     return 1e3 * (double)t.tv_sec + 1e-6 * (double)t.tv_nsec;
 }
 
+/* The phases and the parts of the terrain's runs: what a round measured
+ * of each, in ns, for one thread and for two. */
+enum { WHOLE, LOADING, DRAWING, BUILDING, READING, FILE_READ, ARRAYS, GAPS,
+       COLLAPSE, WRITING, REST, SERIAL, MEASURES };
+static const struct {
+    const char *method, *kind;
+} MEASURE[MEASURES] = {
+    {"whole", "run_ms"},          {"terrain", "load_ms"},
+    {"terrain-render", "render_ms"}, {"terrain-build", "build_ms"},
+    {"terrain-read", "read_ms"},  {"terrain-file", "ms"},
+    {"terrain-arrays", "ms"},     {"terrain-gaps", "ms"},
+    {"terrain-collapse", "ms"},   {"terrain-write", "ms"},
+    {"terrain-rest", "ms"},       {"terrain-serial", "ms"}};
+
+/* One round's measures of a run that took whole ms and reported r. */
+static void measures_of(double whole, const run_report *r, double *m)
+{
+    m[WHOLE] = whole, m[LOADING] = r->load, m[DRAWING] = r->render;
+    m[BUILDING] = r->build, m[READING] = r->load - r->build;
+    m[FILE_READ] = r->file, m[ARRAYS] = r->arrays, m[GAPS] = r->gaps;
+    m[COLLAPSE] = r->collapse, m[WRITING] = r->write;
+    m[REST] = whole - (r->load + r->render + r->write); /* start and end */
+    m[SERIAL] = r->file + r->arrays + r->gaps + r->collapse + r->write + m[REST];
+    for (int k = 0; k < MEASURES; k++)
+        m[k] *= 1e6; /* ns */
+}
+
 /* The terrain's whole run on one core and on two, in turns. */
 static int whole_runs(void)
 {
@@ -126,48 +171,41 @@ static int whole_runs(void)
         fprintf(stderr, "ch11_threads: cannot write %s and %s\n", obj, scene);
         return 1;
     }
-    double run[2][WHOLE_ROUNDS], load[2][WHOLE_ROUNDS], draw[2][WHOLE_ROUNDS];
-    double built[2][WHOLE_ROUNDS], read[2][WHOLE_ROUNDS];
+    static double sample[2][MEASURES][WHOLE_ROUNDS];
     for (int r = 0; r < WHOLE_ROUNDS; r++)
         for (int j = 0; j < 2; j++) {
             int k = (r + j) % 2;
-            double render_ms, load_ms, build_ms, start = wall_ms();
-            if (!run_renderer(bin, scene, k + 1, &render_ms, &load_ms, &build_ms)) {
+            double start = wall_ms(), m[MEASURES];
+            run_report run;
+            if (!run_renderer(bin, scene, k + 1, &run)) {
                 fprintf(stderr, "ch11_threads: cannot run %s %s\n", bin, scene);
                 return 1;
             }
-            run[k][r] = 1e6 * (wall_ms() - start), load[k][r] = 1e6 * load_ms;
-            draw[k][r] = 1e6 * render_ms, built[k][r] = 1e6 * build_ms;
-            read[k][r] = 1e6 * (load_ms - build_ms);
+            measures_of(wall_ms() - start, &run, m);
+            for (int q = 0; q < MEASURES; q++)
+                sample[k][q][r] = m[q];
         }
-    bench_timing t[2], loading[2], drawing[2], building[2], reading[2];
-    for (int k = 0; k < 2; k++) {
-        bench_timing_of_samples(run[k], WHOLE_ROUNDS, &t[k]);
-        bench_timing_of_samples(load[k], WHOLE_ROUNDS, &loading[k]);
-        bench_timing_of_samples(draw[k], WHOLE_ROUNDS, &drawing[k]);
-        bench_timing_of_samples(built[k], WHOLE_ROUNDS, &building[k]);
-        bench_timing_of_samples(read[k], WHOLE_ROUNDS, &reading[k]);
-        bench_row("whole", k ? "2" : "1", &t[k], "%.1f", t[k].median / 1e6, "run_ms");
-        bench_row("terrain", k ? "2" : "1", &loading[k], "%.1f",
-                  loading[k].median / 1e6, "load_ms");
-        bench_row("terrain-render", k ? "2" : "1", &drawing[k], "%.1f",
-                  drawing[k].median / 1e6, "render_ms");
-        bench_row("terrain-build", k ? "2" : "1", &building[k], "%.1f",
-                  building[k].median / 1e6, "build_ms");
-        bench_row("terrain-read", k ? "2" : "1", &reading[k], "%.1f",
-                  reading[k].median / 1e6, "read_ms");
-    }
-    printf("whole,2,0,%.3f,speedup\n", t[0].median / t[1].median);
-    /* Amdahl: t2 = t1 (s + (1 - s) / 2) */
-    printf("serial,whole,0,%.1f,percent\n", 100 * (2 * t[1].median / t[0].median - 1));
-    const char *phase[] = {"terrain", "terrain-read", "terrain-build", "terrain-render"};
-    const bench_timing *of[][2] = {{&loading[0], &loading[1]},
-                                   {&reading[0], &reading[1]},
-                                   {&building[0], &building[1]},
-                                   {&drawing[0], &drawing[1]}};
-    for (int k = 0; k < 4; k++)
-        printf("serial,%s,0,%.1f,percent\n", phase[k],
-               100 * (2 * of[k][1]->median / of[k][0]->median - 1));
+    bench_timing t[2][MEASURES];
+    for (int k = 0; k < 2; k++)
+        for (int q = 0; q < MEASURES; q++) {
+            bench_timing_of_samples(sample[k][q], WHOLE_ROUNDS, &t[k][q]);
+            bench_row(MEASURE[q].method, k ? "2" : "1", &t[k][q], "%.1f",
+                      t[k][q].median / 1e6, MEASURE[q].kind);
+        }
+    printf("whole,2,0,%.3f,speedup\n", t[0][WHOLE].median / t[1][WHOLE].median);
+    /* the parts on one thread, as a share of the run on one core, and
+     * Amdahl's law for that share: t2 = t1 (s + (1 - s) / 2) */
+    double s = t[0][SERIAL].median / t[0][WHOLE].median;
+    printf("serial,measured,0,%.1f,percent\n", 100 * s);
+    printf("amdahl,2,%.3f,%.1f,predicted_ms\n", t[0][WHOLE].median * (s + (1 - s) / 2),
+           t[0][WHOLE].median * (s + (1 - s) / 2) / 1e6);
+    /* Karp and Flatt: the serial fraction that the speed-up on two gives */
+    const int phase[] = {WHOLE, LOADING, READING, BUILDING, DRAWING};
+    const char *name[] = {"whole", "terrain", "terrain-read", "terrain-build",
+                          "terrain-render"};
+    for (int k = 0; k < 5; k++)
+        printf("karp-flatt,%s,0,%.1f,percent\n", name[k],
+               100 * (2 * t[1][phase[k]].median / t[0][phase[k]].median - 1));
     remove(obj), remove(scene);
     return 0;
 }

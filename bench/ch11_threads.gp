@@ -6,7 +6,10 @@
 # interquartile range of the render's time, and of the loading's); right,
 # the whole run of a terrain of two million triangles drawn at 512 x 512,
 # from the process's start to its end, on one thread and on two, with the
-# part that reading the scene and building its trees took.
+# part that reading the scene and building its trees took, and (a narrower
+# bar) the parts that stay on one thread: the file's reading into memory,
+# the arrays, the walk that closes the gaps, the collapse, the PNG, and the
+# process's start and end.
 load "bench/chart.gp"
 set terminal svg size 1000,480 font "Helvetica,12" background "white"
 set output stem.'.svg'
@@ -38,11 +41,13 @@ plot renders using ($2 - 1):(load_ms + $4) with boxes lc rgb "#1b9e77" title "re
 
 runs = sprintf("< awk -F, '$1 == \"whole\" && $5 == \"run_ms\"' %s", csv)
 loads = sprintf("< awk -F, '$1 == \"terrain\" && $5 == \"load_ms\"' %s", csv)
+serials = sprintf("< awk -F, '$1 == \"terrain-serial\" && $5 == \"ms\"' %s", csv)
 whole_speedup = whole ? csv_value("whole", "2", "speedup", 4) : 0
 set title (whole ? sprintf("a terrain of 2,000,000 triangles, 512 x 512: the whole run\n%.2f times as fast on two (medians)", whole_speedup) : "the terrain's whole run was not measured") font ",10"
 if (whole) {
 plot runs using ($2 - 1):4 with boxes lc rgb "#1b9e77" title "the whole run", \
      loads using ($2 - 1):4 with boxes lc rgb "#7570b3" title "of which reading the scene, building its trees", \
+     serials using ($2 - 1):4:(0.2) with boxes lc rgb "#d95f02" title "of which on one thread (all phases)", \
      runs using ($2 - 1):($6 / 1e6):(0):(($7 - $6) / 1e6) @quartile_bars, \
      loads using ($2 - 1 + 0.1):($6 / 1e6):(0):(($7 - $6) / 1e6) @quartile_bars
 } else {

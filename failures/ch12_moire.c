@@ -12,7 +12,10 @@
  * program measures both errors against the reference after averaging 8
  * x 8 blocks of pixels (stripes survive the average, grain does not),
  * prints them and exits 1 unless the grid's is at least twice the
- * jittered pattern's: then the figure no longer shows the failure.
+ * jittered pattern's: then the figure no longer shows the failure. It
+ * also measures, not drawn, the same 16 jittered rays with the tent
+ * filter against 256 jittered rays with the tent: the tent's aliasing
+ * by the same measure.
  *
  * Built by `make failures` against the objects of chapter 12's program
  * but main.o; `make test` checks the committed PNG. */
@@ -42,8 +45,18 @@ int main(int argc, char **argv)
                   &reference);
     double g = block_rms(&grid, &reference, BLOCK);
     double j = block_rms(&jittered, &reference, BLOCK);
+    image tent, tent_reference;
+    render_pixels(&s, (pixel_sampling){.pattern = PIXEL_JITTERED, .side = 4,
+                                       .filter = FILTER_TENT},
+                  &tent);
+    render_pixels(&s, (pixel_sampling){.pattern = PIXEL_JITTERED, .side = 16,
+                                       .filter = FILTER_TENT},
+                  &tent_reference);
+    double t = block_rms(&tent, &tent_reference, BLOCK);
+    image_free(&tent), image_free(&tent_reference);
     printf("%s: against 256 jittered rays, %dx%d blocks averaged: grid "
-           "%.2f codes rms, jittered %.2f\n", path, BLOCK, BLOCK, g, j);
+           "%.2f codes rms, jittered %.2f; with the tent, jittered %.2f "
+           "against the tent's own\n", path, BLOCK, BLOCK, g, j, t);
     const image *row[] = {&grid, &jittered, &reference};
     bool ok = write_in_a_row(row, 3, SCALE, path);
     image_free(&grid), image_free(&jittered), image_free(&reference);

@@ -278,6 +278,24 @@ static void pack(little_mesh *m)
     ck_assert_int_eq(m->packet_count, n);
 }
 
+/* The packets' nearest and any hit, decided on the mesh's corners. */
+static int packets_nearest(const little_mesh *m, const packet_ray *pr,
+                           double t_max, int best, triangle_hit *th,
+                           long long *decided)
+{
+    return triangle_packets_nearest_in_mesh(pr, m->packets, m->packet_count,
+                                            m->vertices, m->triangles, 0,
+                                            t_max, best, th, decided);
+}
+
+static bool packets_any(const little_mesh *m, const packet_ray *pr,
+                        double t_max, long long *decided)
+{
+    return triangle_packets_any_in_mesh(pr, m->packets, m->packet_count,
+                                        m->vertices, m->triangles, 0, t_max,
+                                        decided);
+}
+
 typedef struct {
     long long lanes, kept_hits, lost_hits, disagreements, rejected;
     long long rays, differences, decided;
@@ -292,8 +310,9 @@ static void check_filter(packet_tally *tally, const little_mesh *m, ray r,
     packet_ray pr = packet_ray_of(&w);
     for (int p = 0; p < m->packet_count; p++) {
         const triangle_packet *q = &m->packets[p];
-        unsigned simd = triangle_packet_candidates_simd(q, &pr, t_min, t_max);
-        unsigned one = triangle_packet_candidates_scalar(q, &pr, t_min, t_max);
+        unsigned simd = triangle_packet_candidates(q, &pr, t_min, t_max,
+                                                   false);
+        unsigned one = triangle_packet_candidates(q, &pr, t_min, t_max, true);
         tally->disagreements += simd != one;
         for (int k = 0; k < TRIANGLE_PACKET_WIDTH; k++) {
             int i = q->triangle[k];
@@ -323,18 +342,13 @@ static void check_search(packet_tally *tally, const little_mesh *m, ray r,
     packet_ray pr = packet_ray_of(&w);
     const triangle_corners *c = m->leaf;
     triangle_hit mine = {0}, theirs = {0};
-    int i = triangle_packets_nearest(&pr, m->packets, m->packet_count,
-                                     m->leaf, 0, t_max,
-                                     best, &mine, &tally->decided);
+    int i = packets_nearest(m, &pr, t_max, best, &mine, &tally->decided);
     int k = triangle_nearest_of_leaf(&w, c, m->items, m->count, 0, t_max,
                                      best, &theirs);
     bool any = triangle_any_corners(&w, c, m->count, 0, t_max);
     tally->rays++;
     tally->differences += i != (k < 0 ? -1 : m->items[k]);
-    tally->differences +=
-        any != triangle_packets_any(&pr, m->packets, m->packet_count,
-                                    m->leaf, 0, t_max,
-                                    &tally->decided);
+    tally->differences += any != packets_any(m, &pr, t_max, &tally->decided);
     if (k >= 0)
         tally->differences += memcmp(&mine, &theirs, sizeof mine) != 0;
 }
@@ -456,12 +470,9 @@ START_TEST(test_packets_leak_no_edge_aimed_ray)
                     packet_ray pr = packet_ray_of(&w);
                     triangle_hit th;
                     long long decided = 0;
-                    leaks += triangle_packets_nearest(
-                                 &pr, m.packets, m.packet_count, m.leaf, 0,
-                                 INFINITY, -1, &th, &decided) < 0;
-                    leaks += !triangle_packets_any(&pr, m.packets,
-                                                   m.packet_count, m.leaf, 0,
-                                                   INFINITY, &decided);
+                    leaks += packets_nearest(&m, &pr, INFINITY, -1, &th,
+                                             &decided) < 0;
+                    leaks += !packets_any(&m, &pr, INFINITY, &decided);
                     check_search(&tally, &m, r, INFINITY, -1);
                     check_filter(&tally, &m, r, 0, INFINITY);
                 }
@@ -477,8 +488,7 @@ static int packets_winner(const little_mesh *m, const packet_ray *pr,
                           double t_max, int best, triangle_hit *th)
 {
     long long decided = 0;
-    return triangle_packets_nearest(pr, m->packets, m->packet_count, m->leaf,
-                                    0, t_max, best, th, &decided);
+    return packets_nearest(m, pr, t_max, best, th, &decided);
 }
 
 START_TEST(test_packets_keep_the_tie_rule_in_and_across_packets)
@@ -529,9 +539,10 @@ START_TEST(test_empty_lanes_are_never_kept)
         packet_ray pr = packet_ray_of(&w);
         unsigned full = (1u << 3) - 1;
         ck_assert_uint_eq(
-            triangle_packet_candidates_simd(q, &pr, 0, INFINITY) & ~full, 0);
+            triangle_packet_candidates(q, &pr, 0, INFINITY, false) & ~full,
+            0);
         ck_assert_uint_eq(
-            triangle_packet_candidates_scalar(q, &pr, 0, INFINITY) & ~full,
+            triangle_packet_candidates(q, &pr, 0, INFINITY, true) & ~full,
             0);
     }
     free(m.packets);
@@ -555,7 +566,8 @@ START_TEST(test_an_empty_lane_lets_the_edges_stop_the_filter)
         watertight_ray w = watertight_ray_of(r);
         packet_ray pr = packet_ray_of(&w);
         ck_assert_uint_eq(
-            triangle_packet_candidates_simd(&m.packets[0], &pr, 0, INFINITY),
+            triangle_packet_candidates(&m.packets[0], &pr, 0, INFINITY,
+                                       false),
             0);
         stopped += triangle_packet_stops_at_edges(&m.packets[0], &pr);
     }
@@ -607,15 +619,69 @@ START_TEST(test_the_filter_decides_far_rays_alone)
         watertight_ray w = watertight_ray_of(r);
         packet_ray pr = packet_ray_of(&w);
         triangle_hit th;
-        int k = triangle_packets_nearest(&pr, m.packets, m.packet_count,
-                                         m.leaf, 0, INFINITY, -1, &th,
-                                         &decided);
-        ck_assert_int_eq(k, -1);
-        ck_assert(!triangle_packets_any(&pr, m.packets, m.packet_count,
-                                        m.leaf, 0, INFINITY, &decided));
+        ck_assert_int_eq(packets_nearest(&m, &pr, INFINITY, -1, &th,
+                                         &decided), -1);
+        ck_assert(!packets_any(&m, &pr, INFINITY, &decided));
     }
     free(m.packets);
     ck_assert_int_lt(decided, 100);
+}
+END_TEST
+
+START_TEST(test_the_filter_rejects_rays_just_past_an_edge_alone)
+{
+    /* Rays along a triangle's normal that pass outside one of its edges
+     * by 300 u T (u = 2^-24; T, the largest corner coordinate plus the
+     * origin's, the reach of the filter's bounds). The filter's bound of
+     * an edge function, divided by the edge's length, is under 100 u T
+     * for an edge as long as its triangle is wide: the filter rejects
+     * these rays without asking double, where a bound ten times too
+     * loose would keep them. */
+    rng_state g = {29};
+    int rays = 0, kept = 0;
+    for (int n = 0; n < 3000; n++) {
+        triangle_corners c;
+        for (int i = 0; i < 3; i++)
+            c.p[i] = rng_unit_vector(&g, 0.1);
+        int e = n % 3;
+        vec3 a = c.p[e], b = c.p[(e + 1) % 3], opposite = c.p[(e + 2) % 3];
+        vec3 normal = vec3_cross(vec3_sub(b, a), vec3_sub(opposite, a));
+        double edge = vec3_length(vec3_sub(b, a));
+        double others = fmax(vec3_length(vec3_sub(opposite, a)),
+                             vec3_length(vec3_sub(opposite, b)));
+        if (vec3_length(normal) < 0.2 * edge * edge || edge < 0.5 * others)
+            continue; /* a sliver, or an edge short for its triangle */
+        /* outward in the plane, across the edge from the opposite corner */
+        vec3 out = vec3_normalize(vec3_cross(vec3_sub(b, a), normal));
+        if (vec3_dot(out, vec3_sub(opposite, a)) > 0)
+            out = vec3_scale(out, -1);
+        vec3 on_edge = vec3_add(a, vec3_scale(vec3_sub(b, a),
+                                              rng_uniform01(&g)));
+        vec3 axis = vec3_normalize(normal);
+        vec3 above = vec3_add(on_edge, vec3_scale(axis, 2));
+        double reach = 0, origin_reach = 0;
+        for (int i = 0; i < 3; i++)
+            for (int k = 0; k < 3; k++)
+                reach = fmax(reach, fabs(vec3_axis(c.p[i], k)));
+        for (int k = 0; k < 3; k++)
+            origin_reach = fmax(origin_reach, fabs(vec3_axis(above, k)));
+        double past = 300 * 0x1p-24 * (reach + origin_reach);
+        ray r = {vec3_add(above, vec3_scale(out, past)),
+                 vec3_scale(axis, -1)};
+        little_mesh m = {0};
+        add_triangle(&m, c);
+        pack(&m);
+        watertight_ray w = watertight_ray_of(r);
+        packet_ray pr = packet_ray_of(&w);
+        rays++;
+        kept += triangle_packet_candidates(m.packets, &pr, 0, INFINITY,
+                                           false) != 0;
+        kept += triangle_packet_candidates(m.packets, &pr, 0, INFINITY,
+                                           true) != 0;
+        free(m.packets);
+    }
+    ck_assert_int_gt(rays, 1000);
+    ck_assert_msg(kept == 0, "%d of %d rays kept", kept, rays);
 }
 END_TEST
 
@@ -631,11 +697,11 @@ static void check_float_hits(packet_tally *tally, const little_mesh *m,
     packet_ray pr = packet_ray_of(&w);
     for (int p = 0; p < m->packet_count; p++) {
         const triangle_packet *q = &m->packets[p];
-        unsigned simd = triangle_packet_float_hits_simd(q, &pr, t_min, t_max);
-        unsigned one = triangle_packet_float_hits_scalar(q, &pr, t_min,
-                                                         t_max);
-        unsigned kept = triangle_packet_candidates_simd(q, &pr, t_min,
-                                                        t_max);
+        unsigned simd = triangle_packet_float_hits(q, &pr, t_min, t_max,
+                                                   false);
+        unsigned one = triangle_packet_float_hits(q, &pr, t_min, t_max, true);
+        unsigned kept = triangle_packet_candidates(q, &pr, t_min, t_max,
+                                                   false);
         tally->disagreements += simd != one;
         tally->lost_hits += __builtin_popcount(simd & ~kept);
         tally->kept_hits += __builtin_popcount(simd);
@@ -812,6 +878,8 @@ Suite *ch10_packets_suite(void)
     tcase_add_test(packets, test_an_empty_lane_lets_the_edges_stop_the_filter);
     tcase_add_test(packets, test_packets_hold_the_mesh_s_triangles_in_float);
     tcase_add_test(packets, test_the_filter_decides_far_rays_alone);
+    tcase_add_test(packets,
+                   test_the_filter_rejects_rays_just_past_an_edge_alone);
     tcase_add_test(packets, test_float_hits_are_lanes_the_filter_keeps);
     tcase_add_test(packets, test_float_hits_every_triangle_hit_well_inside);
     tcase_add_test(packets, test_the_float_path_leaks_no_edge_aimed_ray);

@@ -131,6 +131,103 @@ START_TEST(test_threads_read_a_file_as_chapter_4_does)
 }
 END_TEST
 
+/* The project's meshes, read from their files on 1, 2 and 3 threads,
+ * take the parallel path: as many parts as their size and the threads
+ * give (OBJ_MIN_PART_BYTES of text a part, OBJ_PARTS_A_THREAD parts a
+ * thread), not chapter 4's reader, and chapter 4's mesh. */
+START_TEST(test_the_project_s_meshes_are_read_in_parts)
+{
+    const char *paths[] = {"meshes/bunny.obj", "meshes/teapot-8.obj",
+                           "meshes/icosphere-5.obj"};
+    for (size_t k = 0; k < sizeof paths / sizeof *paths; k++) {
+        mesh serial = {0};
+        parse_error err;
+        ck_assert(mesh_load_obj(&serial, paths[k], &err));
+        size_t length;
+        free(read_whole(paths[k], &length));
+        for (int threads = 1; threads <= 3; threads++) {
+            mesh m = {0};
+            ck_assert_msg(mesh_load_obj_on(&m, paths[k], NO_BUDGET, threads,
+                                           &err),
+                          "%s", err.message);
+            long most = 1 + (long)(length / OBJ_MIN_PART_BYTES);
+            long wanted = (long)threads * OBJ_PARTS_A_THREAD;
+            ck_assert_msg(m.parts == (wanted < most ? wanted : most),
+                          "%s on %d threads: %d parts, not %ld", paths[k],
+                          threads, m.parts, wanted < most ? wanted : most);
+            expect_same_mesh(&serial, &m);
+            mesh_free(&m);
+        }
+        mesh_free(&serial);
+    }
+    /* and in memory, in the parts asked for */
+    size_t length;
+    char *text = read_whole("meshes/bunny.obj", &length);
+    for (int parts = 1; parts <= 61; parts += 20) {
+        mesh m = {0};
+        parse_error err;
+        ck_assert(mesh_parse_obj_in_parts(&m, text, length, "bunny.obj",
+                                          NO_BUDGET, parts, 2, &err));
+        ck_assert_int_eq(m.parts, parts);
+        mesh_free(&m);
+    }
+    free(text);
+}
+END_TEST
+
+/* What the test's writer does to a file between its reading and the
+ * second look at its size. */
+static const char *change;
+
+static void change_the_file(const char *path)
+{
+    FILE *f = fopen(path, strcmp(change, "grow") == 0 ? "a" : "w");
+    ck_assert_ptr_nonnull(f);
+    fputs(strcmp(change, "grow") == 0 ? "v 9 9 9\n" : "", f);
+    ck_assert_int_eq(fclose(f), 0);
+}
+
+START_TEST(test_a_file_that_changes_while_it_is_read_is_an_error)
+{
+    const char *ways[] = {"grow", "shrink"};
+    for (int k = 0; k < 2; k++) {
+        change = ways[k];
+        const char *path = write_file("mesh.obj", "v 0 0 5\nv 1 0 5\n"
+                                                  "v 0 1 5\nf 1 2 3\n");
+        mesh m = {0};
+        parse_error err = {0};
+        obj_test_after_reading = change_the_file;
+        bool read = mesh_load_obj_on(&m, path, NO_BUDGET, 2, &err);
+        obj_test_after_reading = NULL;
+        ck_assert_msg(!read, "%s: read all the same", ways[k]);
+        ck_assert_int_eq(err.kind, PARSE_CANNOT_READ);
+        ck_assert_msg(strstr(err.message, "changed while it was read") &&
+                          strstr(err.message, "32 bytes before"),
+                      "%s: %s", ways[k], err.message);
+        mesh_free(&m);
+        /* unchanged, it reads; and in a scene, the line naming it says */
+        path = write_file("mesh.obj", "v 0 0 5\nv 1 0 5\n"
+                                      "v 0 1 5\nf 1 2 3\n");
+        ck_assert(mesh_load_obj_on(&m, path, NO_BUDGET, 2, &err));
+        mesh_free(&m);
+        const char *scene_path = write_file(
+            "s.scene", "image 8 6\nsphere\nmesh file mesh.obj\n");
+        scene s;
+        scene_error e;
+        scene_init(&s);
+        obj_test_after_reading = change_the_file;
+        read = scene_load(&s, scene_path, &e);
+        obj_test_after_reading = NULL;
+        ck_assert(!read);
+        ck_assert_int_eq(e.line, 3);
+        ck_assert_msg(strstr(e.message, "mesh.obj") &&
+                          strstr(e.message, "changed while it was read"),
+                      "%s", e.message);
+        scene_free(&s);
+    }
+}
+END_TEST
+
 /* Appends printf's text to buf[*at..size). */
 static void put(char *buf, size_t size, size_t *at, const char *format, ...)
     __attribute__((format(printf, 4, 5)));
@@ -416,6 +513,7 @@ Suite *ch11_load_suite(void)
     tcase_add_test(same,
                    test_parts_read_the_project_s_meshes_as_chapter_4_does);
     tcase_add_threaded_test(same, test_threads_read_a_file_as_chapter_4_does);
+    tcase_add_threaded_test(same, test_the_project_s_meshes_are_read_in_parts);
     tcase_add_test(same, test_a_long_number_is_read_as_chapter_4_reads_it);
     tcase_add_test(
         same, test_texts_shorter_than_their_parts_read_as_chapter_4_reads_them);
@@ -432,6 +530,8 @@ Suite *ch11_load_suite(void)
     tcase_add_test(bad,
                    test_a_byte_order_mark_is_skipped_at_the_file_s_start_only);
     tcase_add_test(bad, test_running_out_of_memory_in_parts_is_reported);
+    tcase_add_test(bad,
+                   test_a_file_that_changes_while_it_is_read_is_an_error);
     suite_add_tcase(s, bad);
     return s;
 }

@@ -102,8 +102,8 @@ START_TEST(test_ties_come_out_alike_on_any_number_of_threads)
 }
 END_TEST
 
-/* The counts --stats prints (no times, no rates: "time", "rays/s") for
- * --threads n. */
+/* The counts --stats prints for --threads n: not the times, the rates,
+ * nor the threads' own lines (the helpers started, the parts read). */
 static void stats_counts(const char *scene_path, const char *n, char *counts,
                          size_t size)
 {
@@ -114,7 +114,8 @@ static void stats_counts(const char *scene_path, const char *n, char *counts,
     counts[0] = '\0';
     for (char *line = strtok(errors, "\n"); line; line = strtok(NULL, "\n"))
         if (!strstr(line, "time") && !strstr(line, "rays/s") &&
-            !strstr(line, "built in"))
+            !strstr(line, "built in") && !strstr(line, "pool threads") &&
+            !strstr(line, "meshes read"))
             strncat(counts, line, size - strlen(counts) - 2),
                 strcat(counts, "\n");
 }
@@ -148,6 +149,28 @@ START_TEST(test_the_kd_trees_line_holds_no_bvh_build_time)
                   "the kd-trees' line gives a time: %s", line);
     ck_assert_ptr_nonnull(strstr(errors, "\ntrees built in "));
     ck_assert_ptr_nonnull(strstr(errors, "\nbvhs "));
+}
+END_TEST
+
+/* --stats says how the scene's OBJ file was read (the teapot's 124,599
+ * bytes: two parts of OBJ_MIN_PART_BYTES at most, on any number of
+ * threads above one) and how many helpers the pool started: one fewer
+ * than the threads asked for, the bands being more than the threads. */
+START_TEST(test_stats_count_the_parts_read_and_the_threads_started)
+{
+    char errors[4096], scene_path[192];
+    snprintf(scene_path, sizeof scene_path, "%s", teapot_scene());
+    const char *args[] = {scene_path, "--threads", "3",
+                          "--stats",  "-o",        tmp_path("s.png"),
+                          NULL};
+    ck_assert_int_eq(run_bin(args, errors, sizeof errors), 0);
+    ck_assert_msg(strstr(errors, "\nmeshes read        1 in parts "
+                                 "(2 parts), 0 by one thread\n"),
+                  "%s", errors);
+    ck_assert_msg(strstr(errors, "\npool threads       2 started for the "
+                                 "run\n"),
+                  "%s", errors);
+    ck_assert_ptr_nonnull(strstr(errors, "\none-thread time    file read "));
 }
 END_TEST
 
@@ -565,6 +588,8 @@ Suite *ch11_speed_suite(void)
     tcase_add_test(threads, test_statistics_add_up_whatever_the_thread_count);
     tcase_add_test(threads, test_bad_thread_counts_are_usage_errors);
     tcase_add_test(threads, test_the_kd_trees_line_holds_no_bvh_build_time);
+    tcase_add_test(threads,
+                   test_stats_count_the_parts_read_and_the_threads_started);
     tcase_add_threaded_test(threads,
                             test_bands_on_threads_draw_what_one_render_draws);
     tcase_add_threaded_test(threads,

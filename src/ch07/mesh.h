@@ -109,4 +109,8 @@ bool mesh_intersect(const mesh *m, ray r, double t_min, double t_max, hit *h,
  * test that could meet the triangle again. */
 void triangle_refine_hit(vec3 a, vec3 b, vec3 c, const double w[3], hit *h);
 
+/* triangle_refine_hit for a hit on triangle k of m at w, the bound widened
+ * for the test that m's rays make. */
+void mesh_refine_hit(const mesh *m, int k, const double w[3], hit *h);
+
 #endif

@@ -202,13 +202,9 @@ static void refine_hit_point(const scene *s, const nearest_hit *best, hit *h)
         triangle_refine_hit(c[0], c[1], c[2], best->b, h);
         break;
     }
-    case SHAPE_MESH: {
-        const mesh *m = &s->meshes[o->mesh];
-        const int *v = m->triangles[best->primitive].v;
-        triangle_refine_hit(m->vertices[v[0]], m->vertices[v[1]],
-                            m->vertices[v[2]], best->b, h);
+    case SHAPE_MESH:
+        mesh_refine_hit(&s->meshes[o->mesh], best->primitive, best->b, h);
         break;
-    }
     }
 }
 

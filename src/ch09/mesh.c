@@ -572,8 +572,9 @@ int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
 
 /* <<the triangle's hit-point bound>> ch06 */
 /* How wrong the watertight test's t can be for a ray that starts at p
- * near the triangle (a, b, c), as a distance from its plane. */
-static double triangle_test_error(vec3 a, vec3 b, vec3 c, vec3 p)
+ * near the triangle (a, b, c), as a distance from its plane, when the
+ * test rounds to the unit u. */
+static double triangle_test_error(vec3 a, vec3 b, vec3 c, vec3 p, double u)
 {
     vec3 corners[3] = {a, b, c};
     double M = 0; /* the triangle's reach from p: largest coordinate */
@@ -585,10 +586,9 @@ static double triangle_test_error(vec3 a, vec3 b, vec3 c, vec3 p)
                                                vec3_sub(c, a)));
     if (!(twice_area > 0))
         return INFINITY; /* never hit: the test rejects it */
-    return sqrt(3) * (gamma_bound(3) * M +
-                      48 * gamma_bound(4) * M * M * M / twice_area);
+    return sqrt(3) * (gamma_of_unit(3, u) * M +
+                      48 * gamma_of_unit(4, u) * M * M * M / twice_area);
 }
-
 
 void triangle_refine_hit(vec3 a, vec3 b, vec3 c, const double w[3], hit *h)
 {
@@ -596,7 +596,14 @@ void triangle_refine_hit(vec3 a, vec3 b, vec3 c, const double w[3], hit *h)
          pc = vec3_scale(c, w[2]);
     h->point = vec3_add(vec3_add(pa, pb), pc);
     vec3 sum = vec3_add(vec3_add(vec3_abs(pa), vec3_abs(pb)), vec3_abs(pc));
-    double test = triangle_test_error(a, b, c, h->point);
+    double test = triangle_test_error(a, b, c, h->point, DBL_EPSILON / 2);
     h->error = vec3_add(vec3_scale(sum, gamma_bound(7)),
                         (vec3){test, test, test});
+}
+
+void mesh_refine_hit(const mesh *m, int k, const double w[3], hit *h)
+{
+    const int *v = m->triangles[k].v;
+    vec3 a = m->vertices[v[0]], b = m->vertices[v[1]], c = m->vertices[v[2]];
+    triangle_refine_hit(a, b, c, w, h);
 }

@@ -123,6 +123,10 @@ bool mesh_intersect(const mesh *m, ray r, double t_min, double t_max, hit *h,
  * coordinates w, and sets its error bound, widened by the error of the
  * test that could meet the triangle again. */
 void triangle_refine_hit(vec3 a, vec3 b, vec3 c, const double w[3], hit *h);
+
+/* triangle_refine_hit for a hit on triangle k of m at w, the bound widened
+ * for the test that m's rays make. */
+void mesh_refine_hit(const mesh *m, int k, const double w[3], hit *h);
 /* <<mesh intersection declarations>> += ch08 */
 
 /* Builds m's tree with p (none for fewer than MESH_TREE_MIN_TRIANGLES);
@@ -191,5 +195,11 @@ int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
  * lane with a leaf's last packet partly empty, 4 for its item, and the
  * nodes. A copy of the double corners alone would be 72. */
 #define MESH_BVH_MAX_BYTES_PER_TRIANGLE 100
+
+/* triangle_refine_hit for a hit that chapter 4's test in float alone
+ * found (bvh-float): the bound widened by what that test may err when it
+ * meets the triangle again. */
+void triangle_refine_float_hit(vec3 a, vec3 b, vec3 c, const double w[3],
+                               hit *h);
 
 #endif

@@ -1,4 +1,5 @@
-/* triangle_packet.c: triangles W at a time, in float (chapter 10). */
+/* triangle_packet.c: triangles PACKET_W at a time, in float (chapter 10).
+ */
 #include <float.h>
 #include <math.h>
 #include <string.h>
@@ -71,6 +72,15 @@ static inline float gamma_of(int n)
 /* Covers the rounding of the comparison of t, and double's division. */
 #define T_MARGIN (1 + 0x1p-20f)
 
+/* x in every lane of a vector. */
+static inline packet_float packet_splat(float x)
+{
+    packet_float v = {0};
+    for (int k = 0; k < PACKET_W; k++)
+        v[k] = x;
+    return v;
+}
+
 /* |x| alike for a float and for a vector's lanes, so that the filter's
  * one text serves both: the sign bit cleared, NaN's included. */
 static inline packet_float packet_abs(packet_float x)
@@ -95,7 +105,31 @@ static inline int packet_all_set(packet_int m)
 }
 #define lanes_all(m) _Generic((m), int: lane_set, default: packet_all_set)(m)
 
+/* <<the edge functions' error bound>> ch10 */
+/* e_E in each lane: how far U, V or W computed in float can be from the
+ * exact value of the same formula on the double corners and origin.
+ * reach: the lane's largest |corner coordinate| plus the origin's (T);
+ * xm, ym: the sums of its sheared corners' |x| and |y| (X and Y). */
+static inline packet_float edge_error_bound(packet_float reach,
+                                            packet_float xm, packet_float ym)
+{
+    packet_float e_s = gamma_of(11) * reach; /* a sheared x or y */
+    return (2 * e_s * (xm + ym) + 2 * e_s * e_s + 2 * gamma_of(2) * xm * ym) *
+               BOUND_MARGIN + FLT_MIN;
+}
+
 /* <<the float filter, lane by lane and in vectors>> ch10 */
+/* edge_error_bound of one lane: its numbers in every lane of a vector,
+ * and the first lane read back. */
+static inline float edge_error_bound_alone(float reach, float xm, float ym)
+{
+    return edge_error_bound(packet_splat(reach), packet_splat(xm),
+                            packet_splat(ym))[0];
+}
+#define lanes_edge_bound(reach, xm, ym)                                        \
+    _Generic((reach), float: edge_error_bound_alone,                           \
+             default: edge_error_bound)(reach, xm, ym)
+
 /* The lanes of p that chapter 4's test could hit: -1 in each. */
 static inline packet_int kept_in_vectors(const triangle_packet *p,
                                          const packet_ray *r, float t_max,
@@ -116,13 +150,10 @@ static inline packet_int kept_in_vectors(const triangle_packet *p,
     lanes bx = (b[kx] - ox) - r->sx * bz, by = (b[ky] - oy) - r->sy * bz;
     lanes cx = (c[kx] - ox) - r->sx * cz, cy = (c[ky] - oy) - r->sy * cz;
     lanes u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
-    /* <<the edge functions' error bound>> ch10 */
     lanes reach = p_reach + r->origin_reach; /* >= |corner| + |origin| */
-    lanes e_s = gamma_of(11) * reach;        /* a sheared x or y */
     lanes xm = lanes_abs(ax) + lanes_abs(bx) + lanes_abs(cx); /* >= max |x| */
     lanes ym = lanes_abs(ay) + lanes_abs(by) + lanes_abs(cy);
-    lanes e_e = (2 * e_s * (xm + ym) + 2 * e_s * e_s + 2 * gamma_of(2) * xm * ym) *
-                    BOUND_MARGIN + FLT_MIN; /* U, V or W */
+    lanes e_e = lanes_edge_bound(reach, xm, ym); /* U, V or W */
     lane_mask outside = (((u < -e_e) | (v < -e_e) | (w < -e_e)) &
                          ((u > e_e) | (v > e_e) | (w > e_e))) |
                         empty;
@@ -167,13 +198,10 @@ static inline int kept_alone(const triangle_packet *p, int k,
     lanes bx = (b[kx] - ox) - r->sx * bz, by = (b[ky] - oy) - r->sy * bz;
     lanes cx = (c[kx] - ox) - r->sx * cz, cy = (c[ky] - oy) - r->sy * cz;
     lanes u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
-    /* <<the edge functions' error bound>> ch10 */
     lanes reach = p_reach + r->origin_reach; /* >= |corner| + |origin| */
-    lanes e_s = gamma_of(11) * reach;        /* a sheared x or y */
     lanes xm = lanes_abs(ax) + lanes_abs(bx) + lanes_abs(cx); /* >= max |x| */
     lanes ym = lanes_abs(ay) + lanes_abs(by) + lanes_abs(cy);
-    lanes e_e = (2 * e_s * (xm + ym) + 2 * e_s * e_s + 2 * gamma_of(2) * xm * ym) *
-                    BOUND_MARGIN + FLT_MIN; /* U, V or W */
+    lanes e_e = lanes_edge_bound(reach, xm, ym); /* U, V or W */
     lane_mask outside = (((u < -e_e) | (v < -e_e) | (w < -e_e)) &
                          ((u > e_e) | (v > e_e) | (w > e_e))) |
                         empty;
@@ -214,13 +242,10 @@ bool triangle_packet_stops_at_edges(const triangle_packet *p,
     lanes bx = (b[kx] - ox) - r->sx * bz, by = (b[ky] - oy) - r->sy * bz;
     lanes cx = (c[kx] - ox) - r->sx * cz, cy = (c[ky] - oy) - r->sy * cz;
     lanes u = cx * by - cy * bx, v = ax * cy - ay * cx, w = bx * ay - by * ax;
-    /* <<the edge functions' error bound>> ch10 */
     lanes reach = p_reach + r->origin_reach; /* >= |corner| + |origin| */
-    lanes e_s = gamma_of(11) * reach;        /* a sheared x or y */
     lanes xm = lanes_abs(ax) + lanes_abs(bx) + lanes_abs(cx); /* >= max |x| */
     lanes ym = lanes_abs(ay) + lanes_abs(by) + lanes_abs(cy);
-    lanes e_e = (2 * e_s * (xm + ym) + 2 * e_s * e_s + 2 * gamma_of(2) * xm * ym) *
-                    BOUND_MARGIN + FLT_MIN; /* U, V or W */
+    lanes e_e = lanes_edge_bound(reach, xm, ym); /* U, V or W */
     lane_mask outside = (((u < -e_e) | (v < -e_e) | (w < -e_e)) &
                          ((u > e_e) | (v > e_e) | (w > e_e))) |
                         empty;
@@ -243,141 +268,49 @@ static float_interval float_interval_of(double t_min, double t_max)
     return (float_interval){up, t_min >= 0 ? -1 : 0};
 }
 
-static unsigned candidates_simd(const triangle_packet *p,
-                                const packet_ray *r, float_interval in)
+/* The program's filter and decision: in vectors, unless built with
+ * -DRT_SCALAR. */
+#ifdef RT_SCALAR
+#define LANE_BY_LANE true
+#else
+#define LANE_BY_LANE false
+#endif
+
+/* The lanes of p that the filter keeps, lane k in bit k. */
+static unsigned candidates(const triangle_packet *p, const packet_ray *r,
+                           float_interval in, bool alone)
 {
-    packet_int kept = kept_in_vectors(p, r, in.t_max, in.t_filter);
     unsigned bits = 0;
+    if (alone) {
+        for (int k = 0; k < PACKET_W; k++)
+            bits |= (unsigned)kept_alone(p, k, r, in.t_max, in.t_filter) << k;
+        return bits;
+    }
+    packet_int kept = kept_in_vectors(p, r, in.t_max, in.t_filter);
     for (int k = 0; k < PACKET_W; k++)
         bits |= (unsigned)(kept[k] & 1) << k;
     return bits;
 }
 
-static unsigned candidates_scalar(const triangle_packet *p,
-                                  const packet_ray *r, float_interval in)
+unsigned triangle_packet_candidates(const triangle_packet *p,
+                                    const packet_ray *r, double t_min,
+                                    double t_max, bool alone)
 {
-    unsigned bits = 0;
-    for (int k = 0; k < PACKET_W; k++)
-        bits |= (unsigned)kept_alone(p, k, r, in.t_max, in.t_filter) << k;
-    return bits;
+    return candidates(p, r, float_interval_of(t_min, t_max), alone);
 }
 
-/* The program's filter: in vectors, unless built with -DRT_SCALAR. */
-static inline unsigned candidates(const triangle_packet *p,
-                                  const packet_ray *r, float_interval in)
+/* Chapter 4's test, tightened, of triangle i of the mesh (vertices,
+ * triangles). */
+static bool hit_in_mesh(const packet_ray *r, const vec3 *vertices,
+                        const mesh_triangle *triangles, int i, double t_min,
+                        double t_max, triangle_hit *out)
 {
-#ifdef RT_SCALAR
-    return candidates_scalar(p, r, in);
-#else
-    return candidates_simd(p, r, in);
-#endif
-}
-
-unsigned triangle_packet_candidates_simd(const triangle_packet *p,
-                                         const packet_ray *r, double t_min,
-                                         double t_max)
-{
-    return candidates_simd(p, r, float_interval_of(t_min, t_max));
-}
-
-unsigned triangle_packet_candidates_scalar(const triangle_packet *p,
-                                           const packet_ray *r, double t_min,
-                                           double t_max)
-{
-    return candidates_scalar(p, r, float_interval_of(t_min, t_max));
-}
-
-/* <<where the kept lanes' corners are read>> ch10 */
-/* Where a kept lane's corners are: a copy beside the packets, in their
- * order, or (copy NULL) the mesh, through the lane's triangle index. */
-typedef struct {
-    const triangle_corners *copy;
-    const vec3 *vertices;
-    const mesh_triangle *triangles;
-} lane_corners;
-
-/* Chapter 4's test, tightened, of lane k of packet p, triangle i. */
-static bool hit_lane(const packet_ray *r, const lane_corners *from, int p,
-                     int k, int i, double t_min, double t_max,
-                     triangle_hit *out)
-{
-    const vec3 *a, *b, *c;
-    if (from->copy != NULL) {
-        const vec3 *corner = from->copy[p * PACKET_W + k].p;
-        a = &corner[0], b = &corner[1], c = &corner[2];
-    } else {
-        const int *v = from->triangles[i].v;
-        a = &from->vertices[v[0]], b = &from->vertices[v[1]];
-        c = &from->vertices[v[2]];
-    }
-    return triangle_hit_tightened(r->exact, a, b, c, t_min, t_max, out);
+    const int *v = triangles[i].v;
+    return triangle_hit_tightened(r->exact, &vertices[v[0]], &vertices[v[1]],
+                                  &vertices[v[2]], t_min, t_max, out);
 }
 
 /* <<deciding the kept lanes>> ch10 */
-static int nearest_of_packets(const packet_ray *r,
-                              const triangle_packet *packets, int count,
-                              const lane_corners *from, double t_min,
-                              double t_max, int best, triangle_hit *out,
-                              long long *decided)
-{
-    int nearest = -1;
-    double reach = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
-    float_interval in = float_interval_of(t_min, reach);
-    for (int p = 0; p < count; p++)
-        for (unsigned bits = candidates(&packets[p], r, in); bits != 0;
-             bits &= bits - 1) {
-            int k = __builtin_ctz(bits), i = packets[p].triangle[k];
-            triangle_hit th;
-            ++*decided;
-            if (hit_lane(r, from, p, k, i, t_min, reach, &th) &&
-                (th.t < t_max || i < best)) { /* a tie: the lower index */
-                *out = th, t_max = th.t, best = i, nearest = i;
-                reach = nextafter(t_max, INFINITY);
-                in = float_interval_of(t_min, reach);
-            }
-        }
-    return nearest;
-}
-
-static bool any_of_packets(const packet_ray *r,
-                           const triangle_packet *packets, int count,
-                           const lane_corners *from, double t_min,
-                           double t_max, long long *decided)
-{
-    float_interval in = float_interval_of(t_min, t_max);
-    triangle_hit unused;
-    for (int p = 0; p < count; p++)
-        for (unsigned bits = candidates(&packets[p], r, in); bits != 0;
-             bits &= bits - 1) {
-            int k = __builtin_ctz(bits);
-            ++*decided;
-            if (hit_lane(r, from, p, k, packets[p].triangle[k], t_min, t_max,
-                         &unused))
-                return true;
-        }
-    return false;
-}
-
-/* <<deciding the kept lanes of packets and corners>> ch10 */
-int triangle_packets_nearest(const packet_ray *r,
-                             const triangle_packet *packets, int count,
-                             const triangle_corners *corners, double t_min,
-                             double t_max, int best, triangle_hit *out,
-                             long long *decided)
-{
-    lane_corners from = {corners, NULL, NULL};
-    return nearest_of_packets(r, packets, count, &from, t_min, t_max, best,
-                              out, decided);
-}
-
-bool triangle_packets_any(const packet_ray *r, const triangle_packet *packets,
-                          int count, const triangle_corners *corners,
-                          double t_min, double t_max, long long *decided)
-{
-    lane_corners from = {corners, NULL, NULL};
-    return any_of_packets(r, packets, count, &from, t_min, t_max, decided);
-}
-
 int triangle_packets_nearest_in_mesh(const packet_ray *r,
                                      const triangle_packet *packets,
                                      int count, const vec3 *vertices,
@@ -385,9 +318,24 @@ int triangle_packets_nearest_in_mesh(const packet_ray *r,
                                      double t_min, double t_max, int best,
                                      triangle_hit *out, long long *decided)
 {
-    lane_corners from = {NULL, vertices, triangles};
-    return nearest_of_packets(r, packets, count, &from, t_min, t_max, best,
-                              out, decided);
+    int nearest = -1;
+    double t_upto = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
+    float_interval in = float_interval_of(t_min, t_upto);
+    for (int p = 0; p < count; p++)
+        for (unsigned bits = candidates(&packets[p], r, in, LANE_BY_LANE);
+             bits != 0;
+             bits &= bits - 1) {
+            int i = packets[p].triangle[__builtin_ctz(bits)];
+            triangle_hit th;
+            ++*decided;
+            if (hit_in_mesh(r, vertices, triangles, i, t_min, t_upto, &th) &&
+                (th.t < t_max || i < best)) { /* a tie: the lower index */
+                *out = th, t_max = th.t, best = i, nearest = i;
+                t_upto = nextafter(t_max, INFINITY);
+                in = float_interval_of(t_min, t_upto);
+            }
+        }
+    return nearest;
 }
 
 bool triangle_packets_any_in_mesh(const packet_ray *r,
@@ -397,8 +345,18 @@ bool triangle_packets_any_in_mesh(const packet_ray *r,
                                   double t_min, double t_max,
                                   long long *decided)
 {
-    lane_corners from = {NULL, vertices, triangles};
-    return any_of_packets(r, packets, count, &from, t_min, t_max, decided);
+    float_interval in = float_interval_of(t_min, t_max);
+    triangle_hit unused;
+    for (int p = 0; p < count; p++)
+        for (unsigned bits = candidates(&packets[p], r, in, LANE_BY_LANE);
+             bits != 0;
+             bits &= bits - 1) {
+            int i = packets[p].triangle[__builtin_ctz(bits)];
+            ++*decided;
+            if (hit_in_mesh(r, vertices, triangles, i, t_min, t_max, &unused))
+                return true;
+        }
+    return false;
 }
 
 /* <<the float decision, made>> ch10 */
@@ -476,53 +434,30 @@ static inline int float_hit_alone(const triangle_packet *p, int k,
     return hit;
 }
 
-static unsigned float_hit_bits_simd(const triangle_packet *p,
-                                    const packet_ray *r, float t_min,
-                                    float t_max, float_hits *h)
+/* The lanes of p hit in float alone, lane k in bit k; their numbers in
+ * *h. */
+static unsigned float_hit_bits(const triangle_packet *p, const packet_ray *r,
+                               float t_min, float t_max, float_hits *h,
+                               bool alone)
 {
-    packet_int hit = float_hits_in_vectors(p, r, t_min, t_max, h);
     unsigned bits = 0;
+    if (alone) {
+        for (int k = 0; k < PACKET_W; k++)
+            bits |= (unsigned)float_hit_alone(p, k, r, t_min, t_max, h) << k;
+        return bits;
+    }
+    packet_int hit = float_hits_in_vectors(p, r, t_min, t_max, h);
     for (int k = 0; k < PACKET_W; k++)
         bits |= (unsigned)(hit[k] & 1) << k;
     return bits;
 }
 
-static unsigned float_hit_bits_scalar(const triangle_packet *p,
-                                      const packet_ray *r, float t_min,
-                                      float t_max, float_hits *h)
-{
-    unsigned bits = 0;
-    for (int k = 0; k < PACKET_W; k++)
-        bits |= (unsigned)float_hit_alone(p, k, r, t_min, t_max, h) << k;
-    return bits;
-}
-
-/* The program's decision: in vectors, unless built with -DRT_SCALAR. */
-static inline unsigned float_hit_bits(const triangle_packet *p,
-                                      const packet_ray *r, float t_min,
-                                      float t_max, float_hits *h)
-{
-#ifdef RT_SCALAR
-    return float_hit_bits_scalar(p, r, t_min, t_max, h);
-#else
-    return float_hit_bits_simd(p, r, t_min, t_max, h);
-#endif
-}
-
-unsigned triangle_packet_float_hits_simd(const triangle_packet *p,
-                                         const packet_ray *r, double t_min,
-                                         double t_max)
+unsigned triangle_packet_float_hits(const triangle_packet *p,
+                                    const packet_ray *r, double t_min,
+                                    double t_max, bool alone)
 {
     float_hits h;
-    return float_hit_bits_simd(p, r, (float)t_min, (float)t_max, &h);
-}
-
-unsigned triangle_packet_float_hits_scalar(const triangle_packet *p,
-                                           const packet_ray *r,
-                                           double t_min, double t_max)
-{
-    float_hits h;
-    return float_hit_bits_scalar(p, r, (float)t_min, (float)t_max, &h);
+    return float_hit_bits(p, r, (float)t_min, (float)t_max, &h, alone);
 }
 
 int triangle_packets_nearest_float(const packet_ray *r,
@@ -534,7 +469,7 @@ int triangle_packets_nearest_float(const packet_ray *r,
     int nearest = -1;
     for (const triangle_packet *q = packets; q < packets + count; q++) {
         float_hits h;
-        unsigned bits = float_hit_bits(q, r, lo, nearest_t, &h);
+        unsigned bits = float_hit_bits(q, r, lo, nearest_t, &h, LANE_BY_LANE);
         for (; bits != 0; bits &= bits - 1) {
             int k = __builtin_ctz(bits), i = q->triangle[k];
             float t = h.n[k] / h.det[k];
@@ -557,7 +492,7 @@ bool triangle_packets_any_float(const packet_ray *r,
     float lo = (float)t_min, hi = (float)t_max;
     for (const triangle_packet *q = packets; q < packets + count; q++) {
         float_hits h;
-        unsigned bits = float_hit_bits(q, r, lo, hi, &h);
+        unsigned bits = float_hit_bits(q, r, lo, hi, &h, LANE_BY_LANE);
         for (; bits != 0; bits &= bits - 1) {
             int k = __builtin_ctz(bits);
             float t = h.n[k] / h.det[k];

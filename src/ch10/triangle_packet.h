@@ -1,25 +1,14 @@
-/* triangle_packet.h: triangles TRIANGLE_PACKET_WIDTH at a time, in float
- * (chapter 10).
+/* triangle_packet.h: triangles PACKET_W at a time, in float (chapter 10).
  *
- * A triangle_packet holds W triangles of a mesh in structure of arrays:
- * their corners rounded to float, lane by lane, and their indices in the
- * mesh (-1: an empty lane, which is never hit). The float test is a filter
- * that keeps every lane chapter 4's double test could hit; the lanes it
- * keeps are decided by that double test on the triangles' double corners
- * (a leaf's, as chapter 8 copies them), so
- * every answer is the double test's to the last bit, ties included.
- *
- *   triangle_packets_fill     packs triangles (indices into a mesh)
- *   packet_ray_of             a ray's constants, rounded to float
- *   triangle_packets_nearest  the nearest hit, keeping the tie rule
- *   triangle_packets_any      any hit, for a shadow ray
- *   triangle_packets_nearest_float, triangle_packets_any_float
- *                             the same decided in float alone: faster,
- *                             and float's answers, not chapter 4's
- *
- * The filter is compiled twice, with vectors (_simd) and lane by lane
- * (_scalar); the program uses the first, or the second when built with
- * -DRT_SCALAR. Both give the same lanes, bit for bit. */
+ * A triangle_packet holds PACKET_W triangles of a mesh, lane by lane:
+ * their corners rounded to float, and their indices in the mesh (-1: an
+ * empty lane, never hit). A filter in float keeps every lane that chapter
+ * 4's test in double could hit, and that test decides the lanes kept, on
+ * the mesh's own corners: every answer is chapter 4's, ties included
+ * (triangle_packets_nearest_in_mesh, _any_in_mesh). The same test decided
+ * in float alone is faster, and gives float's answers
+ * (triangle_packets_nearest_float, _any_float). Both are compiled in
+ * vectors and lane by lane (-DRT_SCALAR), which agree bit for bit. */
 #ifndef TRIANGLE_PACKET_H
 #define TRIANGLE_PACKET_H
 
@@ -39,7 +28,7 @@ typedef int32_t packet_int
     __attribute__((vector_size(4 * PACKET_W), aligned(4 * PACKET_W)));
 
 typedef struct {
-    packet_float corner[3][3]; /* [corner][axis], W lanes each */
+    packet_float corner[3][3]; /* [corner][axis], a lane each */
     packet_float reach;        /* each lane's largest |coordinate| */
     packet_int triangle;       /* index in the mesh; -1: an empty lane */
 } triangle_packet;
@@ -49,17 +38,17 @@ _Static_assert(sizeof(triangle_packet) == 11 * 4 * PACKET_W,
 _Static_assert(_Alignof(triangle_packet) == 4 * PACKET_W,
                "a packet starts where a vector may");
 
-/* The packets that count triangles fill: ceil(count / W). */
+/* The packets that count triangles fill: ceil(count / PACKET_W). */
 int triangle_packets_needed(int count);
 
 /* The bytes a packet spends on each of its lanes' triangles. */
 #define TRIANGLE_PACKET_BYTES_PER_TRIANGLE (sizeof(triangle_packet) / PACKET_W)
 
 /* Packs the count triangles items[0..count) of a mesh (vertices,
- * triangles; items NULL: 0..count-1) into packets, W to a packet, in
- * order; the last packet's spare lanes empty. packets must have room for
- * triangle_packets_needed(count) packets, aligned as triangle_packet is
- * (memory_alloc_aligned). Returns the number of packets filled. */
+ * triangles; items NULL: 0..count-1) into packets, PACKET_W to a packet,
+ * in order; the last packet's spare lanes empty. packets must have room
+ * for triangle_packets_needed(count) packets, aligned as triangle_packet
+ * is (memory_alloc_aligned). Returns the number of packets filled. */
 int triangle_packets_fill(triangle_packet *packets, const vec3 *vertices,
                           const mesh_triangle *triangles, const int *items,
                           int count);
@@ -79,47 +68,32 @@ packet_ray packet_ray_of(const watertight_ray *w);
 
 /* <<the tests of packets>> ch10 */
 /* The lanes of p that chapter 4's test could hit in (t_min, t_max), lane
- * k in bit k; in vectors, and lane by lane. The two are equal. */
-unsigned triangle_packet_candidates_simd(const triangle_packet *p,
-                                         const packet_ray *r, double t_min,
-                                         double t_max);
-unsigned triangle_packet_candidates_scalar(const triangle_packet *p,
-                                           const packet_ray *r, double t_min,
-                                           double t_max);
+ * k in bit k: computed in vectors, or (alone) lane by lane, which gives
+ * the same bits. */
+unsigned triangle_packet_candidates(const triangle_packet *p,
+                                    const packet_ray *r, double t_min,
+                                    double t_max, bool alone);
 
 /* Does the filter stop at the edge functions: does an edge, or the lack
  * of a triangle, rule out every lane of p for r? */
 bool triangle_packet_stops_at_edges(const triangle_packet *p,
                                     const packet_ray *r);
 
-/* The nearest triangle of count packets that r hits in (t_min, t_max],
- * chapter 4's test deciding on corners, whose element p * W + k holds the
- * double corners of packet p's lane k (chapter 8's leaf_corners, for
- * packets filled from the same items), and keeping the tie rule of
- * triangle_nearest_of_leaf: a hit at t_max itself wins when its index is
- * below best (-1: nothing found yet, t_max excluded). Returns its index in
- * the mesh and fills *out; or -1. Adds the double tests to *decided (not
- * NULL). */
-int triangle_packets_nearest(const packet_ray *r,
-                             const triangle_packet *packets, int count,
-                             const triangle_corners *corners, double t_min,
-                             double t_max, int best, triangle_hit *out,
-                             long long *decided);
-
-/* Does r hit any triangle of count packets in (t_min, t_max)? corners
- * and decided as for triangle_packets_nearest. */
-bool triangle_packets_any(const packet_ray *r, const triangle_packet *packets,
-                          int count, const triangle_corners *corners,
-                          double t_min, double t_max, long long *decided);
-
-/* The same two, deciding on the mesh's own corners, read through each
- * kept lane's index: no copy of the corners beside the packets. */
+/* The nearest triangle of count packets, filled from the mesh (vertices,
+ * triangles), that r hits in (t_min, t_max], chapter 4's test deciding
+ * on the mesh's corners, by the tie rule of triangle_nearest_of_leaf: a
+ * hit at t_max itself wins when its index is below best (-1: nothing
+ * found yet, t_max excluded). Returns its index in the mesh and fills
+ * *out; or -1. Adds the double tests to *decided (not NULL). */
 int triangle_packets_nearest_in_mesh(const packet_ray *r,
                                      const triangle_packet *packets,
                                      int count, const vec3 *vertices,
                                      const mesh_triangle *triangles,
                                      double t_min, double t_max, int best,
                                      triangle_hit *out, long long *decided);
+
+/* Does r hit any triangle of count packets in (t_min, t_max)? As
+ * triangle_packets_nearest_in_mesh. */
 bool triangle_packets_any_in_mesh(const packet_ray *r,
                                   const triangle_packet *packets, int count,
                                   const vec3 *vertices,
@@ -128,18 +102,15 @@ bool triangle_packets_any_in_mesh(const packet_ray *r,
                                   long long *decided);
 
 /* Chapter 4's test in float alone, with no bound and no second test:
- * the lanes of p that r hits in (t_min, t_max], lane k in bit k; in
- * vectors, and lane by lane. The two are equal. */
-unsigned triangle_packet_float_hits_simd(const triangle_packet *p,
-                                         const packet_ray *r, double t_min,
-                                         double t_max);
-unsigned triangle_packet_float_hits_scalar(const triangle_packet *p,
-                                           const packet_ray *r,
-                                           double t_min, double t_max);
+ * the lanes of p that r hits in (t_min, t_max], lane k in bit k, in
+ * vectors or (alone) lane by lane, as triangle_packet_candidates. */
+unsigned triangle_packet_float_hits(const triangle_packet *p,
+                                    const packet_ray *r, double t_min,
+                                    double t_max, bool alone);
 
 /* The nearest triangle of count packets hit in float alone in (t_min,
  * t_max], a hit at t_max itself only when its index is below best (the
- * tie rule of triangle_packets_nearest): its index, its hit in *out; or
+ * tie rule of triangle_packets_nearest_in_mesh): its index, its hit in *out; or
  * -1. The hit is float's, t and barycentric coordinates. */
 int triangle_packets_nearest_float(const packet_ray *r,
                                    const triangle_packet *packets, int count,

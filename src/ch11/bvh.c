@@ -7,8 +7,8 @@
 /* <<bvh.c includes>> ch10 */
 #include <stdatomic.h>
 /* <<bvh.c includes>> += ch11 */
-#include <pthread.h>
-#include <unistd.h>
+#include "moment.h"
+#include "pool.h"
 
 /* <<bvh storage>> ch09 */
 bvh_params bvh_default_params(void)
@@ -121,7 +121,7 @@ typedef struct {
     /* <<more of a builder>> ch11 */
     int *scratch;             /* as many as items: large nodes' partitions */
     bvh_node *slots;          /* 2 count - 1: each subtree's place */
-    struct bvh_slice *slices; /* the top's: one a thread */
+    struct bvh_slice *slices; /* the top's: one a thread at most */
     int slice_count;
     struct bvh_task *tasks;   /* the subtrees left to the threads */
 } bvh_builder;
@@ -202,48 +202,6 @@ static int partition(const bvh_builder *bd, int b, int e, int axis,
 }
 
 /* <<a node's passes>> ch11 */
-/* <<the build's threads>> ch11 */
-#define BVH_MAX_THREADS 256
-
-/* The threads of a build asked for threads (0: one per core). */
-static int thread_count(int threads)
-{
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    int n = threads > 0 ? threads : cores > 0 ? (int)cores : 1;
-    return n < BVH_MAX_THREADS ? n : BVH_MAX_THREADS;
-}
-
-typedef struct {
-    void (*job)(void *, int);
-    void *context;
-    int count;
-    atomic_int next;
-} bvh_jobs;
-
-static void *take_jobs(void *jobs)
-{
-    bvh_jobs *q = jobs;
-    for (int k; (k = atomic_fetch_add(&q->next, 1)) < q->count;)
-        q->job(q->context, k);
-    return NULL;
-}
-
-void bvh_run_jobs(int count, int threads, void (*job)(void *, int),
-                  void *context)
-{
-    bvh_jobs q = {.job = job, .context = context, .count = count};
-    atomic_init(&q.next, 0);
-    int n = thread_count(threads), started = 0;
-    n = n < count ? n : count > 1 ? count : 1;
-    pthread_t id[BVH_MAX_THREADS];
-    while (started < n - 1 &&
-           pthread_create(&id[started], NULL, take_jobs, &q) == 0)
-        started++; /* a thread that cannot start leaves its share to us */
-    take_jobs(&q);
-    for (int k = 0; k < started; k++)
-        pthread_join(id[k], NULL);
-}
-
 /* <<a node's items in slices>> ch11 */
 typedef struct bvh_slice bvh_slice;
 
@@ -261,12 +219,10 @@ struct bvh_slice {
     double largest; /* coordinate of its boxes, in magnitude */
 };
 
-/* Cuts items[b..e) into n slices, or one when there are too few items
- * to share; how many. */
+/* Cuts items[b..e) into n slices of nearly equal size; n. */
 static int cut_slices(const bvh_builder *bd, bvh_slice *sl, int n, int b,
                       int e)
 {
-    n = e - b > BVH_SHARED_ITEMS ? n : 1;
     for (int k = 0; k < n; k++) { /* not a compound literal: no bins */
         sl[k].bd = bd;
         sl[k].b = b + (int)((long long)(e - b) * k / n);
@@ -287,10 +243,7 @@ static void run_slices(bvh_slice *sl, int n, void (*pass)(bvh_slice *))
 {
     for (int k = 0; k < n; k++)
         sl[k].pass = pass;
-    if (n == 1)
-        pass(&sl[0]);
-    else
-        bvh_run_jobs(n, n, run_slice, sl);
+    pool_for(n, n, run_slice, sl);
 }
 
 static void slice_centers(bvh_slice *s)
@@ -379,7 +332,9 @@ static int partition_in_order(bvh_slice *sl, int n, int split)
  * for a node of BVH_SHARED_ITEMS or fewer. */
 static int slices_of(bvh_builder *bd, int b, int e)
 {
-    return cut_slices(bd, bd->slices, bd->slice_count, b, e);
+    int n = (e - b + BVH_SHARED_ITEMS - 1) / BVH_SHARED_ITEMS;
+    n = n < bd->slice_count ? n : bd->slice_count;
+    return cut_slices(bd, bd->slices, n > 1 ? n : 1, b, e);
 }
 
 static double pass_prepare(bvh_builder *bd, int count)
@@ -522,13 +477,6 @@ typedef struct bvh_task {
     int b, e, s, depth;
 } bvh_task;
 
-typedef struct {
-    const bvh_builder *bd;
-    const bvh_task *tasks;
-    int task_count;
-    atomic_int next;
-} bvh_queue;
-
 /* Builds the top of the subtree of items[b..e) at slot s, its large
  * nodes' passes shared by the threads, and leaves its subtrees of at
  * most small items to tasks. */
@@ -546,35 +494,16 @@ static void build_top(bvh_builder *bd, int b, int e, int s, int depth,
     build_top(bd, m, e, s + 2 * (m - b), depth + 1, small, tasks, count);
 }
 
-/* A thread's part: the next subtree left, until none is; its passes on
- * this thread alone, through a builder of its own with one slice. */
-static void *build_tasks(void *queue)
+/* The pool's job k: task k's subtree, through a builder of its own whose
+ * one slice keeps its passes on this thread. */
+static void build_task(void *builder, int k)
 {
-    bvh_queue *q = queue;
+    const bvh_builder *bd = builder;
     bvh_slice mine;
-    bvh_builder own = *q->bd;
+    bvh_builder own = *bd;
     own.slices = &mine, own.slice_count = 1;
-    for (int k; (k = atomic_fetch_add(&q->next, 1)) < q->task_count;)
-        build_range(&own, q->tasks[k].b, q->tasks[k].e, q->tasks[k].s,
-                    q->tasks[k].depth);
-    return NULL;
-}
-
-/* The tasks, on threads threads (0: one per core), this one among them;
- * never more threads than tasks. Returns how many threads worked. */
-static int run_tasks(bvh_queue *q, int threads)
-{
-    int n = thread_count(threads), started = 0;
-    if (n > q->task_count)
-        n = q->task_count > 1 ? q->task_count : 1; /* a small mesh: one */
-    pthread_t id[BVH_MAX_THREADS];
-    while (started < n - 1 &&
-           pthread_create(&id[started], NULL, build_tasks, q) == 0)
-        started++; /* a thread that cannot start leaves its share to us */
-    build_tasks(q);
-    for (int k = 0; k < started; k++)
-        pthread_join(id[k], NULL);
-    return started + 1;
+    const bvh_task *t = &bd->tasks[k];
+    build_range(&own, t->b, t->e, t->s, t->depth);
 }
 
 /* <<closing the gaps>> ch11 */
@@ -753,7 +682,7 @@ static bool builder_made(bvh_builder *bd, size_t count)
     /* <<more arrays of a builder>> ch11 */
     bd->scratch = memory_alloc(count, sizeof *bd->scratch);
     bd->slots = memory_alloc(2 * count - 1, sizeof *bd->slots);
-    bd->slice_count = thread_count(bd->p.threads);
+    bd->slice_count = pool_threads(bd->p.threads);
     bd->slices = memory_alloc((size_t)bd->slice_count, sizeof *bd->slices);
     bd->tasks = memory_alloc(count, sizeof *bd->tasks);
     made = made && bd->scratch && bd->slots && bd->slices && bd->tasks;
@@ -775,11 +704,12 @@ static void build_binary(bvh_builder *bd, int count, bvh *t)
     /* a task's size: eight tasks a thread, enough to share them out */
     int tasks_wanted = 8 * bd->slice_count;
     int small = count / tasks_wanted > 1024 ? count / tasks_wanted : 1024;
-    bvh_queue q = {.bd = bd, .tasks = bd->tasks};
-    build_top(bd, 0, count, 0, 0, small, bd->tasks, &q.task_count);
-    atomic_init(&q.next, 0);
-    t->build_threads = run_tasks(&q, bd->p.threads);
+    int tasks = 0;
+    build_top(bd, 0, count, 0, 0, small, bd->tasks, &tasks);
+    t->build_threads = pool_for(tasks, bd->p.threads, build_task, bd);
+    double start = moment_now().wall;
     close_gaps(bd->slots, 0, t, 0);
+    t->gaps_seconds = moment_now().wall - start;
 }
 
 /* t's binary nodes in an array of their number (kept larger when even a
@@ -812,8 +742,10 @@ bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
     if (ok)
         build_binary(&bd, count, t);
     builder_free(&bd);
-    /* <<the tree made of the binary nodes>> ch10 */
+    /* <<the tree made of the binary nodes>> ch11 */
+    double collapse_start = moment_now().wall;
     ok = ok && (q.width == 2 ? shrink_binary(t) : make_wide(t));
+    t->collapse_seconds = moment_now().wall - collapse_start;
     if (!ok)
         bvh_free(t);
     return ok;

@@ -7,6 +7,8 @@
 #include "memory.h"
 /* <<mesh.c includes>> ch06 */
 #include "offset.h"
+/* <<mesh.c includes>> += ch11 */
+#include "pool.h"
 
 /* <<mesh storage>> ch04 */
 void mesh_free(mesh *m)
@@ -518,9 +520,9 @@ static int pack_leaves(mesh *m, triangle_packet *packets, int from, int to,
 }
 
 /* <<making a mesh's packets>> ch11 */
-/* The work around a mesh's build, in pieces for the build's threads:
- * pieces of its triangles for their boxes, then of the tree's nodes for
- * their packets. */
+/* The work around a mesh's build, in pieces for the pool: pieces of its
+ * triangles for their boxes, then of the tree's nodes for their
+ * packets. */
 typedef struct {
     mesh *m;
     box *bounds;
@@ -555,7 +557,7 @@ static void triangles_boxed(mesh *m, box *bounds, int threads)
 {
     mesh_pieces w = {.m = m, .bounds = bounds,
                      .pieces = pieces_of(m->triangle_count)};
-    bvh_run_jobs(w.pieces, threads, box_piece, &w);
+    pool_for(w.pieces, threads, box_piece, &w);
 }
 
 static void pack_piece(void *pieces, int piece)
@@ -581,7 +583,7 @@ static bool make_packets(mesh *m)
                                      sizeof(triangle_packet));
     if (w.packets == NULL)
         return false;
-    bvh_run_jobs(w.pieces, m->bvh.build_threads, pack_piece, &w);
+    pool_for(w.pieces, m->bvh.build_threads, pack_piece, &w);
     m->bvh_packets = w.packets;
     m->bvh_packet_count = w.first[w.pieces];
     return true;
@@ -708,8 +710,9 @@ int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
 
 /* <<the triangle's hit-point bound>> ch06 */
 /* How wrong the watertight test's t can be for a ray that starts at p
- * near the triangle (a, b, c), as a distance from its plane. */
-static double triangle_test_error(vec3 a, vec3 b, vec3 c, vec3 p)
+ * near the triangle (a, b, c), as a distance from its plane, when the
+ * test rounds to the unit u. */
+static double triangle_test_error(vec3 a, vec3 b, vec3 c, vec3 p, double u)
 {
     vec3 corners[3] = {a, b, c};
     double M = 0; /* the triangle's reach from p: largest coordinate */
@@ -721,10 +724,9 @@ static double triangle_test_error(vec3 a, vec3 b, vec3 c, vec3 p)
                                                vec3_sub(c, a)));
     if (!(twice_area > 0))
         return INFINITY; /* never hit: the test rejects it */
-    return sqrt(3) * (gamma_bound(3) * M +
-                      48 * gamma_bound(4) * M * M * M / twice_area);
+    return sqrt(3) * (gamma_of_unit(3, u) * M +
+                      48 * gamma_of_unit(4, u) * M * M * M / twice_area);
 }
-
 
 void triangle_refine_hit(vec3 a, vec3 b, vec3 c, const double w[3], hit *h)
 {
@@ -732,7 +734,41 @@ void triangle_refine_hit(vec3 a, vec3 b, vec3 c, const double w[3], hit *h)
          pc = vec3_scale(c, w[2]);
     h->point = vec3_add(vec3_add(pa, pb), pc);
     vec3 sum = vec3_add(vec3_add(vec3_abs(pa), vec3_abs(pb)), vec3_abs(pc));
-    double test = triangle_test_error(a, b, c, h->point);
+    double test = triangle_test_error(a, b, c, h->point, DBL_EPSILON / 2);
     h->error = vec3_add(vec3_scale(sum, gamma_bound(7)),
                         (vec3){test, test, test});
+}
+
+void mesh_refine_hit(const mesh *m, int k, const double w[3], hit *h)
+{
+    const int *v = m->triangles[k].v;
+    vec3 a = m->vertices[v[0]], b = m->vertices[v[1]], c = m->vertices[v[2]];
+    /* <<a mesh hit's bound for another test>> ch10 */
+    if (m->bvh_in_float) { /* its rays meet it again in float */
+        triangle_refine_float_hit(a, b, c, w, h);
+        return;
+    }
+    triangle_refine_hit(a, b, c, w, h);
+}
+/* <<the triangle's hit-point bound>> += ch10 */
+
+/* Covers the bound's own roundings, and the origin's move by the offset,
+ * which float rounds too. */
+#define FLOAT_BOUND_MARGIN (1 + 0x1p-10)
+
+void triangle_refine_float_hit(vec3 a, vec3 b, vec3 c, const double w[3],
+                               hit *h)
+{
+    const double u = FLT_EPSILON / 2;   /* float's unit roundoff */
+    triangle_refine_hit(a, b, c, w, h); /* the point; double's bound */
+    vec3 sum = vec3_add(vec3_add(vec3_abs(vec3_scale(a, w[0])),
+                                 vec3_abs(vec3_scale(b, w[1]))),
+                        vec3_abs(vec3_scale(c, w[2])));
+    vec3 weights = vec3_scale(sum, gamma_of_unit(5, u)); /* float's w */
+    vec3 reach = vec3_max(vec3_max(vec3_abs(a), vec3_abs(b)),
+                          vec3_max(vec3_abs(c), vec3_abs(h->point)));
+    vec3 inputs = vec3_scale(reach, 2 * u); /* corners, origin to float */
+    double test = triangle_test_error(a, b, c, h->point, u);
+    vec3 more = vec3_add(vec3_add(weights, inputs), (vec3){test, test, test});
+    h->error = vec3_add(h->error, vec3_scale(more, FLOAT_BOUND_MARGIN));
 }

@@ -14,6 +14,7 @@
 #include <unistd.h>
 #include "memory.h"
 #include "moment.h"
+#include "pool.h"
 
 /* What the pixel whose primary ray is r shows. */
 static vec3 pixel_color(const scene *s, ray r, render_stats *stats)
@@ -58,16 +59,23 @@ void render(const scene *s, image *img, render_stats *stats)
 }
 
 /* <<rendering in bands>> ch11 */
-/* <<the threads' shared work>> ch11 */
-/* What every thread shares: the image, handed out band by band, and how
- * far it has come, which the reporter reads. */
+/* <<the bands' shared work>> ch11 */
+/* A band's counts, on cache lines of their own. */
+typedef struct {
+    _Alignas(64) render_stats stats;
+} band_counts;
+
+/* What every band shares: the image, its bands' counts, and how far it
+ * has come, which the reporter reads. */
 typedef struct {
     const scene *s;
     image *img;
-    int band_rows; /* rows_per_band of the image */
-    atomic_int next_band, rows_done;
+    int band_rows;       /* rows_per_band of the image */
+    band_counts *counts; /* one a band */
+    atomic_int rows_done;
     atomic_llong rays_done;
     const render_settings *how;
+    bool reporting;       /* a reporter thread shows the progress */
     pthread_mutex_t lock; /* one report at a time; guards finished */
     pthread_cond_t wake;  /* the reporter's, when the image is done */
     bool finished;
@@ -111,50 +119,6 @@ static long long rays_of(const render_stats *st)
            st->refraction_rays;
 }
 
-/* A thread's part: its own counts, on a cache line of their own. */
-typedef struct {
-    _Alignas(64) render_stats stats;
-    band_queue *queue;
-    pthread_t thread;
-} band_worker;
-
-static int cores_online(void)
-{
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n < 1 ? 1 : n > 256 ? 256 : (int)n;
-}
-
-/* <<a thread's bands>> ch11 */
-/* The next band of rows [*first, *last); false when none is left. */
-static bool take_band(band_queue *q, int *first, int *last)
-{
-    int turn = atomic_fetch_add(&q->next_band, 1);
-    int bands = (q->img->height + q->band_rows - 1) / q->band_rows;
-    if (turn >= bands)
-        return false;
-    *first = band_of_turn(turn, bands) * q->band_rows;
-    *last = *first + q->band_rows < q->img->height ? *first + q->band_rows
-                                                   : q->img->height;
-    return true;
-}
-
-static void render_band(band_worker *w, int first, int last)
-{
-    long long before = rays_of(&w->stats);
-    render_rows(w->queue->s, w->queue->img, first, last, &w->stats);
-    atomic_fetch_add(&w->queue->rays_done, rays_of(&w->stats) - before);
-    atomic_fetch_add(&w->queue->rows_done, last - first);
-}
-
-static void *band_thread(void *worker)
-{
-    band_worker *w = worker;
-    int first, last;
-    while (take_band(w->queue, &first, &last))
-        render_band(w, first, last);
-    return NULL;
-}
-
 /* <<the reporter>> ch11 */
 /* The progress so far, shown by one thread at a time. */
 static void report(band_queue *q)
@@ -193,7 +157,26 @@ static void stop_reporter(band_queue *q, pthread_t reporter)
     pthread_join(reporter, NULL);
 }
 
-/* <<adding up the threads' counts>> ch11 */
+/* <<a band's job>> ch11 */
+/* Band k of the image: its rows drawn, its work counted in its own
+ * record, and how far the image has come. */
+static void draw_band(void *queue, int k)
+{
+    band_queue *q = queue;
+    int height = q->img->height;
+    int bands = (height + q->band_rows - 1) / q->band_rows;
+    int first = band_of_turn(k, bands) * q->band_rows;
+    int last = first + q->band_rows < height ? first + q->band_rows
+                                             : height;
+    render_stats *counts = &q->counts[k].stats;
+    render_rows(q->s, q->img, first, last, counts);
+    atomic_fetch_add(&q->rays_done, rays_of(counts));
+    int done = atomic_fetch_add(&q->rows_done, last - first) + last - first;
+    if (q->how->progress != NULL && !q->reporting && done < height)
+        report(q); /* no reporter: between bands */
+}
+
+/* <<adding up the bands' counts>> ch11 */
 _Static_assert(sizeof(render_stats) % sizeof(long long) == 0,
                "render_stats holds counts (long long) only");
 
@@ -208,45 +191,32 @@ static void add_stats(render_stats *sum, const render_stats *part)
     memcpy(sum, a, sizeof a);
 }
 
-/* <<the threads at work>> ch11 */
+/* <<the bands on the pool>> ch11 */
 void render_in_bands(const scene *s, image *img, const render_settings *how,
                      render_stats *stats)
 {
     band_queue q = {.s = s, .img = img, .how = how,
                     .band_rows = rows_per_band(img->height)};
-    atomic_init(&q.next_band, 0), atomic_init(&q.rows_done, 0);
-    atomic_init(&q.rays_done, 0);
+    atomic_init(&q.rows_done, 0), atomic_init(&q.rays_done, 0);
     pthread_mutex_init(&q.lock, NULL), moment_condition_init(&q.wake);
-    band_worker one, *w = NULL;
-    int n = how->threads > 0 ? how->threads : cores_online();
-    int started = 1, first, last;
-    if (n > 1)
-        w = memory_alloc_aligned(64, (size_t)n, sizeof *w);
-    if (w == NULL)
-        w = &one, n = 1; /* out of memory: this thread alone */
-    for (int k = 0; k < n; k++)
-        w[k] = (band_worker){.queue = &q};
-    while (started < n &&
-           pthread_create(&w[started].thread, NULL, band_thread,
-                          &w[started]) == 0)
-        started++; /* a thread that cannot start leaves its share to us */
-    pthread_t reporter; /* none: the progress between our bands only */
-    bool reporting = how->progress != NULL &&
-                     pthread_create(&reporter, NULL, report_thread, &q) == 0;
-    while (take_band(&q, &first, &last)) { /* this thread is worker 0 */
-        render_band(&w[0], first, last);
-        if (how->progress != NULL && !reporting)
-            report(&q);
-    }
-    for (int k = 1; k < started; k++)
-        pthread_join(w[k].thread, NULL);
-    if (reporting) {
+    int bands = (img->height + q.band_rows - 1) / q.band_rows;
+    band_counts one = {0};
+    q.counts = memory_alloc_aligned(64, (size_t)bands, sizeof *q.counts);
+    if (q.counts != NULL)
+        memset(q.counts, 0, (size_t)bands * sizeof *q.counts);
+    else /* no memory: the whole image as one band */
+        q.counts = &one, q.band_rows = img->height, bands = 1;
+    pthread_t reporter; /* none: the bands show the progress */
+    q.reporting = how->progress != NULL &&
+                  pthread_create(&reporter, NULL, report_thread, &q) == 0;
+    pool_for(bands, how->threads, draw_band, &q);
+    if (q.reporting)
         stop_reporter(&q, reporter);
+    if (how->progress != NULL)
         report(&q); /* the whole image: a terminal's bar ends */
-    }
-    for (int k = 0; k < started; k++)
-        add_stats(stats, &w[k].stats);
+    for (int k = 0; k < bands; k++)
+        add_stats(stats, &q.counts[k].stats);
     pthread_mutex_destroy(&q.lock), pthread_cond_destroy(&q.wake);
-    if (w != &one)
-        free(w);
+    if (q.counts != &one)
+        free(q.counts);
 }

@@ -63,7 +63,8 @@ void bvh_allow_avx2(bool allowed);
 
 /* A node of more items has its passes over them shared by the threads
  * at the top of the tree, and keeps its items' order as it partitions:
- * a pass over fewer is not worth a thread's start. */
+ * a pass over fewer is not worth a thread's waking. A pass is cut into
+ * slices of at most this many items, one a thread at most. */
 #define BVH_SHARED_ITEMS (1 << 16)
 
 /* <<bvh nodes>> ch09 */
@@ -112,7 +113,8 @@ typedef struct bvh {
     bvh_node4 *nodes4; /* width 4; node 0 is the root */
     bvh_node8 *nodes8; /* width 8 */
     /* <<more of a bvh>> += ch11 */
-    int build_threads; /* the threads its build ran on */
+    int build_threads; /* its subtrees were shared among */
+    double gaps_seconds, collapse_seconds; /* its walks on one thread */
 } bvh;
 
 /* <<bvh building>> ch09 */
@@ -131,14 +133,6 @@ long long bvh_bytes(const bvh *t);
  * compiler was allowed ("SSE2", "AVX2", ...), or AVX2 chosen when the
  * program runs. */
 const char *bvh_vector_width_name(void);
-/* <<bvh building>> += ch11 */
-
-/* Runs job(context, k) for every k in [0, count) on threads threads (0:
- * one per core; never more than count), this one among them, each taking
- * the next k left: for the work around a build (a mesh's boxes, its
- * packets). */
-void bvh_run_jobs(int count, int threads, void (*job)(void *, int),
-                  void *context);
 
 /* <<bvh ray tests>> ch09 */
 /* <<the ray's float constants>> ch09 */

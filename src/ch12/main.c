@@ -150,6 +150,8 @@ int main(int argc, char **argv)
         report_bvhs(&s);
     /* <<once the scene is loaded>> += ch11 */
     how.threads = opt.threads;
+    if (opt.stats)
+        report_loading(&s);
     const char *input =
         output_is(opt.output, opt.scene_path) ? opt.scene_path : NULL;
     /* <<other files the scene read>> ch04 */

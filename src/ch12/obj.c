@@ -6,7 +6,9 @@
 #include "array.h"
 /* <<OBJ reader includes>> ch11 */
 #include <string.h>
-#include <unistd.h>
+#include <sys/stat.h>
+#include "moment.h"
+#include "pool.h"
 
 typedef struct {
     mesh *m;
@@ -237,7 +239,8 @@ bool mesh_load_obj(mesh *m, const char *path, parse_error *err)
 }
 /* <<reading an OBJ file>> += ch11 */
 
-/* One part of the text, whole lines, and what its thread found. */
+/* <<a part of the text>> ch11 */
+/* One part of the text, whole lines, and what its job found. */
 typedef struct {
     const char *text, *name;
     size_t length;
@@ -259,17 +262,15 @@ static void part_job(void *context, int k)
     w->work(&w->parts[k]);
 }
 
-/* Runs work on every part, on threads threads (0: one per core; never
- * more than parts), this one among them: each takes the next part left,
- * as the BVH's build hands out its jobs (bvh_run_jobs, whose threads
- * these are). */
+/* Runs work on every part, on threads threads (0: one per core). */
 static void run_parts(obj_part *parts, int n, int threads,
                       void (*work)(obj_part *))
 {
     obj_work w = {parts, work};
-    bvh_run_jobs(n, threads, part_job, &w);
+    pool_for(n, threads, part_job, &w);
 }
 
+/* <<counting a part>> ch11 */
 static bool count_obj_statement(parser *p, void *target)
 {
     obj_part *part = target;
@@ -309,6 +310,7 @@ static void read_part(obj_part *t)
                         parse_obj_statement, &r);
 }
 
+/* <<the arrays made to measure>> ch11 */
 /* The capacity that growing an array one item at a time, to at most
  * max, gives count items; its bytes added to *bytes. */
 static int grown_capacity(long long count, int max, size_t size,
@@ -357,7 +359,9 @@ static bool make_arrays(mesh *m, const obj_part *parts, int n,
            (m->triangles || !ts) && (m->triangle_normals || !ts);
 }
 
-/* Each part's view of m: the counts before it, its items' end. */
+/* <<each part's view of the arrays>> ch11 */
+/* Each part's view of m: the counts before it, its items' end; m's
+ * counts those of the whole text. */
 static void share_arrays(mesh *m, obj_part *parts, int n)
 {
     mesh at = *m; /* the counts so far */
@@ -379,6 +383,7 @@ static void share_arrays(mesh *m, obj_part *parts, int n)
     m->texcoord_count = at.texcoord_count;
 }
 
+/* <<where a part begins>> ch11 */
 static bool starts_with_mark(const char *text, size_t length)
 {
     return length >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0;
@@ -399,8 +404,25 @@ static size_t part_start(const char *text, size_t length, int k, int n)
     return at < length ? at : length; /* no line starts there: the end */
 }
 
-/* The parts counted, the arrays made, the parts read: false when the
- * serial reader must say what is wrong. */
+/* <<the parts read and checked>> ch11 */
+/* Did each part fill what it counted, and end where the parts before it
+ * and its own counts say? */
+static bool parts_filled(const obj_part *parts, int n)
+{
+    long long v = 0, vn = 0, vt = 0, t = 0;
+    for (int k = 0; k < n; k++) {
+        const obj_part *p = &parts[k];
+        v += p->vertices, vn += p->normals;
+        vt += p->texcoords, t += p->triangles;
+        if (p->m.vertex_count != v || p->m.normal_count != vn ||
+            p->m.texcoord_count != vt || p->m.triangle_count != t)
+            return false;
+    }
+    return true;
+}
+
+/* The parts counted, the arrays made, the parts read and checked: false
+ * when the serial reader must say what is wrong, or read it. */
 static bool read_in_parts(mesh *m, obj_part *parts, int n, int threads,
                           mesh_budget budget)
 {
@@ -408,14 +430,16 @@ static bool read_in_parts(mesh *m, obj_part *parts, int n, int threads,
     for (int k = 0; k < n; k++)
         if (!parts[k].ok)
             return false;
+    double start = moment_now().wall;
     if (!make_arrays(m, parts, n, budget))
         return false;
     share_arrays(m, parts, n);
+    m->arrays_seconds = moment_now().wall - start;
     run_parts(parts, n, threads, read_part);
     for (int k = 0; k < n; k++)
         if (!parts[k].ok)
             return false;
-    return true;
+    return parts_filled(parts, n);
 }
 
 bool mesh_parse_obj_in_parts(mesh *m, const char *text, size_t length,
@@ -432,9 +456,39 @@ bool mesh_parse_obj_in_parts(mesh *m, const char *text, size_t length,
     bool ok = part != NULL && read_in_parts(m, part, n, threads, budget);
     free(part);
     if (ok)
-        return true;
+        return m->parts = n, true;
     mesh_free(m); /* chapter 4's reader, from the start, says why */
     return parse_obj_within(m, text, length, name, budget, err);
+}
+
+/* <<a file read in parts>> ch11 */
+void (*obj_test_after_reading)(const char *path);
+
+/* The file at path read into memory, refused when its size or its time
+ * of change moved meanwhile. */
+static bool read_unchanged(const char *path, char **text, size_t *length,
+                           parse_error *err)
+{
+    struct stat before, after;
+    bool seen = stat(path, &before) == 0;
+    if (!parse_read_file(path, OBJ_MAX_BYTES, text, length, err))
+        return false;
+    if (obj_test_after_reading != NULL)
+        obj_test_after_reading(path);
+    bool still = seen && stat(path, &after) == 0;
+    if (still && after.st_size == before.st_size &&
+        after.st_mtime == before.st_mtime)
+        return true;
+    free(*text), *text = NULL;
+    if (still && after.st_size == before.st_size)
+        return parse_fail_on_line(err, path, 0, PARSE_CANNOT_READ,
+                                  "the file changed while it was read "
+                                  "(its time of change moved)");
+    return parse_fail_on_line(
+        err, path, 0, PARSE_CANNOT_READ,
+        "the file changed while it was read (%lld bytes before, %s)",
+        seen ? (long long)before.st_size : 0LL,
+        still ? "another size after" : "gone after");
 }
 
 bool mesh_load_obj_on(mesh *m, const char *path, mesh_budget budget,
@@ -442,15 +496,16 @@ bool mesh_load_obj_on(mesh *m, const char *path, mesh_budget budget,
 {
     char *text;
     size_t length;
-    if (!parse_read_file(path, OBJ_MAX_BYTES, &text, &length, err))
+    double start = moment_now().wall;
+    if (!read_unchanged(path, &text, &length, err))
         return false;
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    long n = threads > 0 ? threads : cores > 0 ? cores : 1;
+    double read_in = moment_now().wall - start;
     size_t most = 1 + length / OBJ_MIN_PART_BYTES;
-    size_t wanted = (size_t)n * OBJ_PARTS_A_THREAD;
+    size_t wanted = (size_t)pool_threads(threads) * OBJ_PARTS_A_THREAD;
     int parts = (int)(wanted < most ? wanted : most);
     bool ok = mesh_parse_obj_in_parts(m, text, length, path, budget, parts,
                                       threads, err);
     free(text);
+    m->file_seconds = read_in;
     return ok;
 }

@@ -10,12 +10,18 @@
 #include <float.h>
 #include "hit.h"
 
-/* gamma_n = n u / (1 - n u), u = 2^-53: n roundings change a value by at
- * most this factor (Higham 2002, lemma 3.1). */
+/* gamma_n = n u / (1 - n u): n roundings to the unit u change a value by
+ * at most this factor (Higham 2002, lemma 3.1). */
+static inline double gamma_of_unit(int n, double u)
+{
+    double nu = n * u;
+    return nu / (1 - nu);
+}
+
+/* gamma_n for double's roundings, u = 2^-53. */
 static inline double gamma_bound(int n)
 {
-    double nu = n * (DBL_EPSILON / 2);
-    return nu / (1 - nu);
+    return gamma_of_unit(n, DBL_EPSILON / 2);
 }
 
 static inline vec3 vec3_abs(vec3 a)

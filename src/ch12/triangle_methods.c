@@ -312,14 +312,14 @@ int triangle_nearest_of_leaf(const watertight_ray *w,
     double o[3];
     origin_on_axes(&s, o);
     int nearest = -1;
-    double reach = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
+    double t_upto = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
     for (int k = 0; k < count; k++) {
         triangle_hit th;
         const vec3 *p = triangles[k].p;
-        if (hit_corners(&s, o, &p[0], &p[1], &p[2], t_min, reach, &th) &&
+        if (hit_corners(&s, o, &p[0], &p[1], &p[2], t_min, t_upto, &th) &&
             (th.t < t_max || items[k] < best)) { /* a tie: the lower index */
             *out = th, t_max = th.t, best = items[k], nearest = k;
-            reach = nextafter(t_max, INFINITY);
+            t_upto = nextafter(t_max, INFINITY);
         }
     }
     return nearest;

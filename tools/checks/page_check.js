@@ -26,7 +26,7 @@
  * scene's: it must differ, so that the comparison is seen to be able to
  * fail. Prints one line a check; exits 1 on any failure.
  *
- * With "speed": { "bin", "chapters", "size", "rounds", "csv" } in
+ * With "speed": { "bin", "clangBin", "chapters", "size", "rounds", "csv" } in
  * CASES.json it measures instead: each chapter's own scene (no scene file)
  * at --size size, drawn by bin/chNN on one thread and by the program in
  * the page, rounds times, interleaved; the render's time is what --stats
@@ -213,24 +213,30 @@ async function speed(sessionId, c) {
   const times = {};
   for (let round = 0; round < c.rounds; round++) {
     for (const n of c.chapters) {
-      const threads = +n >= 9 ? ["--threads", "1"] : [];
-      const native = spawnSync(c.bin + "/ch" + n, ["-o", "/dev/null", "--stats", "--size", c.size].concat(threads),
-                               { encoding: "utf8" });
+      const threads = +n >= 11 ? ["--threads", "1"] : []; /* from chapter 11 */
+      const args = ["-o", "/dev/null", "--stats", "--size", c.size].concat(threads);
+      const native = spawnSync(c.bin + "/ch" + n, args, { encoding: "utf8" });
       const page = await inPage(sessionId, pageRender.toString(), { chapter: n, size: c.size });
       (times["native," + n] = times["native," + n] || []).push(renderMs(native.stderr));
       (times["page," + n] = times["page," + n] || []).push(renderMs(page));
+      if (c.clangBin) { /* the page's compiler, for the machine */
+        const clang = spawnSync(c.clangBin + "/ch" + n, args, { encoding: "utf8" });
+        (times["clang," + n] = times["clang," + n] || []).push(renderMs(clang.stderr));
+      }
     }
   }
   const rows = ["method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns"];
   for (const n of c.chapters) {
     const median = {};
-    for (const method of ["native", "page"]) {
+    for (const method of c.clangBin ? ["native", "clang", "page"] : ["native", "page"]) {
       const [q1, q2, q3] = quartiles(times[method + "," + n]);
       median[method] = q2;
       rows.push([method, "ch" + n, (q2 * 1e6).toFixed(0), q2.toFixed(2), "render_ms",
                  (q1 * 1e6).toFixed(0), (q3 * 1e6).toFixed(0), (q2 * 1e6).toFixed(0)].join(","));
     }
     rows.push(["ratio", "ch" + n, 0, (median.page / median.native).toFixed(3), "page_over_native"].join(","));
+    if (c.clangBin)
+      rows.push(["ratio", "ch" + n, 0, (median.page / median.clang).toFixed(3), "page_over_clang"].join(","));
     report(true, "chapter " + n + ": " + median.native + " ms native, " + median.page + " ms in the page");
   }
   fs.writeFileSync(c.csv, c.machine + "\n# size: " + c.size + "\n" + rows.join("\n") + "\n");

@@ -14,6 +14,8 @@
 # when Chromium or node is not installed, or the page has no programs.
 #
 #     sh tools/checks/page_check.sh --speed CSV ROUNDS BOOK.html BIN_DIR SIZE NN...
+#   (PAGE_SPEED_CLANG_BIN=DIR: the same programs built by clang, the page's
+#   compiler, timed beside them)
 #
 # measures instead: each chapter's own scene at --size SIZE, its render on
 # one thread by BIN_DIR/chNN and in the page, ROUNDS times, into CSV (make
@@ -51,8 +53,8 @@ $(nproc) CPUs (load $(cut -d ' ' -f 1 /proc/loadavg)); \
 $(cc --version | head -n 1 | sed 's/ (.*)//') -O2 -g against $(clang --version | head -n 1 | \
   sed 's/ (.*//') --target=wasm32-wasi -O2 in $("$browser" --version 2>/dev/null | awk '{print $1, $2; exit}'); \
 $(date -u '+%Y-%m-%d %H:%M UTC')"
-  printf '{"speed": {"bin": "%s", "chapters": [%s], "size": "%s", "rounds": %s, "csv": "%s", "machine": "%s"}}\n' \
-    "$bin" "${chapters%,}" "$size" "$rounds" "$work/speed.csv" "$machine" > "$work/cases.json"
+  printf '{"speed": {"bin": "%s", "clangBin": "%s", "chapters": [%s], "size": "%s", "rounds": %s, "csv": "%s", "machine": "%s"}}\n' \
+    "$bin" "${PAGE_SPEED_CLANG_BIN:-}" "${chapters%,}" "$size" "$rounds" "$work/speed.csv" "$machine" > "$work/cases.json"
   node "$tools_dir/page_check.js" "$browser" "$book" "$work/cases.json" || exit 1
   mv "$work/speed.csv" "$speed"
   exit 0

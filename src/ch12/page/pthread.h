@@ -60,5 +60,11 @@ static inline int pthread_cond_timedwait(pthread_cond_t *c,
 {
     return (void)c, (void)m, (void)until, 0;
 }
+static inline int pthread_cond_wait(pthread_cond_t *c, pthread_mutex_t *m)
+{
+    return (void)c, (void)m, 0;
+}
+#define PTHREAD_MUTEX_INITIALIZER {{{0}}}
+#define PTHREAD_COND_INITIALIZER {{{0}}}
 
 #endif

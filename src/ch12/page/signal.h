@@ -12,6 +12,7 @@ struct sigaction {
 enum { SIGHUP = 1, SIGINT = 2, SIGQUIT = 3, SIGUSR1 = 10, SIGUSR2 = 12,
        SIGPIPE = 13, SIGALRM = 14, SIGTERM = 15, SIGXCPU = 24,
        SIGXFSZ = 25, SIGVTALRM = 26, SIGPROF = 27 }; /* Linux's numbers */
+enum { SIGILL = 4, SIGBUS = 7, SIGFPE = 8, SIGSEGV = 11 }; /* faults */
 enum { SA_RESETHAND = 1, SIG_BLOCK = 0, SIG_SETMASK = 2 };
 #define SIG_IGN ((void (*)(int))1)
 
@@ -25,6 +26,11 @@ static inline int sigprocmask(int how, const sigset_t *s, sigset_t *was)
 {
     (void)how, (void)s;
     return was != NULL ? *was = 0, 0 : 0;
+}
+static inline int sigfillset(sigset_t *s) { return *s = ~0u, 0; }
+static inline int sigdelset(sigset_t *s, int sig)
+{
+    return *s &= ~(1u << sig), 0;
 }
 static inline int pthread_sigmask(int how, const sigset_t *s, sigset_t *was)
 {
