@@ -745,7 +745,8 @@ WB_CHECK_CHAPTERS := $(NUMS)
 .PHONY: check-workbook
 check-workbook: $(TANGLE) $(foreach n,$(filter $(NUMS),$(WB_CHECK_CHAPTERS)),$(B)/test/ch$(n) $(BIN)/ch$(n)) \
                 test-ch$(LAST)
-	+@MAKE="$(MAKE)" WB_CHECK_DIR=build/wbcheck$(WB_TAG) sh tools/checks/check_workbook.sh
+	+@MAKE="$(MAKE)" TANGLE=$(TANGLE) CC="$(CC)" BOOK_BUILD=$(B) BOOK_BIN=$(BIN) \
+	  WB_CHECK_DIR=build/wbcheck$(WB_TAG) sh tools/checks/check_workbook.sh
 
 # The workbook's program and suites of chapter NN, built from the tangle
 # that tools/workbook/grade.sh writes to $(WB_BUILD)/tangle/chNN. What the

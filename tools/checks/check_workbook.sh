@@ -1,58 +1,60 @@
 #!/bin/sh
 # check_workbook.sh -- the workbook's own tests (make check-workbook, in make test).
 #
-# Usage: MAKE=make [WB_CHECK_DIR=DIR] tools/checks/check_workbook.sh
-# Works in DIR (default build/wbcheck/): each check below has a folder of its own there
-# (NAME/wb, the workbook; NAME/build, where make grade builds it,
-# incrementally from one run to the next), and they run side by side, in
-# three lines (1, 8; 3 then 4 in its folder; 5, 2, 7), each grading no
-# more chapters than its mistakes need, which it finds by the exercises'
-# chunk names (a chapter put before another renumbers them). Checks that
-#   1. an untouched workbook grades "Progress: 0 of N", N >= 36, at least 4
-#      exercises a chapter, exit 0; make workbook overwrites no file; no
-#      task holds TeX ($...$); and make grade EX=N.k exits 0 for a right
-#      1.1, and not 0 for 1.2, not started;
-#   2. with every stub started, no exercise passes (each stub fails one of
-#      its tests), and the exit status is not 0;
-#   3. a SOLVED=1 workbook grades "Progress: N of N", exit 0, and builds
-#      the book's programs byte for byte (their logged results stand);
-#   4. the course sheet's forms typed in as answers fail with a message
-#      naming the correction (sphere, half vector, tone map, Snell),
-#      a loop is "timed out" with its limit and the load, a null pointer
-#      "crashed (signal 11)"; 1.3 taking +12x34 for a size and 3.2 with a
-#      directional light at distance 0 are each caught by a test of its
-#      own chapter; in
-#      the same grade, a syntax error is reported at its workbook line, a
-#      lost fence where it was, and the other chapters' exercises are
-#      done (every failure is laid on an exercise); the exit status is 1,
-#      and the JUnit report has a failure for each exercise not done;
-#   5. (chapters 1 to 6) a 1.1 that passes its own tests but breaks
-#      chapter 5's camera (it sets the ray's direction again after the
-#      chunk that places it) is failing, chapter 5's test laid on it, found
-#      by halves of the exercises that name no failing test; in the same
-#      grade, 2.4 taking the far root, 6.3's points not stratified, the
-#      sheet's normal in 5.2, 3.2's cone that leaves out its edge and 6.2
-#      seeded by three of the six coordinates fail with messages naming
-#      the mistake, and 4.3 wrong with 4.4 right, which share tests: only
-#      4.3 is failing, 4.4 and the right answers 2.1 and 3.3 are done;
-#      and 1.3 without its last return fails on the compiler's warning;
-#   6. (chapters 1 to 10) 9.1 with static first and last, and 10.1 with a
-#      static hash state: data races, both caught by ThreadSanitizer (where
-#      the compiler has it) and laid on their exercises; 10.1's hash also
-#      leaves out the axis, which its own test sees; and 8.3 with an
-#      uninitialised variable and a write past an array, failing on the
-#      compiler's warnings at its lines; and 2.4 that forgets inside,
-#      caught by a test of its own chapter;
-#   7. (chapters 1 to 8) 8.3 that clips one edge short: every failing test,
-#      its own and the others, laid on it; and 2.4 without its line <<the
-#      sphere's hit-point bound>> (kept for chapter 6) fails, saying so,
-#      its file left out (the book's code stands in).
+# Usage: MAKE=make TANGLE=T [CC=cc BOOK_BUILD=B BOOK_BIN=BIN WB_CHECK_DIR=DIR]
+#        tools/checks/check_workbook.sh [CHECK...]
+# Works in DIR (default build/wbcheck/): each check below has a folder of
+# its own there (NAME/wb, its workbook; NAME/build, where it is graded,
+# incrementally from one run to the next), and the checks run side by
+# side, one a core (the longest first). Every mistake is planted in a
+# workbook of its own, the only exercise started, and graded at its
+# exercise's own chapter with only the tests that see it (GRADE_TESTS,
+# tools/workbook/grade.sh): the grade builds the one file that holds it
+# and runs a few tests. The exercises are named by their chunk or file,
+# not by number (a chapter put before another renumbers them). Checks that
+#   untouched: an untouched workbook grades "Progress: 0 of N", N >= 36, at
+#      least 4 exercises a chapter, exit 0; make workbook overwrites no
+#      file; no task holds TeX; make grade EX=N.k exits 0 for a right 1.1,
+#      and not 0 for 1.2, not started;
+#   stubs: with every stub started, no exercise passes (each stub fails
+#      one of its tests), and the exit status is not 0;
+#   solved: a SOLVED=1 workbook grades "Progress: N of N", exit 0, and
+#      builds the book's programs byte for byte (their logged results
+#      stand);
+#   the course sheet's forms typed in as answers fail with a message
+#      naming the correction (sphere, half vector, tone map, Snell, the
+#      normal's matrix); 6.3's points not stratified, 2.4 taking the far
+#      root, 3.2's cone that leaves out its edge, 6.2 seeded by three of
+#      the six coordinates, 1.3 taking +12x34 for a size, 3.2 with a
+#      directional light at distance 0 and 2.4 that forgets inside, each
+#      with a message naming the mistake;
+#   a loop is "timed out" with its limit and the load; a null pointer
+#      "crashed (signal 11)", and in the same grade a syntax error is
+#      reported at its workbook line, a lost fence where it was, every
+#      failure is laid on an exercise, and the JUnit report has a failure
+#      for each exercise not done;
+#   a 1.1 that passes its own tests but breaks chapter 5's camera (it sets
+#      the ray's direction again after the chunk that places it) is
+#      failing, chapter 5's test laid on it, found by halves of the
+#      exercises that name no failing test, a right 2.1 beside it done;
+#      4.3 wrong with 4.4 right, which share tests: only 4.3 is failing;
+#   1.3 without its last return, and 8.3 with an uninitialised variable
+#      and a write past an array, fail on the compiler's warnings at their
+#      lines; 8.3's loop one edge short is failing, every failing test
+#      laid on it; 2.4 without its line <<the sphere's hit-point bound>>
+#      fails at chapter 2, saying so, its file left out;
+#   11.3 with static first and last, and 12.1 with a static hash state:
+#      data races, caught by ThreadSanitizer (where the compiler has it)
+#      and laid on their exercises; 12.1's hash also leaves out the axis,
+#      which its own test sees.
 # Prints what went wrong in each failed check and exits 1.
 set -u
 MAKE=${MAKE:-make}
+TANGLE=${TANGLE:-build/rel/tools/book/tangle}
 export SHARDS=1  # the checks run side by side already: one runner each
 top=${WB_CHECK_DIR:-build/wbcheck}
 data=tests/data/workbook
+list=$top/list
 mkdir -p "$top"
 
 # use NAME: the check's folder t, its workbook wb.
@@ -63,23 +65,45 @@ use() {
     : > "$t/out"
 }
 
-# Ends the check (a subshell when run side by side) with what went wrong.
+# Ends the check with what went wrong.
 fail() {
-    echo "check-workbook: $*"
+    echo "check-workbook: $check: $*"
     sed 's/^/  | /' "$t/out" | head -60
     exit 1
 }
 
+# A workbook of its own (the book's code with SOLVED=1): the files are
+# copied from the workbooks made once, before the checks.
 fresh() {
     rm -rf "$wb"
-    $MAKE -s --no-print-directory workbook WB_DIR="$wb" "$@" > "$t/out" 2>&1 ||
-        fail "make workbook failed"
+    cp -R "$top/workbook-${1:-stubs}" "$wb"
 }
 
-grade() {
-    $MAKE -s --no-print-directory "grade$1" WB_DIR="$wb" WB_BUILD="$t/build" \
+# make grade (ARGS...), as the reader runs it: "$status" its exit status.
+make_grade() {
+    $MAKE -s --no-print-directory "$@" WB_DIR="$wb" WB_BUILD="$t/build" \
         > "$t/out" 2>&1
     status=$?
+}
+
+# grade NN [VAR=VALUE...]: chapters 01..NN graded as make grade-chNN
+# grades them, with the tests GRADE_TESTS (set by the caller) only.
+grade() {
+    upto=$1
+    shift
+    # shellcheck disable=SC2046  # one chapter a word
+    env "$@" TANGLE="$TANGLE" WB_DIR="$wb" WB_BUILD="$t/build" MAKE="$MAKE" \
+        BOOK_BUILD="${BOOK_BUILD:-}" BOOK_BIN="${BOOK_BIN:-}" \
+        sh tools/workbook/grade.sh "$upto" $(chapters_upto "$upto") \
+        > "$t/out" 2>&1
+    status=$?
+}
+
+chapters_upto() {
+    for c in chapters/[0-9][0-9]-*.md; do
+        n=$(basename "$c" | cut -c1-2)
+        [ "$n" -le "$1" ] && echo "$c"
+    done
 }
 
 # The grader's line for exercise ID.
@@ -90,25 +114,24 @@ expect_verdict() {
         fail "exercise $1 should say '$2'"
 }
 
-# The exercises are named by their chunk or file (KEY), not by number:
-# a chapter put before another renumbers them. id_of KEY: "2.1";
-# file_of KEY: its workbook file's name; chapter_of KEY: "02".
+# id_of KEY: "2.1"; file_of KEY: its workbook file's name; chapter_of
+# KEY: "02"; tests_of KEY...: the tests they name, a word each.
 id_of() { awk -F '\t' -v k="$1" '$5 == k { print $1; exit }' "$list"; }
 file_of() { awk -F '\t' -v k="$1" '$5 == k { sub(/.*\//, "", $2); print $2; exit }' "$list"; }
 chapter_of() { file_of "$1" | cut -c1-2; }
+tests_of() {
+    for key in "$@"; do
+        awk -F '\t' -v k="$key" '$5 == k { print $6 }' "$list"
+    done | tr ' ' '\n' | sed 's/:[0-9]*$//' | sort -u | tr '\n' ' '
+}
 
 # expect KEY TEXT: exercise KEY's verdict holds TEXT.
 expect() { expect_verdict "$(id_of "$1")" "$2"; }
 
-# The last chapter of the exercises KEY...: what a grade of them needs.
-last_chapter() {
-    for key in "$@"; do chapter_of "$key"; done | sort | tail -n 1
-}
-
 # The book's code of exercise KEY, from the solved workbook.
 solution() {
     awk -v id="ex=\"$(id_of "$1")\"" 'index($0, id) { code = 1; next } code && /^```/ { exit } code' \
-        "$top/book/$(file_of "$1")"
+        "$top/workbook-solved/$(file_of "$1")"
 }
 
 # answer KEY FILE: exercise KEY started with the code in FILE.
@@ -143,20 +166,18 @@ right() {
     done
 }
 
-list=$top/list
-awk -f tools/workbook/exercises.awk chapters/[0-9][0-9]-*.md > "$list" || exit 1
-n=$(wc -l < "$list")
-[ "$n" -ge 36 ] || { echo "check-workbook: only $n exercises, fewer than 36"; exit 1; }
-for c in chapters/[0-9][0-9]-*.md; do
-    k=$(awk -F '\t' -v c="$c" '$2 == c' "$list" | wc -l)
-    [ "$k" -ge 4 ] || { echo "check-workbook: $c has $k exercises, fewer than 4"; exit 1; }
-done
+# wrong KEY HOW TEXT [TESTS]: KEY alone started, with the code of file
+# HOW (a path) or planted by the sed script HOW, graded at its chapter
+# with its tests (and TESTS): failing, its verdict holding TEXT.
+wrong() {
+    fresh
+    if [ -f "$2" ]; then answer "$1" "$2"; else plant "$1" "$2"; fi
+    grade "$(chapter_of "$1")" GRADE_TESTS="$(tests_of "$1") ${4:-}"
+    [ "$status" != 0 ] || fail "$(id_of "$1") planted should not grade with status 0"
+    expect "$1" "$3"
+}
 
-rm -rf "$top/book"
-$MAKE -s --no-print-directory workbook WB_DIR="$top/book" SOLVED=1 > /dev/null 2>&1 ||
-    { echo "check-workbook: make workbook SOLVED=1 failed"; exit 1; }
-
-# ---- 1. untouched; then one exercise's verdict as the exit status
+# ---- the checks, one a function: check_NAME
 check_untouched() {
     use untouched
     fresh
@@ -168,26 +189,25 @@ check_untouched() {
     # (a formula may span lines: a line with a dollar or a command is TeX)
     tex=$(awk '/^```/ { code = !code; next } !code && /\$[^ ]|\\[a-zA-Z]+/' "$wb"/*.md | head -3)
     [ -z "$tex" ] || fail "a task holds TeX: $tex"
-    grade ""
+    make_grade grade
     [ "$status" = 0 ] || fail "an untouched workbook should grade with status 0"
     grep -qx "Progress: 0 of $n exercises" "$t/out" || fail "expected Progress: 0 of $n"
     # one exercise's verdict as the exit status (the grade of its chapter)
     right camera.c
-    $MAKE -s --no-print-directory grade EX="$(id_of camera.c)" WB_DIR="$wb" \
-        WB_BUILD="$t/build" > "$t/out" 2>&1 ||
-        fail "make grade EX=$(id_of camera.c) should exit 0: it is right"
-    $MAKE -s --no-print-directory grade EX="$(id_of "colour encoding")" WB_DIR="$wb" \
-        WB_BUILD="$t/build" > "$t/out" 2>&1 &&
+    make_grade grade EX="$(id_of camera.c)"
+    [ "$status" = 0 ] || fail "make grade EX=$(id_of camera.c) should exit 0: it is right"
+    make_grade grade EX="$(id_of "colour encoding")"
+    [ "$status" != 0 ] ||
         fail "make grade EX=$(id_of "colour encoding") should not exit 0: it is not started"
-    return 0
+    grep -q "<testcase .*name=\"$(id_of camera.c) " "$t/build/junit.xml" ||
+        fail "make grade should write a JUnit report with a test case an exercise"
 }
 
-# ---- 2. every stub started: each one fails
 check_stubs() {
     use stubs
     fresh
     sed -i '/^\/\/ NOT DONE/d' "$wb"/*.md
-    grade ""
+    grade "$last" GRADE_TESTS="$(cut -f 5 "$list" | while read -r k; do tests_of "$k"; done)"
     [ "$status" != 0 ] || fail "the stubs should not grade with status 0"
     passed=$(grep -cE '^  [0-9]+\.[0-9]+ .* done$' "$t/out")
     [ "$passed" = 0 ] || fail "$passed stubs pass their tests: those exercises cannot be graded"
@@ -195,11 +215,10 @@ check_stubs() {
     [ "$graded" = "$n" ] || fail "only $graded of $n stubs were graded as failing"
 }
 
-# ---- 3. the book's code passes
 check_solved() {
-    use solved
-    fresh SOLVED=1
-    grade ""
+    use solved-grade
+    fresh solved
+    grade "$last"
     [ "$status" = 0 ] || fail "a SOLVED=1 workbook should grade with status 0"
     grep -qx "Progress: $n of $n exercises" "$t/out" || fail "expected Progress: $n of $n"
     # typed in, the book's code builds the book's programs, byte for byte
@@ -207,41 +226,99 @@ check_solved() {
         fail "the book's code, typed in, should build the book's programs"
 }
 
-# ---- 4. the sheet's forms, a loop, a crash and a hash without the axis;
-# in the same grade, a syntax error and a lost fence in two chapters that
-# hold no wrong answer, so that each is seen
-check_wrong() {
-    use solved # after check 3, in its folder: only what changes is compiled
-    fresh SOLVED=1
-    answer "robust form" "$data/sheet-sphere.c"
-    answer highlights "$data/sheet-half-vector.c"
-    answer "tone mapping" "$data/sheet-tone-map.c"
-    answer optics.c "$data/sheet-snell.c"
+check_sheet_sphere() {
+    use sheet-sphere
+    wrong "robust form" "$data/sheet-sphere.c" "measure from the ray's origin, c - o"
+}
+check_sheet_half_vector() {
+    use sheet-half-vector
+    wrong highlights "$data/sheet-half-vector.c" "h is the unit vector (l + v) / |l + v|"
+}
+check_sheet_tone_map() {
+    use sheet-tone-map
+    wrong "tone mapping" "$data/sheet-tone-map.c" \
+        "the tone map is min(alpha I^beta, 1), not the sheet's max"
+}
+check_sheet_snell() {
+    use sheet-snell
+    wrong optics.c "$data/sheet-snell.c" "sin1 / sin2 = eta2 / eta1, not the sheet's eta1 / eta2"
+}
+check_sheet_normal() {
+    use sheet-normal
+    wrong "4x4 matrices" "$data/sheet-normal.c" "a normal moves by (M^-1)^T n, not by M n"
+}
+check_unstratified() {
+    use unstratified
+    wrong "points in the unit square" "$data/unstratified.c" "is outside its cell"
+}
+check_far_root() {
+    use far-root
+    wrong sphere.c \
+        's/roots\[0\] > t_min ? roots\[0\] : roots\[1\]/roots[1] > t_min ? roots[1] : roots[0]/' \
+        "test_the_nearer_root_is_the_hit: t = 6: the nearer root is 4"
+}
+check_inside() {
+    use inside
+    wrong sphere.c '/h->inside = /d' "the hit must say so (inside)"
+}
+check_cone() {
+    use cone
+    wrong lights 's/if (cos_theta < L->cos_cutoff)/if (cos_theta <= L->cos_cutoff)/' \
+        "the edge is inside the cone"
+}
+check_directional() {
+    use directional
+    wrong lights 's/vec3_scale(L->direction, -1), INFINITY,/vec3_scale(L->direction, -1), 0,/' \
+        "a directional light at distance 0, not infinity"
+}
+check_seeds() {
+    use seeds
+    wrong "the random stream" 's/for (int k = 0; k < 6; k++) {/for (int k = 0; k < 3; k++) {/' \
+        "every coordinate's bits must seed it"
+}
+check_digits() {
+    use digits
+    wrong "parse a size" "/if (text\[0\] < '0' || text\[0\] > '9')/,/return false;/d" \
+        "failing: test_command_line_numbers_are_digits_only"
+}
+check_return() {
+    use return
+    fresh
+    plant "parse a size" '/^    return true;$/d'
+    grade "$(chapter_of "parse a size")" GRADE_TESTS="$(tests_of "parse a size")"
+    expect "parse a size" "the compiler warns at your line: $wb/$(file_of "parse a size"):"
+    expect "parse a size" "[-Wreturn-type]"
+}
+
+# a loop: timed out, with its limit and the load (every limit a tenth)
+check_loop() {
+    use loop
+    fresh
     answer "colour encoding" "$data/loops.c"
+    grade "$(chapter_of "colour encoding")" GRADE_TIMEOUT=1 \
+        GRADE_TESTS="$(tests_of "colour encoding")"
+    expect "colour encoding" "timed out after "
+    expect "colour encoding" "s (its limit; the machine's load was"
+    expect "colour encoding" "test_gamma_22"
+}
+
+# a crash; in the same grade, a syntax error and a lost fence in two
+# chapters before it, each reported where it is
+check_crash() {
+    use crash
+    fresh
     answer "Fresnel reflectance" "$data/crashes.c"
-    # mistakes that passed before, each caught at its own chapter
-    plant "parse a size" "/if (text\[0\] < '0' || text\[0\] > '9')/,/return false;/d"
-    plant lights 's/vec3_scale(L->direction, -1), INFINITY,/vec3_scale(L->direction, -1), 0,/'
+    right "the sheet's method" offset.c
     syntax=$wb/$(file_of "the sheet's method")
     fence=$(grep -n "ex=\"$(id_of "the sheet's method")\"" "$syntax" | cut -d: -f1)
     sed -i "$((fence + 1))i this is not C" "$syntax"
     fenced=$wb/$(file_of offset.c)
     lost=$(grep -n "ex=\"$(id_of offset.c)\"" "$fenced" | cut -d: -f1)
     sed -i "/ex=\"$(id_of offset.c)\"/d" "$fenced"
-    upto=$(last_chapter "robust form" highlights "tone mapping" optics.c \
-        "colour encoding" "Fresnel reflectance" "the sheet's method" offset.c)
-    GRADE_TIMEOUT=4 grade "-ch$upto"
-    [ "$status" != 0 ] || fail "wrong answers should not grade with status 0"
-    expect "robust form" "measure from the ray's origin, c - o"
-    expect highlights "h is the unit vector (l + v) / |l + v|"
-    expect "tone mapping" "the tone map is min(alpha I^beta, 1), not the sheet's max"
-    expect optics.c "sin1 / sin2 = eta2 / eta1, not the sheet's eta1 / eta2"
-    expect "colour encoding" "s (its limit; the machine's load was"
-    expect "colour encoding" "timed out after "
-    expect "colour encoding" "test_gamma_22"
+    grade "$(chapter_of "Fresnel reflectance")" \
+        GRADE_TESTS="$(tests_of "Fresnel reflectance" "the sheet's method" offset.c)"
+    [ "$status" != 0 ] || fail "a crash should not grade with status 0"
     expect "Fresnel reflectance" "crashed (signal 11): test_brewster_angle_of_glass_is_56_31_degrees"
-    expect "parse a size" "failing: test_command_line_numbers_are_digits_only"
-    expect lights "a directional light at distance 0, not infinity"
     grep -q "^$syntax:$((fence + 1)):[0-9]*: error" "$t/out" ||
         fail "the syntax error should be reported at $syntax:$((fence + 1))"
     grep -q "^$fenced:$lost: error: exercise $(id_of offset.c)" "$t/out" ||
@@ -250,132 +327,159 @@ check_wrong() {
         fail "a message shows what a macro expanded to, not the macro"
     expect "the sheet's method" "not graded"
     expect offset.c "not graded"
-    # the exercises of the chapters that hold no wrong answer and no error
-    # are done: every failure is laid on the wrong answer that causes it
-    touched=$(for key in "robust form" highlights optics.c "colour encoding" \
-                  "the sheet's method" offset.c; do
-                  chapter_of "$key"; done | sort -u | tr '\n' ' ')
-    for id in $(awk -F '\t' -v touched=" $touched" -v upto="$upto" '{
-            c = $2; sub(/.*\//, "", c); c = substr(c, 1, 2)
-            if (!index(touched, " " c " ") && c <= upto) print $1 }' "$list"); do
-        expect_verdict "$id" " done"
-    done
     ! grep -q '^Failing, and laid on no one' "$t/out" ||
         fail "every failure should be laid on an exercise"
     not_done=$(grep -E '^  [0-9]+\.[0-9]+ ' "$t/out" | grep -vc ' done$\| not started')
     [ "$(grep -c '<failure message=' "$t/build/junit.xml")" = "$not_done" ] ||
         fail "the JUnit report should hold a failure for each of the $not_done exercises not done"
-    return 0
 }
 
-# ---- 5. mistakes that another chapter's test catches, that share tests,
-# that the compiler sees, and that a message names
-check_elsewhere() {
-    use elsewhere
+# 1.1 sets the ray's direction again after <<place the primary ray>>: its
+# own tests pass, the look-at camera's fail, and no exercise that names
+# them is started: found by halves
+check_camera() {
+    use camera
     fresh
-    # 1.1 sets the ray's direction again after <<place the primary ray>>:
-    # its own tests pass, the look-at camera's fail
     plant camera.c '/^    <<place the primary ray>>$/a\
     r.dir = vec3_normalize(on_plane); /* the direction, to be sure */'
-    # the far root: the larger root whenever it lies past t_min
-    plant sphere.c \
-        's/roots\[0\] > t_min ? roots\[0\] : roots\[1\]/roots[1] > t_min ? roots[1] : roots[0]/'
-    # 4.3 keeping only the hits whose edge functions are all positive, and
-    # 4.4 right: the tests they share fail, and 4.3 alone is blamed
-    plant watertight \
-        's/(u < 0 || v < 0 || w < 0) \&\& (u > 0 || v > 0 || w > 0)/u < 0 || v < 0 || w < 0/'
-    right "shear the ray onto the z axis" "geometric form" "tone mapping"
-    answer "points in the unit square" "$data/unstratified.c"
-    answer "4x4 matrices" "$data/sheet-normal.c"
-    plant lights 's/if (cos_theta < L->cos_cutoff)/if (cos_theta <= L->cos_cutoff)/'
-    plant "the random stream" 's/for (int k = 0; k < 6; k++) {/for (int k = 0; k < 3; k++) {/'
-    plant "parse a size" '/^    return true;$/d'
-    grade "-ch$(last_chapter camera.c sphere.c watertight "points in the unit square" \
-        "4x4 matrices" lights "the random stream")"
+    right "geometric form"
+    grade "$(chapter_of "the look-at frame")" \
+        GRADE_TESTS="$(tests_of camera.c "the look-at frame" "geometric form")"
     [ "$status" != 0 ] || fail "a program that breaks the look-at camera should not grade with status 0"
     expect camera.c "test_look_at_"
     expect camera.c "_transforms.c:"
     expect camera.c "it fails with your $(id_of camera.c) alone"
-    expect sphere.c "test_the_nearer_root_is_the_hit: t = 6: the nearer root is 4"
-    expect "points in the unit square" "is outside its cell"
-    expect "4x4 matrices" "a normal moves by (M^-1)^T n, not by M n"
-    expect watertight "failing: test_"
-    expect lights "the edge is inside the cone"
-    expect "the random stream" "every coordinate's bits must seed it"
-    expect "parse a size" "the compiler warns at your line: $wb/$(file_of "parse a size"):"
-    expect "parse a size" "[-Wreturn-type]"
-    for key in "shear the ray onto the z axis" "geometric form" "tone mapping"; do
-        expect "$key" " done"
-    done
+    expect "geometric form" " done"
 }
 
-# ---- 6. state the threads share; the compiler's warnings in 8.3
-check_races() {
-    use races
+# 4.3 keeping only the hits whose edge functions are all positive, and
+# 4.4 right: the tests they share fail, and 4.3 alone is blamed
+check_shared() {
+    use shared
     fresh
-    plant "a thread's bands" 's/^    int first, last;$/    static int first, last;/'
-    plant sphere.c '/h->inside = /d'
-    # 10.1 keeps its hash in a static variable, and leaves out the axis
-    plant "the sample hash" 's/^    uint64_t h = mix64(/    static uint64_t h;\
-    h = mix64(/; s/h = mix64(h ^ ((uint64_t)(uint32_t)k << 1 | (uint64_t)(axis \& 1)));/h = mix64(h ^ (uint64_t)(uint32_t)k);/'
+    plant watertight \
+        's/(u < 0 || v < 0 || w < 0) \&\& (u > 0 || v > 0 || w > 0)/u < 0 || v < 0 || w < 0/'
+    right "shear the ray onto the z axis"
+    grade "$(chapter_of watertight)" \
+        GRADE_TESTS="$(tests_of watertight "shear the ray onto the z axis")"
+    expect watertight "failing: test_"
+    expect "shear the ray onto the z axis" " done"
+}
+
+# 8.3 with an uninitialised variable and a write past an array
+check_clip_warnings() {
+    use clip-warnings
+    fresh
     plant "clipping a polygon" 's/^    int m = 0;$/    int m;/; /^    for (int i = 0; i < n; i++) {$/i\
     vec3 first[1];\
     first[1] = poly[0]; /* the first corner, kept */\
     if (n < 1)\
         out[0] = first[1];'
-    grade "-ch$(last_chapter "a thread's bands" "the sample hash" "clipping a polygon" sphere.c)"
-    [ "$status" != 0 ] || fail "data races should not grade with status 0"
-    expect sphere.c "the hit must say so (inside)"
+    grade "$(chapter_of "clipping a polygon")" GRADE_TESTS="$(tests_of "clipping a polygon")"
     clip=$wb/$(file_of "clipping a polygon")
     expect "clipping a polygon" "the compiler warns at your line: $clip:"
     grep -q "^$clip:[0-9]*:[0-9]*: warning: .*m.* uninitialized" "$t/out" ||
         fail "the compiler should warn of 8.3's m, used uninitialized"
     grep -Eq "^$clip:[0-9]*:[0-9]*: warning: array (subscript|index) 1 is (above|past)" "$t/out" ||
         fail "the compiler should warn of 8.3's write past its array"
-    expect "the sample hash" "the axis must change the number"
-    if grep -q "^(no ThreadSanitizer" "$t/out"; then
-        return 0
-    fi
-    expect "a thread's bands" "data race (ThreadSanitizer) at $wb/$(file_of "a thread's bands"):"
-    expect "a thread's bands" "a static variable, which every thread shares"
-    # the race, which the verdict does not show behind the failing test
-    grep -q "^$(id_of "the sample hash")	a data race (ThreadSanitizer) at $wb/$(file_of "the sample hash"):.* on h, a static variable" \
-        "$t/build/ch$(chapter_of "the sample hash")/races.tsv" ||
-        fail "ThreadSanitizer should see 10.1's static h"
 }
 
-# ---- 7. 8.3's loop one edge short
-check_kd() {
-    use kd
+# 8.3's loop one edge short: its own tests and another's, laid on it
+check_clip_short() {
+    use clip-short
     fresh
     plant "clipping a polygon" 's/^    for (int i = 0; i < n; i++) {$/    for (int i = 0; i < n - 1; i++) {/'
-    plant sphere.c "/^<<the sphere's hit-point bound>>\$/d"
-    grade "-ch$(last_chapter "clipping a polygon" sphere.c)"
+    grade "$(chapter_of "clipping a polygon")" \
+        GRADE_TESTS="$(tests_of "clipping a polygon" "classifying the items")"
     [ "$status" != 0 ] || fail "8.3 one edge short should not grade with status 0"
     expect "clipping a polygon" "failing: test_tree_agrees_with_brute_force"
-    expect sphere.c "failing: lost its line <<the sphere's hit-point bound>>"
-    grep -q "^$wb/$(file_of sphere.c):[0-9]*: error: exercise $(id_of sphere.c) lost its line" "$t/out" ||
-        fail "the lost chunk line should be reported at its exercise in $wb/$(file_of sphere.c)"
     ! grep -q '^Failing, and laid on no one' "$t/out" ||
         fail "every failure should be laid on 8.3"
 }
 
-# timed NAME: check_NAME, its seconds noted in $top/seconds.
-timed() {
-    start=$(date +%s)
-    "check_$1" || return 1
-    echo "$1 $(($(date +%s) - start))" >> "$top/seconds"
+# 2.4 without a kept chunk line: caught at chapter 2, its file left out
+check_lost_line() {
+    use lost-line
+    fresh
+    plant sphere.c "/^<<the sphere's hit-point bound>>\$/d"
+    grade "$(chapter_of sphere.c)" GRADE_TESTS="$(tests_of sphere.c)"
+    expect sphere.c "failing: lost its line <<the sphere's hit-point bound>>"
+    grep -q "^$wb/$(file_of sphere.c):[0-9]*: error: exercise $(id_of sphere.c) lost its line" "$t/out" ||
+        fail "the lost chunk line should be reported at its exercise in $wb/$(file_of sphere.c)"
 }
 
-# Three lines of checks side by side; each prints only when it fails.
+# state the threads share: a static variable in a function
+check_band_race() {
+    use band-race
+    fresh
+    plant "a band's job" 's/^    int first = band_of_turn/    static int first;\
+    first = band_of_turn/; s/^    int last = first/    static int last;\
+    last = first/'
+    grade "$(chapter_of "a band's job")" \
+        GRADE_TESTS="$(tests_of "a band's job") test_a_tall_image_on_four_threads_is_one_renders"
+    grep -q "^(no ThreadSanitizer" "$t/out" && return 0
+    [ "$status" != 0 ] || fail "a data race should not grade with status 0"
+    expect "a band's job" "data race (ThreadSanitizer) at $wb/$(file_of "a band's job"):"
+    expect "a band's job" "a static variable, which every thread shares"
+}
+
+check_hash_race() {
+    use hash-race
+    fresh
+    # 12.1 keeps its hash in a static variable, and leaves out the axis
+    plant "the sample hash" 's/^    uint64_t h = mix64(/    static uint64_t h;\
+    h = mix64(/; s/h = mix64(h ^ ((uint64_t)(uint32_t)k << 1 | (uint64_t)(axis \& 1)));/h = mix64(h ^ (uint64_t)(uint32_t)k);/'
+    grade "$(chapter_of "the sample hash")" \
+        GRADE_TESTS="$(tests_of "the sample hash") test_a_jittered_render_is_the_same_on_any_thread_count"
+    [ "$status" != 0 ] || fail "12.1 planted should not grade with status 0"
+    expect "the sample hash" "the axis must change the number"
+    grep -q "^(no ThreadSanitizer" "$t/out" && return 0
+    # the race, which the verdict does not show behind the failing test
+    grep -q "^$(id_of "the sample hash")	a data race (ThreadSanitizer) at $wb/$(file_of "the sample hash"):.* on h, a static variable" \
+        "$t/build/ch$(chapter_of "the sample hash")/races.tsv" ||
+        fail "ThreadSanitizer should see 12.1's static h"
+}
+
+# The checks, the longest first (WB_CHECKS: those named only).
+CHECKS="${WB_CHECKS:-stubs solved hash_race band_race untouched crash camera shared clip_short
+clip_warnings loop sheet_snell sheet_normal unstratified seeds inside far_root
+lost_line cone directional digits return sheet_sphere sheet_half_vector
+sheet_tone_map}"
+
+n=$(wc -l < "$list" 2> /dev/null || echo 0)
+last=$(ls chapters/[0-9][0-9]-*.md | tail -n 1 | sed 's|.*/||' | cut -c1-2)
+if [ "$#" -gt 0 ]; then # one check, in a process of its own
+    for check in "$@"; do
+        "check_$check" || exit 1
+    done
+    exit 0
+fi
+
+awk -f tools/workbook/exercises.awk chapters/[0-9][0-9]-*.md > "$list" || exit 1
+n=$(wc -l < "$list")
+[ "$n" -ge 36 ] || { echo "check-workbook: only $n exercises, fewer than 36"; exit 1; }
+for c in chapters/[0-9][0-9]-*.md; do
+    k=$(awk -F '\t' -v c="$c" '$2 == c' "$list" | wc -l)
+    [ "$k" -ge 4 ] || { echo "check-workbook: $c has $k exercises, fewer than 4"; exit 1; }
+done
+# the two workbooks every check starts from
+for kind in stubs solved; do
+    rm -rf "$top/workbook-$kind"
+    $MAKE -s --no-print-directory workbook WB_DIR="$top/workbook-$kind" \
+        $([ "$kind" = solved ] && echo SOLVED=1) > /dev/null 2>&1 ||
+        { echo "check-workbook: make workbook ($kind) failed"; exit 1; }
+done
+
+# one a core, side by side; each prints only when it fails
 : > "$top/seconds"
-{ timed untouched && timed kd; } > "$top/first.verdict" 2>&1 & first=$!
-{ timed solved && timed wrong; } > "$top/solved.verdict" 2>&1 & solved=$!
-{ timed elsewhere && timed stubs && timed races; } > "$top/elsewhere.verdict" 2>&1 & elsewhere=$!
+cores=$(nproc 2> /dev/null || echo 2)
+echo $CHECKS | tr ' ' '\n' |
+    xargs -P "${WB_CHECK_JOBS:-$cores}" -I {} sh -c \
+        'start=$(date +%s); sh "$0" {} > "$1/{}.verdict" 2>&1; s=$?; echo "{} $(($(date +%s) - start)) s" >> "$1/seconds"; exit $s' \
+        "$0" "$top"
 failed=0
-for check in first solved elsewhere; do
-    eval "pid=\$$check"
-    wait "$pid" || { failed=1; cat "$top/$check.verdict"; }
+for check in $CHECKS; do
+    [ -s "$top/$check.verdict" ] && { failed=1; cat "$top/$check.verdict"; }
 done
 [ "$failed" = 0 ] || exit 1
 

@@ -315,9 +315,9 @@ run_tests() {
 }
 
 run_suites() {
-    book_results && book_own=yes && return
+    [ -z "${GRADE_TESTS:-}" ] && book_results && book_own=yes && return
     run_tests "$WB_BUILD/test/ch$target" "$WB_BUILD/bin/ch$target" \
-        "$work/tests.log"
+        "$work/tests.log" "${GRADE_TESTS:-}"
 }
 
 # ---- the tests that start threads, under ThreadSanitizer
@@ -363,7 +363,8 @@ threaded_tests() {
 run_threads_sanitized() {
     [ "${GRADE_TSAN:-1}" = 1 ] && [ -z "${book_own:-}" ] || return 0
     names=$(threaded_tests)
-    [ -n "$names" ] || return 0
+    [ -z "${GRADE_TESTS:-}" ] || names=$(minus "$names" "$(minus "$names" "$GRADE_TESTS")")
+    [ -n "$(echo $names)" ] || return 0
     files=$(readers_files "$WB_BUILD/tangle/ch$target" | tr '\n' ' ')
     [ -n "$files" ] || return 0
     probe=$work/tsan-probe
@@ -611,6 +612,12 @@ for f in tests/ch[0-9][0-9]_*.c; do
     [ "$(basename "$f" | cut -c3-4)" -gt "$target" ] &&
         sed -n 's/^START_TEST(\([a-z0-9_]*\)).*/\1/p' "$f"
 done > "$later"
+# with GRADE_TESTS, the tests left out are held against no one either
+if [ -n "${GRADE_TESTS:-}" ]; then
+    for f in tests/ch[0-9][0-9]_*.c; do
+        sed -n 's/^START_TEST(\([a-z0-9_]*\)).*/\1/p' "$f"
+    done | grep -vxF "$(echo $GRADE_TESTS | tr ' ' '\n')" >> "$later"
+fi
 started=$(awk -F '\t' '$2 == "started"' "$state" | wc -l)
 built=no
 if [ "$started" -gt 0 ]; then
