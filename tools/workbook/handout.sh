@@ -28,8 +28,8 @@ printf 'build/\nbin/\n' > "$out/.gitignore"
 cp chapters/README.md "$out/chapters/"
 # the workbook's own tests: wrong answers, and plants that quote the
 # book's code to edit it
-rm -rf "$out/tests/data/workbook" "$out/tools/check_workbook.sh" \
-    "$out/tools/check_stubs.sh"
+rm -rf "$out/tests/data/workbook" "$out/tools/checks/check_workbook.sh" \
+    "$out/tools/checks/check_stubs.sh"
 rm -rf "$out/tools/diagrams"       # draws 7.1 and 7.2 in two dimensions
 for c in chapters/[0-9][0-9]-*.md; do
     awk -f tools/workbook/stub.awk -f tools/workbook/handout.awk "$c" > "$out/$c"
