@@ -137,7 +137,7 @@ Suite *ch11_build_suite(void)
     TCase *tc = tcase_create("threads");
     tcase_add_checked_fixture(tc, reseed, NULL);
     tcase_set_timeout(tc, 120);
-    tcase_add_test(tc, test_thread_counts_build_the_same_tree);
+    tcase_add_threaded_test(tc, test_thread_counts_build_the_same_tree);
     tcase_add_test(tc, test_thread_counts_build_the_same_tree_over_many_items);
     tcase_add_test(tc, test_a_build_starts_no_more_threads_than_tasks);
     suite_add_tcase(s, tc);
