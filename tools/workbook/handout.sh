@@ -13,13 +13,20 @@
 # book/forward/, book/export/ and book/MACHINE: tools/workbook/book_code.sh, made
 # by make book-code in build/bookcode), so that an exercise not started
 # behaves as the book's code does, and the book woven from the handout's
-# chapters (book.html). --no-book leaves out book.html and the compiled
+# chapters (book.html), with WEAVE_PAGE's HTML when it is set: the page's
+# programs, the book's own compiled for WebAssembly and in base64, as
+# the checkout's build/book.html holds them (tools/editions/page.sh), so
+# that its scenes render in the handout's page as in the book's.
+# --no-book leaves out book.html and the compiled
 # objects (make check-handout: it reads the text). Left out: src/ (the
 # tangle of the book's solutions), bench/ and failures/ (programs that use
 # them), fuzz/, .git.
 set -eu
 out=$1
 book=${2:-}
+page=${WEAVE_PAGE:-}
+# the weave runs in $out: the page's HTML by its absolute path
+[ -z "$page" ] || page=$(cd "$(dirname "$page")" && pwd)/$(basename "$page")
 rm -rf "$out"
 mkdir -p "$out/chapters" "$out/book"
 cp -R Makefile book.md tools tests meshes figures "$out/"
@@ -28,8 +35,8 @@ printf 'build/\nbin/\n' > "$out/.gitignore"
 cp chapters/README.md "$out/chapters/"
 # the workbook's own tests: wrong answers, and plants that quote the
 # book's code to edit it
-rm -rf "$out/tests/data/workbook" "$out/tools/check_workbook.sh" \
-    "$out/tools/check_stubs.sh"
+rm -rf "$out/tests/data/workbook" "$out/tools/checks/check_workbook.sh" \
+    "$out/tools/checks/check_stubs.sh"
 rm -rf "$out/tools/diagrams"       # draws 7.1 and 7.2 in two dimensions
 for c in chapters/[0-9][0-9]-*.md; do
     awk -f tools/workbook/stub.awk -f tools/workbook/handout.awk "$c" > "$out/$c"
@@ -41,6 +48,7 @@ if [ "$book" != "--no-book" ]; then
 fi
 (cd "$out" && make -s --no-print-directory workbook > /dev/null)
 if [ "$book" != "--no-book" ]; then
-    (cd "$out" && sh tools/book/weave.sh book.md book.html chapters/[0-9][0-9]-*.md) > /dev/null
+    (cd "$out" && WEAVE_PAGE=$page sh tools/book/weave.sh book.md book.html \
+        chapters/[0-9][0-9]-*.md) > /dev/null
 fi
 echo "handout.sh: wrote $out"
