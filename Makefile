@@ -32,7 +32,9 @@
 #                     the book's code); make grade, grade-chNN, hint EX=2.1,
 #                     watch; make chart-ch02 WORKBOOK=1 charts your forms
 #                     (chapters 1 to 7)
-#   make handout      build/handout/ and its .tar.gz: no solutions in it
+#   make handout      build/handout/ and its .tar.gz: no solutions in it;
+#                     its book.html renders the scenes with the page's
+#                     programs (make check-handout-page, in make test)
 #   make pdf, epub    the book's and the handout's editions
 #   make SAN=1 test   what runs the programs (suites, figures, commands)
 #                     with AddressSanitizer and UBSan
@@ -177,7 +179,9 @@ BC := build/bookcode
 ifeq ($(HANDOUT),)
 all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures wasm book
 else
-# A handout's book comes woven (book.html), its figures made: make builds
+# A handout's book comes woven (book.html), its figures made, and with the
+# page's programs (the book's code compiled for WebAssembly where the
+# handout was made) that render its scenes in its playgrounds: make builds
 # the programs, which draw as the book's do, and the workbook.
 all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) workbook
 	$(if $(BOOK_CODE),,@echo "make: book/ holds the book's code compiled for $$(head -n 1 book/MACHINE), \
