@@ -28,7 +28,7 @@ fail() { echo "handout-page-check: error: $1"; exit 1; }
 
 mkdir "$work/student"
 tar -xzf "$tarball" -C "$work/student" || fail "$tarball does not unpack"
-handout_book=$(ls "$work"/student/*/book.html 2> /dev/null | head -n 1)
+handout_book=$(find "$work/student" -maxdepth 2 -name book.html | head -n 1)
 [ -n "$handout_book" ] || fail "no book.html in $tarball"
 
 # page_part HTML: what tools/editions/page.sh put before </body>, from the
