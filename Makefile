@@ -684,18 +684,26 @@ endef
 $(if $(HANDOUT),,$(foreach n,$(NUMS),$(eval $(call bookcode_rules,$(n)))))
 
 # The handout's book renders its scenes, for a student who has the
-# tarball alone: unpacked in an empty folder, its page holds build/
+# tarball alone (build/handoutpage.tar.gz, made by the same script as
+# make handout's but without the compiled book's code, which the page
+# does not use and which would cost a build; HANDOUT_TARBALL=build/
+# handout.tar.gz checks make handout's): unpacked in an empty folder, its page holds build/
 # book.html's programs, meshes and scripts byte for byte (check-page
 # renders every scene of that page), and chapter 3's highlights and the
 # bunny render in it from file:// as bin/chNN draws them, offline
 # (tools/checks/handout_page_check.sh; in headless Chromium where it is
 # installed).
 HANDOUT_PAGE_SCENES := 03:scenes/ch03-highlights.scene 08:scenes/ch08-bunny.scene
+HANDOUT_TARBALL ?= build/handoutpage.tar.gz
 .PHONY: check-handout-page
-check-handout-page: build/handout.tar.gz build/book.html \
+check-handout-page: $(HANDOUT_TARBALL) build/book.html \
                     $(foreach s,$(HANDOUT_PAGE_SCENES),$(BIN)/ch$(firstword $(subst :, ,$(s))))
-	@sh tools/checks/handout_page_check.sh build/handout.tar.gz build/book.html $(BIN) \
+	@sh tools/checks/handout_page_check.sh $(HANDOUT_TARBALL) build/book.html $(BIN) \
 	  $(PAGE_CHECK_SIZE) $(HANDOUT_PAGE_SCENES)
+build/handoutpage.tar.gz: $(HANDOUT_FROM) $(BC)/.forms | deps
+	+@WEAVE_PAGE=$(PAGE_HTML) sh tools/workbook/handout.sh build/handoutpage --no-objects > /dev/null
+	@tar -czf $@ -C build handoutpage
+	@rm -rf build/handoutpage
 
 check-handout: $(BC)/.forms
 	+@sh tools/workbook/handout.sh build/handoutcheck --no-book > /dev/null
@@ -979,7 +987,7 @@ build/book.html: book.md $(CHAPTERS) tools/book/weave.lua tools/book/weave_names
 	@$(dir_of_target)
 	WEAVE_PAGE=$(PAGE_HTML) sh tools/book/weave.sh book.md $@ $(CHAPTERS)
 # The handout's book holds the same programs (make handout, above).
-build/handout/book.html: $(PAGE_HTML)
+build/handout/book.html build/handoutpage.tar.gz: $(PAGE_HTML)
 
 # The weaver stops at a chunk no program uses: a made-up chapter woven
 # with and without one.

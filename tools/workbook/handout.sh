@@ -1,7 +1,8 @@
 #!/bin/sh
 # handout.sh -- the book for students: no exercise's solution in it.
 #
-# Usage: tools/workbook/handout.sh OUTDIR [--no-book]   (make handout, make check-handout)
+# Usage: tools/workbook/handout.sh OUTDIR [--no-book | --no-objects]
+#        (make handout, make check-handout, make check-handout-page)
 # Writes OUTDIR, a folder in which a student can `make`, `make workbook`
 # and `make grade`: the Makefile, a README.md written for the student
 # (tools/workbook/handout_readme.md), book.md, the chapters with every exercise's
@@ -18,7 +19,9 @@
 # the checkout's build/book.html holds them (tools/editions/page.sh), so
 # that its scenes render in the handout's page as in the book's.
 # --no-book leaves out book.html and the compiled
-# objects (make check-handout: it reads the text). Left out: src/ (the
+# objects (make check-handout: it reads the text); --no-objects the
+# objects alone (make check-handout-page: it opens the book, and needs
+# no build of the book's code). Left out: src/ (the
 # tangle of the book's solutions), bench/ and failures/ (programs that use
 # them), fuzz/, .git.
 set -eu
@@ -42,7 +45,7 @@ for c in chapters/[0-9][0-9]-*.md; do
     awk -f tools/workbook/stub.awk -f tools/workbook/handout.awk "$c" > "$out/$c"
 done
 cp -R build/bookcode/forward build/bookcode/export "$out/book/"
-if [ "$book" != "--no-book" ]; then
+if [ "$book" != "--no-book" ] && [ "$book" != "--no-objects" ]; then
     cp build/bookcode/ch[0-9][0-9].o "$out/book/"
     sh tools/workbook/book_code.sh record "$out/book/MACHINE" "${CC:-cc}"
 fi
