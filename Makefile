@@ -32,7 +32,9 @@
 #                     the book's code); make grade, grade-chNN, hint EX=2.1,
 #                     watch; make chart-ch02 WORKBOOK=1 charts your forms
 #                     (chapters 1 to 7)
-#   make handout      build/handout/ and its .tar.gz: no solutions in it
+#   make handout      build/handout/ and its .tar.gz: no solutions in it;
+#                     its book.html renders the scenes with the page's
+#                     programs (make check-handout-page, in make test)
 #   make pdf, epub    the book's and the handout's editions
 #   make SAN=1 test   what runs the programs (suites, figures, commands)
 #                     with AddressSanitizer and UBSan
@@ -177,7 +179,9 @@ BC := build/bookcode
 ifeq ($(HANDOUT),)
 all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures wasm book
 else
-# A handout's book comes woven (book.html), its figures made: make builds
+# A handout's book comes woven (book.html), its figures made, and with the
+# page's programs (the book's code compiled for WebAssembly where the
+# handout was made) that render its scenes in its playgrounds: make builds
 # the programs, which draw as the book's do, and the workbook.
 all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) workbook
 	$(if $(BOOK_CODE),,@echo "make: book/ holds the book's code compiled for $$(head -n 1 book/MACHINE), \
@@ -640,7 +644,7 @@ HANDOUT_NEW := $(filter-out $(wildcard $(HANDOUT_EDITIONS)),$(HANDOUT_EDITIONS))
 handout: build/handout.tar.gz
 
 build/handout/book.html: $(HANDOUT_FROM) $(BC)/.forms $(foreach n,$(NUMS),$(BC)/ch$(n).o) | deps
-	+CC="$(CC)" sh tools/workbook/handout.sh build/handout
+	+CC="$(CC)" WEAVE_PAGE=$(PAGE_HTML) sh tools/workbook/handout.sh build/handout
 	sh tools/checks/check_handout.sh build/handout
 
 build/handout.tar.gz: build/handout/book.html $(HANDOUT_EDITIONS) $(if $(HANDOUT_NEW),handout-editions-new)
@@ -682,6 +686,28 @@ $(BC)/ch$(1).o: $$(patsubst %.c,$(BC)/obj/ch$(1)/%.o,$$(SRC$(1))) tools/workbook
 endef
 $(if $(HANDOUT),,$(foreach n,$(NUMS),$(eval $(call bookcode_rules,$(n)))))
 
+# The handout's book renders its scenes, for a student who has the
+# tarball alone (build/handoutpage.tar.gz, made by the same script as
+# make handout's but without the compiled book's code, which the page
+# does not use and which would cost a build; HANDOUT_TARBALL=build/
+# handout.tar.gz checks make handout's): unpacked in an empty folder, its page holds build/
+# book.html's programs, meshes and scripts byte for byte (check-page
+# renders every scene of that page), and chapter 3's highlights and the
+# bunny render in it from file:// as bin/chNN draws them, offline
+# (tools/checks/handout_page_check.sh; in headless Chromium where it is
+# installed).
+HANDOUT_PAGE_SCENES := 03:scenes/ch03-highlights.scene 08:scenes/ch08-bunny.scene
+HANDOUT_TARBALL ?= build/handoutpage.tar.gz
+.PHONY: check-handout-page
+check-handout-page: $(HANDOUT_TARBALL) build/book.html \
+                    $(foreach s,$(HANDOUT_PAGE_SCENES),$(BIN)/ch$(firstword $(subst :, ,$(s))))
+	@sh tools/checks/handout_page_check.sh $(HANDOUT_TARBALL) build/book.html $(BIN) \
+	  $(PAGE_CHECK_SIZE) $(HANDOUT_PAGE_SCENES)
+build/handoutpage.tar.gz: $(HANDOUT_FROM) $(BC)/.forms | deps
+	+@WEAVE_PAGE=$(PAGE_HTML) sh tools/workbook/handout.sh build/handoutpage --no-objects > /dev/null
+	@tar -czf $@ -C build handoutpage
+	@rm -rf build/handoutpage
+
 check-handout: $(BC)/.forms
 	+@sh tools/workbook/handout.sh build/handoutcheck --no-book > /dev/null
 	@sh tools/checks/check_handout.sh build/handoutcheck
@@ -706,7 +732,8 @@ EPUB_TOOLS := tools/editions/epub.sh tools/editions/epub_links.awk tools/edition
 build/handout/book.pdf: build/handout/book.html tools/editions/pdf.sh
 	sh tools/editions/pdf.sh $< $@
 build/handout/book.epub: build/handout/book.html $(EPUB_TOOLS)
-	cd build/handout && sh tools/editions/epub.sh book.md book.epub chapters/[0-9][0-9]-*.md
+	cd build/handout && EPUB_PLAYGROUNDS=$$(grep -q 'id="rt-program-' book.html && echo yes) \
+	  sh tools/editions/epub.sh book.md book.epub chapters/[0-9][0-9]-*.md
 
 build/book.pdf: build/book.html tools/editions/pdf.sh
 	sh tools/editions/pdf.sh $< $@
@@ -714,7 +741,7 @@ build/book.pdf: build/book.html tools/editions/pdf.sh
 # (CHARTS is set further down: the charts are named here by wildcard.)
 build/book.epub: book.md $(CHAPTERS) tools/book/weave.lua tools/book/weave_names.lua $(EPUB_TOOLS) \
                  tools/book/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(wildcard figures/ch[0-9][0-9]-*.svg) | deps
-	sh tools/editions/epub.sh book.md $@ $(CHAPTERS)
+	EPUB_PLAYGROUNDS=$(HAVE_WASM) sh tools/editions/epub.sh book.md $@ $(CHAPTERS)
 
 check-epub: build/book.epub
 	@sh tools/checks/check_epub.sh $< $(CHAPTERS)
@@ -963,6 +990,8 @@ build/book.html: book.md $(CHAPTERS) tools/book/weave.lua tools/book/weave_names
                  tools/book/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) $(PAGE_HTML) | deps
 	@$(dir_of_target)
 	WEAVE_PAGE=$(PAGE_HTML) sh tools/book/weave.sh book.md $@ $(CHAPTERS)
+# The handout's book holds the same programs (make handout, above).
+build/handout/book.html build/handoutpage.tar.gz: $(PAGE_HTML)
 
 # The weaver stops at a chunk no program uses: a made-up chapter woven
 # with and without one.
@@ -1084,7 +1113,7 @@ PROGRAM_TESTS := test-tangle $(foreach n,$(NUMS),test-ch$(n)) \
                  check-lines check-commands
 BOOK_TESTS := benches check-src check-charts check-book check-map check-stray \
               check-allocations check-test-width check-quotes check-workbook \
-              check-handout check-epub check-pdf check-book-browser check-page check-build-speed \
+              check-handout check-handout-page check-epub check-pdf check-book-browser check-page check-build-speed \
               check-brackets check-weave-errors check-reuse
 ifeq ($(HANDOUT),)
 test: deps $(PROGRAM_TESTS) $(if $(SAN),,$(BOOK_TESTS))
