@@ -10,8 +10,8 @@
  * shard.h): N runners, one a shard, run the tests on N cores at once.
  *
  * RUNNER_ONLY="NAME..." runs only the tests of those names, separated by
- * blanks (tools/workbook/grade.sh, to run again the tests that failed with some of
- * the reader's exercises in place of the book's code).
+ * blanks (tools/workbook/grade.sh, to run again the tests that failed with
+ * some of the reader's exercises in place of the book's code).
  *
  * RUNNER_THREADED=1 runs only the tests that say they start threads in
  * the test's own process (tcase_add_threaded_test, shard.h): the grader
