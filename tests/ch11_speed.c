@@ -419,8 +419,7 @@ static double stats_value(const char *text, const char *name)
 
 /* A picture whose upper half is sky, one ray a pixel, and whose lower
  * half a floor lit through 256 shadow rays a point: its lower bands cost
- * a hundred times its upper ones, and the render seconds (320 x 240: a
- * few seconds on one thread, a dozen bars and more). Drawn on one
+ * a hundred times its upper ones, and the render seconds. Drawn on one
  * thread with stderr a terminal, each bar from the first tenth of the
  * work on must give the time left within a factor of two, and the rate
  * of rays within a factor of two (below, what "truly" means). */
@@ -434,7 +433,7 @@ START_TEST(test_the_time_left_holds_when_bands_cost_differently)
     char scene_path[192];
     snprintf(scene_path, sizeof scene_path, "%s", write_file(
         "uneven.scene",
-        "image 320 240\n"
+        "image 640 480\n"
         "light area position 0 5 6 direction 0 -1 0 radius 1 samples 256\n"
         "sphere center 0 -1001 6 radius 1000\n"
         "sphere center 0 -0.5 6 radius 0.3\n"));
@@ -517,9 +516,9 @@ START_TEST(test_the_time_left_holds_when_bands_cost_differently)
         double rate = rays * done / elapsed;
         /* besides the factor of two: a second for the whole seconds shown
          * and the quarter second between bars, and the time of a band (8
-         * rows of 240) at the pace so far, the band in hand, whose rows
+         * rows of 480) at the pace so far, the band in hand, whose rows
          * count only once it is done */
-        double slack = 1 + elapsed * (8.0 / 240) / done;
+        double slack = 1 + elapsed * (8.0 / 480) / done;
         judged++;
         ck_assert_msg(b->left <= 2 * left + slack &&
                           b->left >= left / 2 - slack,

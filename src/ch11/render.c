@@ -210,6 +210,8 @@ void render_in_bands(const scene *s, image *img, const render_settings *how,
     q.reporting = how->progress != NULL &&
                   !how->progress_redrawn &&
                   pthread_create(&reporter, NULL, report_thread, &q) == 0;
+    if (how->progress != NULL)
+        report(&q); /* nothing done yet: the rows to do are known */
     pool_for(bands, how->threads, draw_band, &q);
     if (q.reporting)
         stop_reporter(&q, reporter);
