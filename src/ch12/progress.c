@@ -158,18 +158,20 @@ static void rate_text(char *text, size_t size, double rate)
 }
 
 /* "[#####     ]  50%  2.31 Mrays/s  3 s left" from the numbers last
- * shown, once the program has run for a second and if a line is due; the
- * rate and the time left count from the render's start. */
+ * shown, once the program has run for a second and if a line is due: the
+ * rate over the time until they were shown, the time left from now. */
 static void draw_bar(progress *p, double now)
 {
     int rows_done = p->rows_done, rows = p->rows;
     double elapsed = now - p->phase_start;
+    double counted = p->shown_at - p->phase_start; /* when rays_done held */
     if (!line_due(p, now) || (rows_done == rows && p->drawn == 0))
         return;
     static const char bar[] = "##############################"; /* 30 */
     int filled = 30 * rows_done / rows;
     char rate[32], left[32] = "time left not known yet";
-    rate_text(rate, sizeof rate, (double)p->rays_done / elapsed);
+    rate_text(rate, sizeof rate,
+              (double)p->rays_done / (counted > 0 ? counted : elapsed));
     if (rows_done > 0) /* the rows to come, at the pace of those done */
         snprintf(left, sizeof left, "%.0f s left",
                  elapsed * (rows - rows_done) / rows_done);
@@ -183,8 +185,10 @@ void progress_show(void *context, int rows_done, int rows,
 {
     progress *p = context;
     hold(p);
+    double now = moment_now().wall;
     p->rows_done = rows_done, p->rows = rows, p->rays_done = rays_done;
-    draw_bar(p, moment_now().wall);
+    p->shown_at = now;
+    draw_bar(p, now);
     if (rows_done == rows)
         end_line(p); /* on a terminal: the whole image's bar stays */
     release(p);

@@ -23,6 +23,7 @@ typedef struct {
     bool watching, ending;
     int rows_done, rows;  /* the render's, as last shown (rows 0: none yet) */
     long long rays_done;
+    double shown_at;      /* when they were shown */
 } progress;
 
 /* The program begins now. progress_end must follow. */
