@@ -3,6 +3,10 @@
  *
  *   build/rel/bench/ch10_embree [BUNNY.obj TEAPOT.obj] > figures/ch10-embree.csv
  *
+ * A quick look (not the chart's CSV): CH10_QUICK=1 traces the bunny at
+ * K = 1 alone; CH10_METHODS="bvh4 bvh8-noavx2" times only the methods it
+ * names (and no builds); BENCH_ROUNDS sets the rounds (bench/timing.h).
+ *
  * Built only where Embree 3 is installed (Debian: libembree-dev); without
  * it, `make charts` draws the chart from chapter 8's rates alone and says
  * that Embree was absent.
@@ -22,6 +26,11 @@
  *   bvh4-double-mesh  the same, the corners read from the mesh through
  *                the triangles' indices instead of a copy;
  *   bvh2|4|8     the BVH, binary, 4 and 8 wide, with leaves of packets;
+ *   bvh8-noavx2  the 8-wide BVH with the walk kept from AVX2
+ *                (bvh_allow_avx2(false)): the build's own instructions;
+ *                timed only in the widths' group: bvh4, bvh8 and
+ *                bvh8-noavx2 alone, on the bunny and the teapot at
+ *                K = 1, as MESH-1.0-widths;
  *   embree       rtcIntersect1 (Embree's BVH, RTC_BUILD_QUALITY_HIGH, its
  *                spatial-split builder, a device with threads=1; the
  *                scene without RTC_SCENE_FLAG_ROBUST, as Embree's
@@ -58,7 +67,8 @@
  *       against the exact answers, the kd-tree's: a ray one hits and the
  *       other not, or a different triangle)
  *   hits,MESH-K,0,error,METHOD_largest_t_error  (their largest relative
- *       difference of t from the exact one, where both hit)
+ *       difference of t from the exact one, over the rays where both hit
+ *       the same triangle: another triangle counts as another answer)
  *   vector,WIDTH_NAME,0,0,bvh_vector_width  (the node test's instructions)
  *   default,bvhN,0,0,default_method  (the program's default: N wide, where
  *       bvh-any, fast and fast-any are N wide as well) */
@@ -110,23 +120,25 @@ typedef struct {
     bool any;  /* shadow rays: any hit */
     bool medium; /* Embree: its default build, MEDIUM, not HIGH */
     bool in_float; /* the BVH's leaves decided in float alone */
+    bool no_avx2;  /* the walk kept from AVX2 (bvh_allow_avx2(false)) */
 } method;
 
 static const method METHODS[] = {
-    {"kdtree-ch08", KDTREE_CH08, 0, false, false, false},
-    {"kdtree", KDTREE, 0, false, false, false},
-    {"bvh4-double", BVH_DOUBLE, 4, false, false, false},
-    {"bvh4-double-mesh", BVH_DOUBLE_MESH, 4, false, false, false},
-    {"bvh2", BVH, 2, false, false, false},
-    {"bvh4", BVH, 4, false, false, false},
-    {"bvh8", BVH, 8, false, false, false},
-    {"fast", BVH, 0, false, false, true},
-    {"embree", EMBREE, 0, false, false, false},
-    {"embree-medium", EMBREE, 0, false, true, false},
-    {"kdtree-any", KDTREE, 0, true, false, false},
-    {"bvh-any", BVH, 0, true, false, false},
-    {"fast-any", BVH, 0, true, false, true},
-    {"embree-any", EMBREE, 0, true, false, false},
+    {"kdtree-ch08", KDTREE_CH08, 0, false, false, false, false},
+    {"kdtree", KDTREE, 0, false, false, false, false},
+    {"bvh4-double", BVH_DOUBLE, 4, false, false, false, false},
+    {"bvh4-double-mesh", BVH_DOUBLE_MESH, 4, false, false, false, false},
+    {"bvh2", BVH, 2, false, false, false, false},
+    {"bvh4", BVH, 4, false, false, false, false},
+    {"bvh8", BVH, 8, false, false, false, false},
+    {"bvh8-noavx2", BVH, 8, false, false, false, true},
+    {"fast", BVH, 0, false, false, true, false},
+    {"embree", EMBREE, 0, false, false, false, false},
+    {"embree-medium", EMBREE, 0, false, true, false, false},
+    {"kdtree-any", KDTREE, 0, true, false, false, false},
+    {"bvh-any", BVH, 0, true, false, false, false},
+    {"fast-any", BVH, 0, true, false, true, false},
+    {"embree-any", EMBREE, 0, true, false, false, false},
 };
 enum { N_METHODS = sizeof METHODS / sizeof METHODS[0] };
 
@@ -140,8 +152,14 @@ static int width_of(const method *how)
 /* Is how the program's default: the exact BVH of the default width? */
 static bool is_default(const method *how)
 {
-    return how->kind == BVH && !how->any && !how->in_float &&
+    return how->kind == BVH && !how->any && !how->in_float && !how->no_avx2 &&
            width_of(how) == bvh_default_params().width;
+}
+
+/* Before how's rays: may its walk use AVX2? After them: allowed again. */
+static void allow_avx2_for(const method *how)
+{
+    bvh_allow_avx2(!how->no_avx2);
 }
 
 /* A mesh and everything built over it: its kd-tree (in m), a copy of it
@@ -312,9 +330,11 @@ static void run_rays(void *ctx, long reps)
     struct RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     double sum = 0;
+    allow_avx2_for(c->how);
     for (long k = 0; k < reps; k++)
         sum += (c->how->kind == EMBREE ? embree_ray(c, k % c->n_rays, &context, NULL)
                                        : our_ray(c, k % c->n_rays, &stats, NULL)) < INFINITY;
+    bvh_allow_avx2(true);
     bench_sink += sum;
 }
 
@@ -375,16 +395,43 @@ static void time_builds(const subject *s, RTCDevice device)
 
 /* ---------------------------------------------------------------- the rows */
 
-static bool is_used(const subject *s, const method *how)
+/* Is how among the methods that $CH10_METHODS names (a list of names
+ * separated by spaces), or is $CH10_METHODS unset? For a quick look. */
+static bool is_chosen(const method *how)
 {
+    const char *list = getenv("CH10_METHODS");
+    if (list == NULL)
+        return true;
+    size_t n = strlen(how->name);
+    for (const char *at = strstr(list, how->name); at != NULL; at = strstr(at + 1, how->name))
+        if ((at == list || at[-1] == ' ') && (at[n] == '\0' || at[n] == ' '))
+            return true;
+    return false;
+}
+
+/* The methods of the widths' own group: the exact BVH 4 and 8 wide, and 8
+ * wide kept from AVX2, timed apart from the rest (a close comparison). */
+static bool in_widths(const method *how)
+{
+    return how->kind == BVH && !how->any && !how->in_float && how->width >= 4;
+}
+
+static bool is_used(const subject *s, const method *how, bool widths)
+{
+    if (!is_chosen(how))
+        return false;
+    if (widths || how->no_avx2)
+        return widths && in_widths(how);
     return !s->few_methods || how->kind == EMBREE ||
-           (how->kind == KDTREE && !how->any) || (how->kind == BVH && width_of(how) == bvh_default_params().width);
+           (how->kind == KDTREE && !how->any) ||
+           (how->kind == BVH && !how->no_avx2 && width_of(how) == bvh_default_params().width);
 }
 
 /* Where method j's answers are not the exact ones (the kd-tree's, kd): a
  * ray that one hits and the other does not, or that they see hit
  * different triangles; and the largest relative difference of their t
- * where both hit. */
+ * over the rays where both hit the same triangle (the others are
+ * counted apart, as other answers). */
 static void print_inexactness(const trace_ctx *c, int j, int kd, double *const t[],
                               int *const id[], const char *param)
 {
@@ -392,7 +439,10 @@ static void print_inexactness(const trace_ctx *c, int j, int kd, double *const t
     double largest = 0;
     for (long k = 0; k < n_rays; k++) {
         double a = t[j][k], b = t[kd][k];
-        other += id[j][k] != id[kd][k];
+        if (id[j][k] != id[kd][k]) {
+            other++;
+            continue;
+        }
         if (isfinite(a) && isfinite(b) && fabs(a - b) > largest * b)
             largest = fabs(a - b) / b;
     }
@@ -419,11 +469,13 @@ static void print_agreement(const trace_ctx *c, int n, const char *param)
         id[j] = malloc((size_t)n_rays * sizeof *id[j]);
         if (t[j] == NULL || id[j] == NULL)
             exit(1);
+        allow_avx2_for(c[j].how);
         for (long k = 0; k < n_rays; k++) {
             double d = c[j].how->kind == EMBREE ? embree_ray(&c[j], k, &context, &id[j][k])
                                                 : our_ray(&c[j], k, &stats, &id[j][k]);
             t[j][k] = d, hits += d < INFINITY;
         }
+        bvh_allow_avx2(true);
         printf("hits,%s,0,%ld,%s_hits\n", param, hits, c[j].how->name);
         if (c[j].how->kind == BVH) /* what a ray of the walk visits */
             printf("hits,%s,0,%.2f,%s_nodes_per_ray\n"
@@ -434,7 +486,7 @@ static void print_agreement(const trace_ctx *c, int n, const char *param)
         kd = strcmp(c[j].how->name, "kdtree") == 0 ? j : kd;
         ours = is_default(c[j].how) ? j : ours;
     }
-    for (int j = 0; j < n; j++) {
+    for (int j = 0; j < n && kd >= 0; j++) {
         if (c[j].how->any || c[j].how->kind == EMBREE || c[j].how->in_float || j == kd)
             continue;
         long differ = 0;
@@ -444,10 +496,10 @@ static void print_agreement(const trace_ctx *c, int n, const char *param)
         }
         printf("hits,%s,0,%ld,%s_disagrees_with_kdtree\n", param, differ, c[j].how->name);
     }
-    for (int j = 0; j < n; j++)
+    for (int j = 0; j < n && kd >= 0; j++)
         if ((c[j].how->kind == EMBREE || c[j].how->in_float) && !c[j].how->any)
             print_inexactness(c, j, kd, t, id, param);
-    for (int j = 0; j < n; j++)
+    for (int j = 0; j < n && ours >= 0; j++)
         if (c[j].how->kind == EMBREE && !c[j].how->any && !c[j].how->medium) {
             long differ = 0;
             for (long k = 0; k < n_rays; k++) {
@@ -482,11 +534,12 @@ static void print_rays(const trace_ctx *c, const bench_case *cases, const bench_
     }
 }
 
-/* Every method's rays of subject s at distance K, timed together. */
-static void time_rays(const subject *s, double K)
+/* Every method's rays of subject s at distance K, timed together (widths:
+ * the widths' group alone, as MESH-K-widths). */
+static void time_rays(const subject *s, double K, bool widths)
 {
     char param[48];
-    snprintf(param, sizeof param, "%s-%.1f", s->name, K);
+    snprintf(param, sizeof param, "%s-%.1f%s", s->name, K, widths ? "-widths" : "");
     int side = s->few_methods ? FAILURE_SIDE : SIDE;
     long n_rays = (long)side * side;
     float_ray *rays = make_rays(&s->m, K, side);
@@ -495,7 +548,7 @@ static void time_rays(const subject *s, double K)
     bench_timing t[N_METHODS];
     int n = 0;
     for (int j = 0; j < N_METHODS; j++)
-        if (is_used(s, &METHODS[j])) {
+        if (is_used(s, &METHODS[j], widths)) {
             c[n] = (trace_ctx){&METHODS[j], s, rays, n_rays};
             cases[n] = (bench_case){METHODS[j].name, param, run_rays, &c[n], n_rays};
             n++;
@@ -588,16 +641,18 @@ int main(int argc, char **argv)
     bench_csv_header();
     printf("vector,%s,0,0,bvh_vector_width\n", bvh_vector_width_name());
     printf("default,bvh%d,0,0,default_method\n", bvh_default_params().width);
-    /* CH09_QUICK=1: the bunny at K = 1 alone, no builds (a quick look) */
-    bool quick = getenv("CH09_QUICK") != NULL;
+    /* CH10_QUICK=1: the bunny at K = 1 alone, no builds (a quick look) */
+    bool quick = getenv("CH10_QUICK") != NULL || getenv("CH09_QUICK") != NULL;
     for (int k = 0; k < (quick ? 1 : N_SUBJECTS); k++) {
         subject *s = &subjects[k];
-        if (!s->few_methods && !quick)
+        if (!s->few_methods && !quick && getenv("CH10_METHODS") == NULL)
             time_builds(s, device);
         prepare(s, device);
-        time_rays(s, 1.0);
+        time_rays(s, 1.0, false);
+        if (k < 2) /* the bunny and the teapot */
+            time_rays(s, 1.0, true);
         if (!s->few_methods && !quick)
-            time_rays(s, 2.5);
+            time_rays(s, 2.5, false);
         release(s);
     }
     rtcReleaseDevice(device);

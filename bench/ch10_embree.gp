@@ -85,7 +85,9 @@ unset multiplot
 # method's rate as a fraction of Embree's (HIGH) along x, and along y, on
 # log axes with a row for zero: left, the rays whose answer is not the
 # exact one (another triangle, or a hit for a miss), per million rays;
-# right, the largest relative difference of a hit's t from the exact t.
+# right, the largest relative difference of t from the exact t, over the
+# rays that hit the exact answer's triangle (another triangle is counted
+# on the left, as another answer).
 # The program's default BVH is exact by construction (its rows say it
 # agrees with the kd-tree on every ray): it sits on the zero rows.
 if (!absent) {
@@ -124,7 +126,7 @@ lo = -8
 hi = -2
 eval zero_axis_y
 set ylabel "largest relative difference of t from the exact t"
-set title "the largest error of t, where both hit" font ",10"
+set title "the largest error of t, where both hit the same triangle" font ",10"
 unset key
 plot join using (of("default")):(at_zero($5)) with points pt 7 ps 1.1 lc rgb ours notitle, \
      join using (of("fast")):(at_zero($5)) with points pt 9 ps 1.3 lc rgb ours notitle, \

@@ -14,7 +14,7 @@
 bvh_params bvh_default_params(void)
 {
     /* <<the default width>> ch10 */
-    int width = bvh_walks_with_avx2() ? 8 : BVH_WIDTH;
+    int width = BVH_WIDTH;
     return (bvh_params){.width = width, .bins = 32, .max_leaf_items = 8,
                         .traversal_cost = 1, .intersection_cost = 1,
                         .min_items = 1, .item_group = 1};
