@@ -238,20 +238,40 @@ static double double_leaves_ray(const subject *s, const mesh_ray *mr, bool from_
     if (!box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far) ||
         !bvh_ray_of(mr->r.origin, mr->inv_dir, 0, INFINITY, &r))
         return INFINITY;
-    bvh_walk w;
-    bvh_leaf leaf;
-    int found = -1;
+    unsigned shift = bvh_walk_rows(&r);
+    uint32_t stack[BVH_STACK8], now = 0; /* the root */
+    float entry[BVH_STACK8], bound = r.t_max;
+    int top = 0, found = -1;
     triangle_hit th;
-    bvh_walk_start(&w, &m->bvh, &r);
-    while (bvh_walk_next(&w, t_max, &leaf)) {
-        int first = leaf.first * PACKET_W; /* the lane of its first packet */
-        int k = from_mesh ? mesh_corners_leaf(m, &mr->shear, s->lane_items + first,
-                                              leaf.count, t_max, found, &th)
-                          : triangle_nearest_of_leaf(&mr->shear, s->corners + first,
-                                                     s->lane_items + first, leaf.count, 0,
-                                                     t_max, found, &th);
-        if (k >= 0)
-            found = s->lane_items[first + k], t_max = th.t;
+    for (;;) { /* chapter 10's walk (search_bvh8), its leaves these */
+        if (!(now & BVH_LEAF)) {
+            const bvh_node8 *n = &m->bvh.nodes8[now];
+            float t_near[8];
+            unsigned hit = bvh_node8_test(n, &r, bound, t_near);
+            if (hit != 0) {
+                top = bvh_push8(stack, entry, top, n, hit, t_near, shift);
+                now = stack[--top];
+                continue;
+            }
+        } else {
+            int first = (int)(now & BVH_FIRST_MASK) * PACKET_W; /* a lane */
+            int count = (int)(now >> BVH_COUNT_SHIFT & 15);
+            int k = from_mesh ? mesh_corners_leaf(m, &mr->shear, s->lane_items + first,
+                                                  count, t_max, found, &th)
+                              : triangle_nearest_of_leaf(&mr->shear, s->corners + first,
+                                                         s->lane_items + first, count, 0,
+                                                         t_max, found, &th);
+            if (k >= 0) {
+                found = s->lane_items[first + k], t_max = th.t;
+                float b = bvh_float_up(t_max * (1 + BVH_SLACK));
+                bound = b < r.t_max ? b : r.t_max;
+            }
+        }
+        while (top > 0 && !(entry[top - 1] <= bound))
+            top--;
+        if (top == 0)
+            break;
+        now = stack[--top];
     }
     return t_max;
 }
@@ -586,7 +606,9 @@ int main(int argc, char **argv)
     subjects[4].m = slivers_mesh(4000);
     bench_print_machine();
     bench_csv_header();
-    printf("vector,%s,0,0,bvh_vector_width\n", bvh_vector_width_name());
+    printf("vector,%s,0,0,bvh_vector_width\n",
+           bvh_walks_with_avx2() ? "AVX2 chosen at run time"
+                                 : "the build's own instructions");
     printf("default,bvh%d,0,0,default_method\n", bvh_default_params().width);
     /* CH09_QUICK=1: the bunny at K = 1 alone, no builds (a quick look) */
     bool quick = getenv("CH09_QUICK") != NULL;
