@@ -32,7 +32,9 @@
 #                     the book's code); make grade, grade-chNN, hint EX=2.1,
 #                     watch; make chart-ch02 WORKBOOK=1 charts your forms
 #                     (chapters 1 to 7)
-#   make handout      build/handout/ and its .tar.gz: no solutions in it
+#   make handout      build/handout/ and its .tar.gz: no solutions in it;
+#                     its book.html renders the scenes with the page's
+#                     programs (make check-handout-page, in make test)
 #   make pdf, epub    the book's and the handout's editions
 #   make SAN=1 test   what runs the programs (suites, figures, commands)
 #                     with AddressSanitizer and UBSan
@@ -74,8 +76,10 @@ LDFLAGS ?=
 NATIVE_FIX := $(if $(NATIVE),$(shell sh tools/book/probe_native.sh "$(CC)" $(CSTD) $(OPT) -march=native))
 ARCH    := $(if $(SCALAR),-DRT_SCALAR) $(if $(NATIVE),-march=native $(NATIVE_FIX))
 # The suites (not the book's program) may use wait4, BSD's and Linux's, to
-# read what a child process did.
-TEST_DEFS := -D_DEFAULT_SOURCE -D_DARWIN_C_SOURCE
+# read what a child process did. Check prints the doubles of a failed
+# comparison with CK_FLOATING_DIG digits, 6 unless told: 17 tell any two
+# doubles apart ("1 == 1" would be a length of 1.0000001 failing).
+TEST_DEFS := -D_DEFAULT_SOURCE -D_DARWIN_C_SOURCE -DCK_FLOATING_DIG=17
 # The suites' own code is compiled at -O0 (after the program's -O2, the
 # last wins): it checks, the program computes, and -O0 compiles the large
 # suite files in under half the time of -O1 (a third, with the sanitizers).
@@ -89,7 +93,12 @@ $(B)/obj/%/tests/ch10_packets.o: TEST_OPT := -O1
 # leaks as it exits, a minute of the pass over some three thousand tests.
 # The first pass, forked and with time limits, has stopped any test that hangs.
 RUNNER_ENV := $(if $(SAN),RUNNER_FORKLESS=1)
-ALL_CFLAGS = $(CSTD) $(WARN) $(OPT) $(ARCH) -pthread $(CFLAGS) -MMD -MP
+# In a handout (below) the static helpers and variables that only an
+# exercise's code uses go unused until the student writes it.
+ALL_CFLAGS = $(CSTD) $(WARN) $(HANDOUT_WARN) $(OPT) $(ARCH) -pthread $(CFLAGS) -MMD -MP
+HANDOUT_WARN = $(if $(HANDOUT),-Wno-unused-function -Wno-unused-variable $(if $(BOOK_CODE),,$(STUB_WARN)))
+# (and where the stubs stand in, their parameters and variables too)
+STUB_WARN = -Wno-unused-parameter -Wno-unused-variable -Wno-unused-but-set-variable -Wno-missing-braces
 
 # Parallel by default, one job a core; make -jN still chooses, and a make
 # run by a recipe shares its parent's jobs.
@@ -146,11 +155,39 @@ suites_upto = $(foreach n,$(filter $(call nums_upto,$(1)),$(NUMS)),$(wildcard te
 # previous NN: the chapter before NN, empty for the first
 previous = $(lastword $(filter-out $(1),$(filter $(call nums_upto,$(1)),$(NUMS))))
 
+# A handout (make handout) holds no exercise's code: its chapters hold the
+# stubs, and the book's code of the exercises comes compiled, book/chNN.o,
+# linked into every program of chapter NN, which calls it through
+# book/forward/ and lets it call the student's code through book/export/
+# (tools/workbook/book_code.sh, tools/workbook/book_code.awk): an exercise not started
+# behaves as the book's code does. Each file is compiled with its name,
+# -DRT_TU=NAME, which the names of those calls hold. On another machine
+# than the one book/MACHINE names, the objects cannot serve: the stubs
+# stand in for the exercises not started (BOOK_CODE is empty).
+HANDOUT   := $(if $(wildcard book/MACHINE),yes)
+BOOK_CODE := $(if $(HANDOUT),$(shell sh tools/workbook/book_code.sh machine book/MACHINE '$(CC)' && echo yes))
+book_forms_upto = $(if $(BOOK_CODE),$(foreach k,forward export,$(foreach c,$(call chapters_upto,$(1)),book/$(k)/$(notdir $(c)))))
+book_obj = $(if $(BOOK_CODE),book/ch$(1).o)
+RT_TU = $(if $(HANDOUT),-DRT_TU=$(subst /,_,$*))
+# where make book-code builds it for the handout (below)
+BC := build/bookcode
+
 .PHONY: all test deps src figures charts book clean check-src check-figures check-map check-stray check-allocations check-test-width \
         check-book check-lines check-quotes test-tangle tools benches \
         book-check check-book-browser check-page check-code-width check-commands
 
+ifeq ($(HANDOUT),)
 all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures wasm book
+else
+# A handout's book comes woven (book.html), its figures made, and with the
+# page's programs (the book's code compiled for WebAssembly where the
+# handout was made) that render its scenes in its playgrounds: make builds
+# the programs, which draw as the book's do, and the workbook.
+all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) workbook
+	$(if $(BOOK_CODE),,@echo "make: book/ holds the book's code compiled for $$(head -n 1 book/MACHINE), \
+	  not for this machine: the exercises you have not started are stubs here, and the \
+	  tests that use them wait for you to write them (README.md)")
+endif
 
 deps:
 	@sh tools/book/deps.sh
@@ -180,9 +217,9 @@ SUITES$(1) := $$(call suites_upto,$(1))
 FIGS$(1) := figures/ch$(1)-default.png $$(patsubst scenes/%.scene,figures/%.png,$$(call scene_files,$(1)))
 
 # The --line tangle is what gets compiled: errors point at the chapter.
-$$(T$(1))/.stamp: $$(call chapters_upto,$(1)) tools/book/tangle.c | $(TANGLE)
+$$(T$(1))/.stamp: $$(call chapters_upto,$(1)) $$(call book_forms_upto,$(1)) tools/book/tangle.c | $(TANGLE)
 	@$$(dir_of_target)
-	$(TANGLE) --line --strict -o $$(@D) $$(call chapters_upto,$(1))
+	$(TANGLE) --line --strict -o $$(@D) $$(call chapters_upto,$(1)) $$(call book_forms_upto,$(1))
 	@$$(call link_meshes,$$(@D),../../../../)
 	@touch $$@
 
@@ -190,9 +227,9 @@ $$(T$(1))/%.c $$(T$(1))/%.h $$(T$(1))/%.scene: $$(T$(1))/.stamp ;
 
 $$(O$(1))/%.o: $$(T$(1))/%.c | deps $(REUSE)
 	@$$(dir_of_target)
-	$(call reuse_from,$(1),$$*.o)$$(CC) $$(ALL_CFLAGS) $$(PNG_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
+	$(call reuse_from,$(1),$$*.o)$$(CC) $$(ALL_CFLAGS) $$(RT_TU) $$(PNG_CFLAGS) -I$$(T$(1)) -c -o $$@ $$<
 
-$(BIN)/ch$(1): $$(OBJ$(1))
+$(BIN)/ch$(1): $$(OBJ$(1)) $$(call book_obj,$(1))
 	@$$(dir_of_target)
 	$$(CC) $$(ALL_CFLAGS) $$(LTO_LINK) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
 
@@ -217,7 +254,7 @@ $$(O$(1))/tests/runner.o: tests/runner.c $$(SUITES$(1)) | deps
 	$$(CC) $$(ALL_CFLAGS) $$(CHECK_CFLAGS) \
 	  '-DSUITE_LIST=$$(foreach s,$$(SUITES$(1)),X($$(basename $$(notdir $$(s)))))' -c -o $$@ $$<
 
-$(B)/test/ch$(1): $$(O$(1))/tests/runner.o $$(patsubst tests/%.c,$$(O$(1))/tests/%.o,$$(SUITES$(1))) $$(LIB$(1))
+$(B)/test/ch$(1): $$(O$(1))/tests/runner.o $$(patsubst tests/%.c,$$(O$(1))/tests/%.o,$$(SUITES$(1))) $$(LIB$(1)) $$(call book_obj,$(1))
 	@$$(dir_of_target)
 	$$(CC) $$(ALL_CFLAGS) $$(LTO_LINK) -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
 
@@ -504,12 +541,19 @@ workbook: $(WB_FILES)
 # Order-only: a workbook file is the reader's, never remade once it exists.
 $(WB_DIR)/%.md: | chapters/%.md
 	@$(dir_of_target)
-	awk -v solved=$(if $(SOLVED),1,0) -f tools/workbook/stub.awk -f tools/workbook/workbook.awk chapters/$*.md chapters/$*.md > $@
+	awk -f tools/workbook/types.awk $(CHAPTERS) > $@.types
+	awk -v solved=$(if $(SOLVED),1,0) -v types=$@.types -f tools/workbook/stub.awk -f tools/workbook/book_code.awk -f tools/workbook/workbook.awk \
+	  chapters/$*.md chapters/$*.md > $@.tmp && mv $@.tmp $@; s=$$?; rm -f $@.types; exit $$s
 
-grade: grade-ch$(LAST)
+# make grade EX=2.1: exercise 2.1's chapter graded, and the exit status is
+# that exercise's verdict alone (0: done): one command an exercise, for an
+# autograder. Every grade writes $(WB_BUILD)/junit.xml.
+EX_CHAPTER := $(if $(EX),$(shell printf '%02d' '$(firstword $(subst ., ,$(EX)))' 2>/dev/null))
+grade: $(if $(EX),grade-ch$(EX_CHAPTER),grade-ch$(LAST))
 
 $(foreach n,$(NUMS),grade-ch$(n)): grade-ch%: $(TANGLE)
-	+@TANGLE=$(TANGLE) WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) MAKE="$(MAKE)" \
+	+@TANGLE=$(TANGLE) WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) MAKE="$(MAKE)" CC="$(CC)" \
+	  GRADE_EX=$(EX) GRADE_BOOK_CODE=$(if $(HANDOUT),$(if $(BOOK_CODE),yes,no)) \
 	  BOOK_BUILD=$(B) BOOK_BIN=$(BIN) sh tools/workbook/grade.sh $* $(call chapters_upto,$*)
 
 hint:
@@ -518,7 +562,8 @@ hint:
 	@awk -v hint=$(EX) -f tools/workbook/exercises.awk $(CHAPTERS)
 
 watch: $(TANGLE)
-	+@WB_DIR=$(WB_DIR) sh tools/workbook/watch.sh $(MAKE) --no-print-directory grade
+	+@WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD) sh tools/workbook/watch.sh $(MAKE) --no-print-directory \
+	  WB_DIR=$(WB_DIR) WB_BUILD=$(WB_BUILD)
 
 # make chart-chNN WORKBOOK=1: chapter NN's charts with the reader's started
 # exercises as "yours", timed in the same rounds as the book's methods, under
@@ -598,8 +643,8 @@ HANDOUT_NEW := $(filter-out $(wildcard $(HANDOUT_EDITIONS)),$(HANDOUT_EDITIONS))
 .PHONY: handout-editions-new
 handout: build/handout.tar.gz
 
-build/handout/book.html: $(HANDOUT_FROM) | deps
-	+sh tools/workbook/handout.sh build/handout
+build/handout/book.html: $(HANDOUT_FROM) $(BC)/.forms $(foreach n,$(NUMS),$(BC)/ch$(n).o) | deps
+	+CC="$(CC)" WEAVE_PAGE=$(PAGE_HTML) sh tools/workbook/handout.sh build/handout
 	sh tools/checks/check_handout.sh build/handout
 
 build/handout.tar.gz: build/handout/book.html $(HANDOUT_EDITIONS) $(if $(HANDOUT_NEW),handout-editions-new)
@@ -607,7 +652,63 @@ build/handout.tar.gz: build/handout/book.html $(HANDOUT_EDITIONS) $(if $(HANDOUT
 	@echo "wrote build/handout/ and build/handout.tar.gz:" \
 	  $$(cd build/handout && ls book.html book.pdf book.epub 2> /dev/null)
 
-check-handout:
+# The book's code of the exercises, compiled, for the handout (tools/
+# book_code.sh): build/bookcode/forward/ and export/ (how the handout's
+# programs call it, and it them), and build/bookcode/chNN.o, built from
+# the chapters with each exercise's code in the book form of tools/
+# book_code.awk, without debugging information.
+BC_CFLAGS = $(CSTD) -O2 $(ARCH) -pthread -w -MMD -MP
+.PHONY: book-code
+book-code: $(foreach n,$(NUMS),$(BC)/ch$(n).o)
+$(BC)/.forms: $(CHAPTERS) tools/workbook/stub.awk tools/workbook/book_code.awk tools/workbook/workbook.awk \
+              tools/workbook/book_code.sh tools/workbook/exercises.awk $(T$(LAST))/.stamp
+	@mkdir -p $(BC)
+	sh tools/workbook/book_code.sh forms $(BC) $(T$(LAST)) $(CHAPTERS)
+	@touch $@
+
+define bookcode_rules
+$(BC)/tangle/ch$(1)/.stamp: $(BC)/.forms | $(TANGLE)
+	@$$(dir_of_target)
+	$(TANGLE) --strict -o $$(@D) $$(call chapters_upto,$(1)) \
+	  $$(foreach c,$$(call chapters_upto,$(1)),$(BC)/book/$$(notdir $$(c)))
+	@touch $$@
+$(BC)/tangle/ch$(1)/%.c $(BC)/tangle/ch$(1)/%.h: $(BC)/tangle/ch$(1)/.stamp ;
+$(BC)/obj/ch$(1)/%.o: $(BC)/tangle/ch$(1)/%.c | deps $(REUSE)
+	@$$(dir_of_target)
+	$$(if $$(call previous,$(1)),$(REUSE) $(BC)/obj/ch$$(call previous,$(1))/$$*.o $(BC)/tangle/ch$$(call previous,$(1)) $(BC)/tangle/ch$(1) -- )$$(CC) $$(BC_CFLAGS) -DRT_TU=$$* $$(PNG_CFLAGS) -I$(BC)/tangle/ch$(1) -c -o $$@ $$<
+ifneq ($(call previous,$(1)),)
+$$(patsubst %.c,$(BC)/obj/ch$(1)/%.o,$$(filter $$(SRC$(call previous,$(1))),$$(SRC$(1)))): \
+  $(BC)/obj/ch$(1)/%.o: | $(BC)/obj/ch$(call previous,$(1))/%.o
+endif
+$(BC)/ch$(1).o: $$(patsubst %.c,$(BC)/obj/ch$(1)/%.o,$$(SRC$(1))) tools/workbook/book_code.sh
+	sh tools/workbook/book_code.sh link $$@ $$(filter %.o,$$^)
+-include $$(wildcard $(BC)/obj/ch$(1)/*.d)
+endef
+$(if $(HANDOUT),,$(foreach n,$(NUMS),$(eval $(call bookcode_rules,$(n)))))
+
+# The handout's book renders its scenes, for a student who has the
+# tarball alone (build/handoutpage.tar.gz, made by the same script as
+# make handout's but without the compiled book's code, which the page
+# does not use and which would cost a build; HANDOUT_TARBALL=build/
+# handout.tar.gz checks make handout's): unpacked in an empty folder, its page holds build/
+# book.html's programs, meshes and scripts byte for byte (check-page
+# renders every scene of that page), and chapter 3's highlights and the
+# bunny render in it from file:// as bin/chNN draws them, offline
+# (tools/checks/handout_page_check.sh; in headless Chromium where it is
+# installed).
+HANDOUT_PAGE_SCENES := 03:scenes/ch03-highlights.scene 08:scenes/ch08-bunny.scene
+HANDOUT_TARBALL ?= build/handoutpage.tar.gz
+.PHONY: check-handout-page
+check-handout-page: $(HANDOUT_TARBALL) build/book.html \
+                    $(foreach s,$(HANDOUT_PAGE_SCENES),$(BIN)/ch$(firstword $(subst :, ,$(s))))
+	@sh tools/checks/handout_page_check.sh $(HANDOUT_TARBALL) build/book.html $(BIN) \
+	  $(PAGE_CHECK_SIZE) $(HANDOUT_PAGE_SCENES)
+build/handoutpage.tar.gz: $(HANDOUT_FROM) $(BC)/.forms | deps
+	+@WEAVE_PAGE=$(PAGE_HTML) sh tools/workbook/handout.sh build/handoutpage --no-objects > /dev/null
+	@tar -czf $@ -C build handoutpage
+	@rm -rf build/handoutpage
+
+check-handout: $(BC)/.forms
 	+@sh tools/workbook/handout.sh build/handoutcheck --no-book > /dev/null
 	@sh tools/checks/check_handout.sh build/handoutcheck
 	@! sh tools/checks/check_handout.sh src > /dev/null || \
@@ -631,7 +732,8 @@ EPUB_TOOLS := tools/editions/epub.sh tools/editions/epub_links.awk tools/edition
 build/handout/book.pdf: build/handout/book.html tools/editions/pdf.sh
 	sh tools/editions/pdf.sh $< $@
 build/handout/book.epub: build/handout/book.html $(EPUB_TOOLS)
-	cd build/handout && sh tools/editions/epub.sh book.md book.epub chapters/[0-9][0-9]-*.md
+	cd build/handout && EPUB_PLAYGROUNDS=$$(grep -q 'id="rt-program-' book.html && echo yes) \
+	  sh tools/editions/epub.sh book.md book.epub chapters/[0-9][0-9]-*.md
 
 build/book.pdf: build/book.html tools/editions/pdf.sh
 	sh tools/editions/pdf.sh $< $@
@@ -639,7 +741,7 @@ build/book.pdf: build/book.html tools/editions/pdf.sh
 # (CHARTS is set further down: the charts are named here by wildcard.)
 build/book.epub: book.md $(CHAPTERS) tools/book/weave.lua tools/book/weave_names.lua $(EPUB_TOOLS) \
                  tools/book/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(wildcard figures/ch[0-9][0-9]-*.svg) | deps
-	sh tools/editions/epub.sh book.md $@ $(CHAPTERS)
+	EPUB_PLAYGROUNDS=$(HAVE_WASM) sh tools/editions/epub.sh book.md $@ $(CHAPTERS)
 
 check-epub: build/book.epub
 	@sh tools/checks/check_epub.sh $< $(CHAPTERS)
@@ -666,14 +768,18 @@ check-stubs: $(TANGLE)
 # make builds those first, so that no two makes write one object at once.
 # The book's code, typed in, builds the book's programs byte for byte: the
 # last chapter's suites, run first, give that grade its results.
-WB_CHECK_CHAPTERS := $(LAST) $(call previous,$(LAST)) 06 05
+WB_CHECK_CHAPTERS := $(NUMS)
 .PHONY: check-workbook
 check-workbook: $(TANGLE) $(foreach n,$(filter $(NUMS),$(WB_CHECK_CHAPTERS)),$(B)/test/ch$(n) $(BIN)/ch$(n)) \
                 test-ch$(LAST)
-	+@MAKE="$(MAKE)" WB_CHECK_DIR=build/wbcheck$(WB_TAG) sh tools/checks/check_workbook.sh
+	+@MAKE="$(MAKE)" TANGLE=$(TANGLE) CC="$(CC)" BOOK_BUILD=$(B) BOOK_BIN=$(BIN) \
+	  WB_CHECK_DIR=build/wbcheck$(WB_TAG) sh tools/checks/check_workbook.sh
 
 # The workbook's program and suites of chapter NN, built from the tangle
-# that tools/workbook/grade.sh writes to $(WB_BUILD)/tangle/chNN.
+# that tools/workbook/grade.sh writes to $(WB_BUILD)/tangle/chNN. What the
+# compiler says of a file is kept beside its object, OBJ.warnings: the
+# grader shows the warnings at the reader's lines at every grade, whether
+# or not the file was compiled again.
 define workbook_rules
 WT$(1) := $(WB_BUILD)/tangle/ch$(1)
 WO$(1) := $(WB_BUILD)/obj/ch$(1)
@@ -682,7 +788,9 @@ WLIB$(1) := $$(filter-out $$(WO$(1))/main.o,$$(WOBJ$(1)))
 
 $$(WO$(1))/%.o: $$(WT$(1))/%.c $$(O$(1))/%.o | deps $(REUSE)
 	@$$(dir_of_target)
-	$$(call wb_reuse_book,$(1),$$*.o) $$(call wb_reuse_from,$(1),$$*.o)$$(CC) $$(WB_CFLAGS) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
+	$$(call wb_reuse_book,$(1),$$*.o) $$(call wb_reuse_from,$(1),$$*.o)$$(CC) $$(WB_CFLAGS) $$(RT_TU) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$< \
+	  2> $$@.warnings || { cat $$@.warnings >&2; exit 1; }
+	@cat $$@.warnings >&2
 
 $$(WO$(1))/tests/%.o: tests/%.c $$(O$(1))/tests/%.o | deps $(REUSE)
 	@$$(dir_of_target)
@@ -694,15 +802,33 @@ $$(WO$(1))/tests/runner.o: tests/runner.c $$(SUITES$(1)) | deps
 	  '-DSUITE_LIST=$$(foreach s,$$(SUITES$(1)),X($$(basename $$(notdir $$(s)))))' -c -o $$@ $$<
 
 $(WB_BUILD)/test/ch$(1): $$(WO$(1))/tests/runner.o \
-                      $$(patsubst tests/%.c,$$(WO$(1))/tests/%.o,$$(SUITES$(1))) $$(WLIB$(1))
+                      $$(patsubst tests/%.c,$$(WO$(1))/tests/%.o,$$(SUITES$(1))) $$(WLIB$(1)) \
+                      $$(call book_obj,$(1))
 	@$$(dir_of_target)
 	$$(CC) $$(WB_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
 
-$(WB_BUILD)/bin/ch$(1): $$(WOBJ$(1))
+$(WB_BUILD)/bin/ch$(1): $$(WOBJ$(1)) $$(call book_obj,$(1))
 	@$$(dir_of_target)
 	$$(CC) $$(WB_CFLAGS) -o $$@ $$^ $$(LDFLAGS) $$(PNG_LIBS) -lm
 
--include $$(wildcard $$(WO$(1))/*.d $$(WO$(1))/tests/*.d)
+# The suites again, the files that hold the reader's code (WB_TSAN_FILES,
+# their names without .c: tools/workbook/grade.sh) built with ThreadSanitizer, the
+# rest as they are: the tests that start threads run in it. Without
+# optimization, so that every access the code makes is made (at -O2 a
+# static variable that a function writes and reads may live in a
+# register, and its race go unseen).
+$(WB_BUILD)/tsan/obj/ch$(1)/%.o: $$(WT$(1))/%.c | deps
+	@$$(dir_of_target)
+	$$(CC) $$(WB_CFLAGS) -O0 -fsanitize=thread $$(RT_TU) $$(PNG_CFLAGS) -I$$(WT$(1)) -c -o $$@ $$<
+
+$(WB_BUILD)/tsan/test/ch$(1): $$(WO$(1))/tests/runner.o \
+                      $$(patsubst tests/%.c,$$(WO$(1))/tests/%.o,$$(SUITES$(1))) \
+                      $$(foreach o,$$(WLIB$(1)),$$(if $$(filter $$(basename $$(notdir $$(o))),$$(WB_TSAN_FILES)),$(WB_BUILD)/tsan/obj/ch$(1)/$$(notdir $$(o)),$$(o))) \
+                      $$(call book_obj,$(1))
+	@$$(dir_of_target)
+	$$(CC) $$(WB_CFLAGS) -fsanitize=thread -o $$@ $$^ $$(LDFLAGS) $$(CHECK_LIBS) $$(PNG_LIBS) -lm
+
+-include $$(wildcard $$(WO$(1))/*.d $$(WO$(1))/tests/*.d $(WB_BUILD)/tsan/obj/ch$(1)/*.d)
 endef
 $(foreach n,$(NUMS),$(eval $(call workbook_rules,$(n))))
 
@@ -805,7 +931,7 @@ WASM_CC   := clang --target=wasm32-wasi
 PAGE_DIR  := build/tangle/ch$(LAST)/page
 # Asked once, by the first make: its sub-makes get the answer from it.
 ifndef PAGE_PROBED
-HAVE_WASM := $(if $(filter clean,$(MAKECMDGOALS)),,$(shell sh tools/book/deps.sh --page >&2; \
+HAVE_WASM := $(if $(filter clean,$(MAKECMDGOALS))$(HANDOUT),,$(shell sh tools/book/deps.sh --page >&2; \
                printf 'int main(void) { return 0; }\n' | \
                $(WASM_CC) -x c - -o /dev/null >/dev/null 2>&1 && echo yes))
 export HAVE_WASM
@@ -864,6 +990,8 @@ build/book.html: book.md $(CHAPTERS) tools/book/weave.lua tools/book/weave_names
                  tools/book/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) $(PAGE_HTML) | deps
 	@$(dir_of_target)
 	WEAVE_PAGE=$(PAGE_HTML) sh tools/book/weave.sh book.md $@ $(CHAPTERS)
+# The handout's book holds the same programs (make handout, above).
+build/handout/book.html build/handoutpage.tar.gz: $(PAGE_HTML)
 
 # The weaver stops at a chunk no program uses: a made-up chapter woven
 # with and without one.
@@ -985,12 +1113,18 @@ PROGRAM_TESTS := test-tangle $(foreach n,$(NUMS),test-ch$(n)) \
                  check-lines check-commands
 BOOK_TESTS := benches check-src check-charts check-book check-map check-stray \
               check-allocations check-test-width check-quotes check-workbook \
-              check-handout check-epub check-pdf check-book-browser check-page check-build-speed \
+              check-handout check-handout-page check-epub check-pdf check-book-browser check-page check-build-speed \
               check-brackets check-weave-errors check-reuse
+ifeq ($(HANDOUT),)
 test: deps $(PROGRAM_TESTS) $(if $(SAN),,$(BOOK_TESTS))
 	@# the book is up to date by now (check-book): -o keeps it so
 	$(if $(SAN),,@$(MAKE) --no-print-directory -o build/book.html check-code-width)
 	@echo "make test: all passed"
+else
+# A handout's tests: every chapter's suites against its program.
+test: deps $(foreach n,$(NUMS),test-ch$(n))
+	@echo "make test: all passed"
+endif
 
 clean:
 	rm -rf build bin

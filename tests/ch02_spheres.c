@@ -135,10 +135,18 @@ START_TEST(test_origin_inside_sees_the_far_side)
     double t;
     ck_assert(sphere_hit_t(&sp, r, 0, INFINITY, &t));
     ck_assert(t == 2); /* roots -2 and 2: the one in front */
-    hit h;
+    hit h = {.inside = false};
     sphere_fill_hit(&sp, r, t, &h);
     ck_assert(h.normal.x == 0 && h.normal.y == 0 &&
               h.normal.z == 1); /* outward */
+    ck_assert_msg(h.inside, "a ray from the centre hits the sphere from "
+                            "inside: the hit must say so (inside)");
+    /* and a ray from outside, the other way */
+    ray from_outside = {{0, 0, -5}, PLUS_Z};
+    ck_assert(sphere_hit_t(&sp, from_outside, 0, INFINITY, &t));
+    h.inside = true;
+    sphere_fill_hit(&sp, from_outside, t, &h);
+    ck_assert_msg(!h.inside, "a ray from outside: inside must be false");
 }
 END_TEST
 
@@ -203,8 +211,23 @@ END_TEST
 /* ------------------------------------------------------------ where forms fail
  */
 
-/* The visible root of the robust form in long double; false on a miss.
- * *gap: how far the ray's line passes from the silhouette, in radii. */
+/* |o + t d - c|^2 in long double: the squared distance from the centre
+ * of the point at t along the ray. */
+static long double distance_squared(const long double f[3],
+                                    const long double d[3], long double t)
+{
+    long double sum = 0;
+    for (int k = 0; k < 3; k++)
+        sum += (f[k] + t * d[k]) * (f[k] + t * d[k]);
+    return sum;
+}
+
+/* The visible hit of a ray from outside the sphere, found without any of
+ * the chapter's formulas: the point of the ray nearest the centre by a
+ * ternary search, then each root by bisection on its side of it, all in
+ * long double (the distance is convex along the ray, so each side is
+ * monotone). False on a miss. *gap: how far the ray's line passes from
+ * the silhouette, in radii. */
 static bool reference_t(vec3 c, double radius, ray r, long double *t,
                         long double *gap)
 {
@@ -212,21 +235,29 @@ static bool reference_t(vec3 c, double radius, ray r, long double *t,
                         (long double)r.origin.y - c.y,
                         (long double)r.origin.z - c.z};
     long double d[3] = {r.dir.x, r.dir.y, r.dir.z};
-    long double a = 0, beta = 0, perp2 = 0, ff = 0;
-    for (int k = 0; k < 3; k++)
-        a += d[k] * d[k], beta += f[k] * d[k], ff += f[k] * f[k];
-    for (int k = 0; k < 3; k++) {
-        long double p = f[k] - d[k] * beta / a;
-        perp2 += p * p;
+    long double rr = (long double)radius * radius;
+    long double lo = 0, hi = 2 * sqrtl(distance_squared(f, d, 0)) + 2;
+    for (int k = 0; k < 200; k++) { /* the nearest point, in [lo, hi] */
+        long double a = lo + (hi - lo) / 3, b = hi - (hi - lo) / 3;
+        if (distance_squared(f, d, a) < distance_squared(f, d, b))
+            hi = b;
+        else
+            lo = a;
     }
-    long double rr = (long double)radius * radius, delta = rr - perp2;
+    long double nearest = (lo + hi) / 2;
+    long double perp2 = distance_squared(f, d, nearest);
     *gap = fabsl(sqrtl(perp2) - radius) / radius;
-    if (delta < 0)
+    if (perp2 > rr)
         return false;
-    long double q = -beta - copysignl(sqrtl(a * delta), beta);
-    long double near = q / a, far = (ff - rr) / q;
-    long double t0 = fminl(near, far), t1 = fmaxl(near, far);
-    *t = t0 > 0 ? t0 : t1;
+    long double in = 0, out = nearest; /* outside at 0, inside at nearest */
+    for (int k = 0; k < 200; k++) {
+        long double mid = (in + out) / 2;
+        if (distance_squared(f, d, mid) > rr)
+            in = mid;
+        else
+            out = mid;
+    }
+    *t = (in + out) / 2;
     return *t > 0;
 }
 

@@ -203,9 +203,14 @@ START_TEST(test_spot_intensity_inside_at_and_beyond_the_cone)
     ck_assert_double_eq_tol(light_toward(L, p_in).intensity.x,
                             pow(cos(inside), 2), 1e-15);
     ck_assert(light_toward(L, p_out).intensity.x == 0);
-    /* Exactly on the edge: cos = 1/2; all or nothing, never in between. */
-    double edge = light_toward(L, (vec3){sqrt(3.0), 0, 1}).intensity.x;
-    ck_assert_msg(edge == 0 || fabs(edge - 0.25) < 1e-15, "edge %g", edge);
+    /* Exactly on the edge: -l . direction is the cut-off's cosine, c,
+     * with no rounding (direction is the z axis); the edge belongs to the
+     * cone: c^2, about 1/4. */
+    double c = L->cos_cutoff;
+    double edge = spot_falloff(L, (vec3){-sqrt(1 - c * c), 0, -c});
+    ck_assert_msg(fabs(c - 0.5) < 1e-15 && fabs(edge - c * c) < 1e-15,
+                  "a point on the cone's edge gets %.17g, not cos^2 = 1/4: "
+                  "the edge is inside the cone (0 only beyond it)", edge);
     /* Behind the light: nothing, even though cos^2 of it would be positive. */
     ck_assert(light_toward(L, (vec3){0, 0, -2}).intensity.x == 0);
     scene_free(&s);
@@ -228,6 +233,23 @@ START_TEST(test_attenuation_values)
     light_sample at_two = light_toward(&L, (vec3){2, 0, 0});
     ck_assert_double_eq_tol(at_two.intensity.y, 1.0 / 3, 1e-16);
     ck_assert(at_two.distance == 2 && at_two.l.x == -1);
+}
+END_TEST
+
+START_TEST(test_a_directional_light_is_infinitely_far)
+{
+    /* Nothing lies beyond a directional light: its distance is infinite,
+     * so that a shadow ray looks for occluders all the way (chapter 6). */
+    light L = {.kind = LIGHT_DIRECTIONAL,
+               .direction = {0, -1, 0},
+               .intensity = {1, 1, 1},
+               .attenuation = {1, 0, 0}};
+    light_sample got = light_toward(&L, (vec3){3, 4, 5});
+    ck_assert_msg(got.distance == INFINITY,
+                  "a directional light at distance %.17g, not infinity",
+                  got.distance);
+    ck_assert(got.l.x == 0 && got.l.y == 1 && got.l.z == 0);
+    ck_assert(got.intensity.x == 1); /* no attenuation, no cone */
 }
 END_TEST
 
@@ -427,6 +449,7 @@ Suite *ch03_phong_suite(void)
     tcase_add_test(edges, test_back_of_a_surface_is_shaded_like_its_front);
     tcase_add_test(edges, test_spot_intensity_inside_at_and_beyond_the_cone);
     tcase_add_test(edges, test_point_at_the_light_is_finite);
+    tcase_add_test(edges, test_a_directional_light_is_infinitely_far);
     suite_add_tcase(s, edges);
 
     TCase *bad = tcase_create("bad input");

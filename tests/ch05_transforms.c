@@ -371,11 +371,24 @@ static bool hit_of(const char *text, ray r, hit *h)
     return found;
 }
 
+/* sum ((qo + t qd)_i / s_i)^2 - 1: where the point at t along the ray
+ * lies with respect to the ellipsoid (< 0 inside), in long double. */
+static long double ellipsoid_at(const long double qo[3],
+                                const long double qd[3],
+                                const long double sc[3], long double t)
+{
+    long double sum = -1;
+    for (int i = 0; i < 3; i++)
+        sum += (qo[i] + t * qd[i]) * (qo[i] + t * qd[i]) / (sc[i] * sc[i]);
+    return sum;
+}
+
 START_TEST(test_ellipsoid_hit_and_normal_match_the_closed_form)
 {
     /* The unit sphere scaled by (a, b, c), turned by th about y, moved to m. In
-     * long double: q = R^T (p - m) satisfies sum (q_i / s_i)^2 = 1, a quadratic
-     * in t, and the normal is the gradient R (q_i / s_i^2). */
+     * long double: q = R^T (p - m) satisfies sum (q_i / s_i)^2 = 1, found
+     * along the ray by search and bisection (not by a quadratic's formula),
+     * and the normal is the gradient R (q_i / s_i^2). */
     const long double a = 2, b = 0.5L, c = 1.25L, th = 35 * acosl(-1) / 180;
     const long double m[3] = {0.5L, -0.25L, 7};
     char text[256];
@@ -396,21 +409,31 @@ START_TEST(test_ellipsoid_hit_and_normal_match_the_closed_form)
                              s * oo[0] + co * oo[2]};
         long double qd[3] = {co * dd[0] - s * dd[2], dd[1],
                              s * dd[0] + co * dd[2]};
-        long double sc[3] = {a, b, c}, A = 0, B = 0, C = -1;
-        for (int i = 0; i < 3; i++) {
-            A += qd[i] * qd[i] / (sc[i] * sc[i]);
-            B += 2 * qo[i] * qd[i] / (sc[i] * sc[i]);
-            C += qo[i] * qo[i] / (sc[i] * sc[i]);
+        long double sc[3] = {a, b, c}, lo = 0, hi = 30; /* past it */
+        for (int step = 0; step < 200; step++) { /* the deepest point */
+            long double u = lo + (hi - lo) / 3, v = hi - (hi - lo) / 3;
+            if (ellipsoid_at(qo, qd, sc, u) < ellipsoid_at(qo, qd, sc, v))
+                hi = v;
+            else
+                lo = u;
         }
-        long double disc = B * B - 4 * A * C;
+        long double deepest = ellipsoid_at(qo, qd, sc, (lo + hi) / 2);
         hit h;
         bool found = hit_of(text, r, &h);
-        if (fabsl(disc) < 1e-6L * B * B)
+        if (fabsl(deepest) < 1e-7L)
             continue; /* grazing: hit or miss is decided by rounding */
-        ck_assert_int_eq(found, disc > 0);
+        ck_assert_int_eq(found, deepest < 0);
         if (!found)
             continue;
-        long double t = (-B - sqrtl(disc)) / (2 * A);
+        long double out = 0, in = (lo + hi) / 2; /* the origin is outside */
+        for (int step = 0; step < 200; step++) {
+            long double mid = (out + in) / 2;
+            if (ellipsoid_at(qo, qd, sc, mid) > 0)
+                out = mid;
+            else
+                in = mid;
+        }
+        long double t = (out + in) / 2;
         /* t: a few u of relative error per step (the transform, the robust
          * roots) */
         ck_assert_msg(fabsl(h.t - t) <= 1e-13L * t, "t %.17g vs %.17Lg", h.t,

@@ -338,23 +338,35 @@ END_TEST
 
 /* ------------------------------------------------------------ area light */
 
-/* Cell k of n as the task describes it: m = floor(sqrt(n)) rows, the
- * first n % m of them one cell wider, each row as tall as its share of
- * the cells: [x0, x0 + w) x [y0, y0 + h). */
+/* The cells of the counts the tests use, as the task describes them and
+ * worked out by hand: floor(sqrt(n)) rows, the first n % rows of them one
+ * cell wider; here, how many cells each row holds, top row first (0
+ * ends the list). Each row is as tall as its share of the cells. */
+static const struct {
+    int n, row_cells[9];
+} CELLS[] = {{1, {1, 0}},          {2, {2, 0}},
+             {3, {3, 0}},          {8, {4, 4, 0}},
+             {37, {7, 6, 6, 6, 6, 6, 0}},
+             {64, {8, 8, 8, 8, 8, 8, 8, 8, 0}}};
+
+/* Cell k of n from the table: [x0, x0 + w) x [y0, y0 + h). */
 static void described_cell(int k, int n, double *x0, double *y0, double *w,
                            double *h)
 {
-    int m = (int)floor(sqrt((double)n)), before = 0;
-    for (int row = 0; row < m; row++) {
-        int cols = n / m + (row < n % m);
-        if (k < before + cols) {
-            *w = 1.0 / cols, *h = (double)cols / n;
-            *x0 = (k - before) * *w, *y0 = (double)before / n;
-            return;
+    for (size_t c = 0; c < sizeof CELLS / sizeof CELLS[0]; c++) {
+        if (CELLS[c].n != n)
+            continue;
+        int before = 0;
+        for (const int *cols = CELLS[c].row_cells; *cols > 0; cols++) {
+            if (k < before + *cols) {
+                *w = 1.0 / *cols, *h = (double)*cols / n;
+                *x0 = (k - before) * *w, *y0 = (double)before / n;
+                return;
+            }
+            before += *cols;
         }
-        before += cols;
     }
-    ck_abort_msg("no cell %d of %d", k, n);
+    ck_abort_msg("no cell %d of %d in the table", k, n);
 }
 
 /* Sample k of n lies in cell k: one in each cell, none left empty. */
@@ -374,6 +386,28 @@ static void expect_one_sample_a_cell(int pattern, int n, sample_stream *g)
                       v, x0, x0 + w, y0, y0 + h);
     }
 }
+
+/* Every one of the six coordinates seeds the stream: two pairs of points
+ * that differ in one coordinate only, by one bit, start different
+ * streams (the same pixel's points seed it; its neighbour's differ in
+ * any coordinate). */
+START_TEST(test_every_coordinate_seeds_the_stream)
+{
+    double xs[6] = {1, 2, 3, 4, 5, 6};
+    sample_stream g = sample_stream_at((vec3){1, 2, 3}, (vec3){4, 5, 6});
+    double first = sample_next(&g);
+    for (int k = 0; k < 6; k++) {
+        double ys[6];
+        memcpy(ys, xs, sizeof ys);
+        ys[k] = nextafter(ys[k], INFINITY);
+        sample_stream h = sample_stream_at((vec3){ys[0], ys[1], ys[2]},
+                                           (vec3){ys[3], ys[4], ys[5]});
+        ck_assert_msg(sample_next(&h) != first,
+                      "coordinate %d of the six changed, and the stream did "
+                      "not: every coordinate's bits must seed it", k + 1);
+    }
+}
+END_TEST
 
 /* The stream of one pair of points repeats, another pair's differs, and
  * its numbers lie in [0, 1) with the mean of a uniform variable, 1/2, to
@@ -679,6 +713,7 @@ Suite *ch06_shadows_suite(void)
     TCase *formulas = tcase_create("formulas");
     tcase_add_test(formulas, test_the_sample_stream_repeats_and_spreads);
     tcase_add_test(formulas, test_square_samples_fall_one_a_cell);
+    tcase_add_test(formulas, test_every_coordinate_seeds_the_stream);
     tcase_add_test(formulas, test_disc_points_cover_the_disc_area_for_area);
     tcase_add_test(formulas, test_area_light_samples_cover_the_disc_evenly);
     tcase_add_test(formulas,

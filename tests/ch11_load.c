@@ -512,8 +512,8 @@ Suite *ch11_load_suite(void)
     tcase_set_timeout(same, 120);
     tcase_add_test(same,
                    test_parts_read_the_project_s_meshes_as_chapter_4_does);
-    tcase_add_test(same, test_threads_read_a_file_as_chapter_4_does);
-    tcase_add_test(same, test_the_project_s_meshes_are_read_in_parts);
+    tcase_add_threaded_test(same, test_threads_read_a_file_as_chapter_4_does);
+    tcase_add_threaded_test(same, test_the_project_s_meshes_are_read_in_parts);
     tcase_add_test(same, test_a_long_number_is_read_as_chapter_4_reads_it);
     tcase_add_test(
         same, test_texts_shorter_than_their_parts_read_as_chapter_4_reads_them);

@@ -190,8 +190,9 @@ Suite *ch11_pool_suite(void)
     TCase *tc = tcase_create("loops");
     tcase_add_checked_fixture(tc, make_tmpdir, remove_tmpdir);
     tcase_set_timeout(tc, 120);
-    tcase_add_test(tc, test_a_loop_runs_every_job_once);
-    tcase_add_test(tc, test_a_loop_inside_a_job_runs_on_its_thread);
+    tcase_add_threaded_test(tc, test_a_loop_runs_every_job_once);
+    tcase_add_threaded_test(tc, test_a_loop_inside_a_job_runs_on_its_thread);
+    runner_next_test_is_threaded();
     tcase_add_slow_test(tc, test_a_run_starts_at_most_its_threads);
     suite_add_tcase(s, tc);
     return s;

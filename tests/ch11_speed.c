@@ -249,6 +249,38 @@ START_TEST(test_bands_on_threads_draw_what_one_render_draws)
 }
 END_TEST
 
+START_TEST(test_a_tall_image_on_four_threads_is_one_renders)
+{
+    /* 600 rows: 75 bands of 8, enough that every thread takes some while
+     * the others draw theirs. Whatever the threads share is shared at the
+     * same time: the picture is one render's, bit for bit (and
+     * ThreadSanitizer sees state they share without a lock). */
+    scene s;
+    image whole, banded;
+    render_stats whole_stats, stats;
+    static const char text[] =
+        "image 96 600\n"
+        "sphere center 0 -1001 6 radius 1000 color 0.7 0.7 0.6\n"
+        "sphere center 0 0 6 radius 1 color 0.9 0.3 0.2\n"
+        "light point position 3 4 0\n";
+    scene_error err;
+    scene_init(&s);
+    ck_assert_msg(scene_parse(&s, text, sizeof text - 1, "tall", &err), "%s",
+                  err.message);
+    ck_assert(image_init(&whole, 96, 600));
+    whole_stats = (render_stats){0};
+    render(&s, &whole, &whole_stats);
+    draw_on(&s, 4, &banded, &stats);
+    ck_assert_msg(memcmp(whole.pixels, banded.pixels,
+                         (size_t)96 * 600 * sizeof(vec3)) == 0,
+                  "four threads draw another picture of 600 rows");
+    ck_assert_int_eq(stats.primary_rays, whole_stats.primary_rays);
+    image_free(&banded);
+    image_free(&whole);
+    scene_free(&s);
+}
+END_TEST
+
 START_TEST(test_the_threads_counts_add_up_to_one_renders)
 {
     /* Each thread counts on its own; added up, the counts are those of one
@@ -558,8 +590,12 @@ Suite *ch11_speed_suite(void)
     tcase_add_test(threads, test_the_kd_trees_line_holds_no_bvh_build_time);
     tcase_add_test(threads,
                    test_stats_count_the_parts_read_and_the_threads_started);
-    tcase_add_test(threads, test_bands_on_threads_draw_what_one_render_draws);
-    tcase_add_test(threads, test_the_threads_counts_add_up_to_one_renders);
+    tcase_add_threaded_test(threads,
+                            test_bands_on_threads_draw_what_one_render_draws);
+    tcase_add_threaded_test(threads,
+                            test_the_threads_counts_add_up_to_one_renders);
+    tcase_add_threaded_test(threads,
+                            test_a_tall_image_on_four_threads_is_one_renders);
     suite_add_tcase(s, threads);
 
     TCase *progress = tcase_create("progress");

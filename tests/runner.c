@@ -9,8 +9,13 @@
  * every suite in the list's order, leaves K when divided by N (tests/
  * shard.h): N runners, one a shard, run the tests on N cores at once.
  *
- * RUNNER_ONLY=NAME runs the test of that name alone (tools/workbook/grade.sh,
- * to grade one exercise apart from the others that name the same test).
+ * RUNNER_ONLY="NAME..." runs only the tests of those names, separated by
+ * blanks (tools/workbook/grade.sh, to run again the tests that failed with
+ * some of the reader's exercises in place of the book's code).
+ *
+ * RUNNER_THREADED=1 runs only the tests that say they start threads in
+ * the test's own process (tcase_add_threaded_test, shard.h): the grader
+ * runs them again built with ThreadSanitizer.
  *
  * RUNNER_FORKLESS=1 runs in a process of its own (forked, Check's way)
  * only the tests that expect a signal or an exit status or that say they
@@ -46,6 +51,7 @@ static int in_shard(int number)
 
 static int next_needs_a_process; /* said by the suite for one test */
 static int next_is_slow;         /* likewise */
+static int next_is_threaded;     /* likewise */
 
 void runner_next_test_needs_a_process(void)
 {
@@ -57,15 +63,36 @@ void runner_next_test_is_slow(void)
     next_is_slow = 1;
 }
 
+void runner_next_test_is_threaded(void)
+{
+    next_is_threaded = 1;
+}
+
+/* Whether name is one of the blank-separated names of list. */
+static int is_listed(const char *list, const char *name)
+{
+    size_t n = strlen(name);
+    for (const char *p = list; (p = strstr(p, name)) != NULL; p += n) {
+        int starts = p == list || p[-1] == ' ';
+        int ends = p[n] == '\0' || p[n] == ' ';
+        if (starts && ends)
+            return 1;
+    }
+    return 0;
+}
+
 int runner_keeps_next_test(const char *name, int expected_signal,
                            int expected_exit)
 {
     int needs_a_process =
         next_needs_a_process || expected_signal != 0 || expected_exit != 0;
-    int slow = next_is_slow;
-    next_needs_a_process = next_is_slow = 0;
+    int slow = next_is_slow, threaded = next_is_threaded;
+    next_needs_a_process = next_is_slow = next_is_threaded = 0;
     const char *only = getenv("RUNNER_ONLY");
-    if (only != NULL && only[0] != '\0' && strcmp(only, name) != 0)
+    if (only != NULL && only[0] != '\0' && !is_listed(only, name))
+        return 0;
+    const char *threads = getenv("RUNNER_THREADED");
+    if (threads != NULL && threads[0] == '1' && !threaded)
         return 0;
     if (!in_shard(slow ? next_slow_test++ : next_test++))
         return 0;

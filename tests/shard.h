@@ -16,7 +16,8 @@
 #include <check.h>
 
 /* Whether the next test added, named name, belongs to this runner's
- * share (with RUNNER_ONLY=NAME, only the test of that name does). */
+ * share (with RUNNER_ONLY="NAME...", only the tests of those names do;
+ * with RUNNER_THREADED=1, only those added as threaded). */
 int runner_keeps_next_test(const char *name, int expected_signal,
                            int expected_exit);
 
@@ -27,6 +28,14 @@ void runner_next_test_needs_a_process(void);
  * the slow tests are dealt out among the shards apart from the others,
  * so that no shard gets two of them while another gets none. */
 void runner_next_test_is_slow(void);
+
+/* Says that the next test added starts threads in its own process: the
+ * grader runs such tests again built with ThreadSanitizer, which sees a
+ * data race whether or not it changed the result this time. */
+void runner_next_test_is_threaded(void);
+
+#define tcase_add_threaded_test(tc, tf)                                      \
+    (runner_next_test_is_threaded(), tcase_add_test(tc, tf))
 
 #define tcase_add_slow_test(tc, tf)                                          \
     (runner_next_test_is_slow(), tcase_add_test(tc, tf))

@@ -102,12 +102,12 @@ typedef struct {
 } kdtree_todo;
 
 /* <<the children a ray passes through>> ch08 */
-/* The children of interior node k = {n} that a ray over [t_min, t_max]
- * passes through, in the order it meets them: next[0], then next[1]
- * (node -1: none). The plane is thick: the ray is below it until it
- * crosses its top face and above it from its bottom face on. low and high
- * are the ray's origin minus and plus the thickness on the node's axis,
- * inv is 1 / d there. */
+/* The children of interior node k, whose record is *n, that a ray over
+ * [t_min, t_max] passes through, in the order it meets them: next[0],
+ * then next[1] (node -1: none). The plane is thick: the ray is below it
+ * until it crosses its top face and above it from its bottom face on.
+ * low and high are the ray's origin minus and plus the thickness on the
+ * node's axis, inv is 1 / d there. */
 static inline void kdtree_children(const kdtree_node *n, int k, double low,
                                    double high, double inv, double t_min,
                                    double t_max, kdtree_todo next[2])

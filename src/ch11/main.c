@@ -145,6 +145,7 @@ int main(int argc, char **argv)
         report_bvhs(&s);
     /* <<once the scene is loaded>> += ch11 */
     how.threads = opt.threads;
+    how.progress_redrawn = shown.watching; /* below */
     if (opt.stats)
         report_loading(&s);
     const char *input =

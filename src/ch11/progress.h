@@ -21,6 +21,9 @@ typedef struct {
     pthread_mutex_t lock; /* one line at a time; guards all the rest */
     pthread_cond_t wake;  /* the watcher's, when the program ends */
     bool watching, ending;
+    int rows_done, rows;  /* the render's, as last shown (rows 0: none yet) */
+    long long rays_done;
+    double shown_at;      /* when they were shown */
 } progress;
 
 /* The program begins now. progress_end must follow. */

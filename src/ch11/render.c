@@ -208,7 +208,10 @@ void render_in_bands(const scene *s, image *img, const render_settings *how,
         q.counts = &one, q.band_rows = img->height, bands = 1;
     pthread_t reporter; /* none: the bands show the progress */
     q.reporting = how->progress != NULL &&
+                  !how->progress_redrawn &&
                   pthread_create(&reporter, NULL, report_thread, &q) == 0;
+    if (how->progress != NULL)
+        report(&q); /* nothing done yet: the rows to do are known */
     pool_for(bands, how->threads, draw_band, &q);
     if (q.reporting)
         stop_reporter(&q, reporter);

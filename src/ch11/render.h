@@ -22,6 +22,8 @@ typedef struct {
     void *progress_context;
     /* <<render settings members>> ch11 */
     int threads; /* 0: one per core */
+    bool progress_redrawn; /* a thread of the progress's own redraws it:
+                              the render starts no reporter */
 } render_settings;
 
 /* Renders the whole image in bands of BAND_ROWS rows, as how says. */

@@ -76,8 +76,10 @@ static void release(progress *p)
 }
 
 /* <<the watcher>> ch11 */
-/* The watcher's life: the phase in hand four times a second, until the
- * program ends. */
+static void draw_bar(progress *p, double now);
+
+/* The watcher's life: the phase in hand, or the render's bar, four times
+ * a second, until the program ends. */
 static void *watch(void *context)
 {
     progress *p = context;
@@ -85,7 +87,11 @@ static void *watch(void *context)
     while (!p->ending) {
         struct timespec until = moment_deadline(0.25);
         pthread_cond_timedwait(&p->wake, &p->lock, &until);
-        if (!p->ending)
+        if (p->ending)
+            break;
+        if (p->phase == NULL && p->rows > 0) /* the render's bar */
+            draw_bar(p, moment_now().wall);
+        else
             draw_phase(p, moment_now().wall);
     }
     pthread_mutex_unlock(&p->lock);
@@ -151,26 +157,38 @@ static void rate_text(char *text, size_t size, double rate)
     snprintf(text, size, "%.3g %.*srays/s", rate, k > 0, &prefixes[k]);
 }
 
-/* "[#####     ]  50%  2.31 Mrays/s  3 s left" once the program has run
- * for a second; the rate and the time left count from the render's
- * start. */
+/* "[#####     ]  50%  2.31 Mrays/s  3 s left" from the numbers last
+ * shown, once the program has run for a second and if a line is due: the
+ * rate over the time until they were shown, the time left from now. */
+static void draw_bar(progress *p, double now)
+{
+    int rows_done = p->rows_done, rows = p->rows;
+    double elapsed = now - p->phase_start;
+    double counted = p->shown_at - p->phase_start; /* when rays_done held */
+    if (!line_due(p, now) || (rows_done == rows && p->drawn == 0))
+        return;
+    static const char bar[] = "##############################"; /* 30 */
+    int filled = 30 * rows_done / rows;
+    char rate[32], left[32] = "time left not known yet";
+    rate_text(rate, sizeof rate,
+              (double)p->rays_done / (counted > 0 ? counted : elapsed));
+    if (rows_done > 0) /* the rows to come, at the pace of those done */
+        snprintf(left, sizeof left, "%.0f s left",
+                 elapsed * (rows - rows_done) / rows_done);
+    draw_line(p, now, "[%.*s%*s] %3d%%  %s  %s", filled, bar, 30 - filled,
+              "", 100 * rows_done / rows, rate, left);
+}
+
+/* The render's numbers kept for the watcher, and its bar drawn. */
 void progress_show(void *context, int rows_done, int rows,
                    long long rays_done)
 {
     progress *p = context;
     hold(p);
-    double now = moment_now().wall, elapsed = now - p->phase_start;
-    if (line_due(p, now) && (rows_done < rows || p->drawn > 0)) {
-        static const char bar[] = "##############################"; /* 30 */
-        int filled = 30 * rows_done / rows;
-        char rate[32], left[32] = "time left not known yet";
-        rate_text(rate, sizeof rate, (double)rays_done / elapsed);
-        if (rows_done > 0) /* the rows to come, at the pace of those done */
-            snprintf(left, sizeof left, "%.0f s left",
-                     elapsed * (rows - rows_done) / rows_done);
-        draw_line(p, now, "[%.*s%*s] %3d%%  %s  %s", filled, bar,
-                  30 - filled, "", 100 * rows_done / rows, rate, left);
-    }
+    double now = moment_now().wall;
+    p->rows_done = rows_done, p->rows = rows, p->rays_done = rays_done;
+    p->shown_at = now;
+    draw_bar(p, now);
     if (rows_done == rows)
         end_line(p); /* on a terminal: the whole image's bar stays */
     release(p);

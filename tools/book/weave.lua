@@ -513,11 +513,23 @@ end
 -- Where the HTML page lets the reader edit a scene and render it with
 -- chapter number's program (tools/editions/page/playground.js fills it; it stays
 -- empty, and hidden, in a page without the programs). scene: the file's
--- name, or nil for an empty scene of the reader's own. Not in the EPUB.
+-- name, or nil for an empty scene of the reader's own. Under a scene, a
+-- note that says where to edit it: hidden in the page, but printed where
+-- the page has the programs (tools/editions/page/playground.css); in the EPUB
+-- where its metadata says that the HTML edition has them (playgrounds:
+-- tools/editions/epub.sh).
+local PLAYGROUND_NOTE = "The HTML edition of the book (book.html) has a box"
+  .. " here that edits this scene and renders it."
+local playgrounds_in_html = false
 local function playground_html(number, scene)
-  if not FORMAT:match("html") or not number then return "" end
+  if not number then return "" end
+  local note = scene and ('\n<p class="playground-note">' .. PLAYGROUND_NOTE .. '</p>') or ""
+  if not FORMAT:match("html") then
+    return playgrounds_in_html and note or ""
+  end
   return '\n<div class="playground" data-chapter="' .. number .. '"'
     .. (scene and (' data-scene="' .. escape_html(scene) .. '"') or "") .. '></div>'
+    .. note
 end
 
 local function render_piece(piece)
@@ -756,6 +768,9 @@ end
 ---------------------------------------------------------------------
 
 function Pandoc(doc)
+  local playgrounds = doc.meta.playgrounds
+  playgrounds_in_html = playgrounds == true
+    or (playgrounds ~= nil and pandoc.utils.stringify(playgrounds) == "true")
   doc = doc:walk({
     Header = collect_header,
     CodeBlock = collect_code_block,

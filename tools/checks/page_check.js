@@ -24,7 +24,9 @@
  * is off for the whole page (offline, and no request but file:, data: and
  * blob: may be made). "control" is a render whose reference is another
  * scene's: it must differ, so that the comparison is seen to be able to
- * fail. Prints one line a check; exits 1 on any failure.
+ * fail. "mistake" and "pixelMistake" go together, as do "progress" and
+ * "long": either pair may be left out (page_check.sh --scenes does).
+ * Prints one line a check; exits 1 on any failure.
  *
  * With "speed": { "bin", "clangBin", "chapters", "size", "rounds", "csv" } in
  * CASES.json it measures instead: each chapter's own scene (no scene file)
@@ -242,6 +244,57 @@ async function speed(sessionId, c) {
   fs.writeFileSync(c.csv, c.machine + "\n# size: " + c.size + "\n" + rows.join("\n") + "\n");
 }
 
+// A mistake in the scene, and one in --pixel: each the program's own line
+// as bin/chNN wrote it, selected where it is.
+async function mistakes(run) {
+  const m = cases.mistake;
+  const r = await run({ chapter: m.chapter, scene: "", size: "", text: m.text });
+  const expected = m.expected.trim();
+  const where = /:(\d+):(\d+): error: /.exec(expected);
+  const want = where ? offsetOf(m.text, +where[1], +where[2]) : -1;
+  report(r.state === "error" && r.stderr.trim() === expected && r.selection[0] === want,
+         "a mistake (the playground's state: " + r.state + "): \"" + r.status + "\", the program's line " +
+         (r.stderr.trim() === expected ? "as bin/ch" + m.chapter + " wrote it" : JSON.stringify(r.stderr)) +
+         ", selected from " + r.selection[0] + " (its column: " + want + ")");
+
+  // A mistake in --pixel is the option's: said so, and selected in its
+  // box, not in the scene's text.
+  const px = cases.pixelMistake;
+  const pr = await run({ chapter: px.chapter, scene: "", size: "", text: px.text, pixel: px.pixel });
+  const pwhere = /^--pixel:1:(\d+): error: (.*)$/.exec(px.expected.trim());
+  const pcol = pwhere ? +pwhere[1] : -1;
+  report(pr.state === "error" && pr.stderr.trim() === px.expected.trim() &&
+         pr.status === "--pixel, column " + pcol + ": " + (pwhere ? pwhere[2] : "") &&
+         pr.selection[0] === pr.selection[1] && pr.pixelSelection[0] === pcol - 1,
+         "a --pixel mistake: \"" + pr.status + "\", the scene's text selected from " +
+         pr.selection[0] + " to " + pr.selection[1] + ", the --pixel box from " +
+         pr.pixelSelection[0] + " (its column: " + pcol + ")");
+}
+
+// A render of some seconds, its progress shown, and a long one cancelled.
+async function longRenders(run) {
+  // A render of a few seconds, with --stats: its progress in the status
+  // line while it runs, and none of it left in the statistics.
+  const g = cases.progress;
+  const gr = await run({ chapter: g.chapter, scene: "", size: g.size, pixel: g.pixel, text: g.text });
+  const stale = gr.stderr.split("\n").filter((line) => /\] +[0-9]+%|\r|, [0-9]+ s$/.test(line));
+  report(gr.state === "done" && gr.progress !== "" && stale.length === 0 &&
+         /^primary rays /m.test(gr.stderr),
+         "a render's progress: " + (gr.progress ? "\"" + gr.progress + "\" while it ran" : "none shown") +
+         "; in the statistics: " + (stale.length ? JSON.stringify(stale) : "no progress line") +
+         " (" + gr.state + ": " + gr.status + ")");
+
+  const l = cases.long;
+  const cancelled = await run({ chapter: l.chapter, scene: "", size: l.size, pixel: l.pixel,
+                                text: l.text, cancelAfter: 500 });
+  report(cancelled.before === "rendering" && cancelled.state === "cancelled" &&
+         cancelled.after === "cancelled",
+         "a long render: " + cancelled.before + " after 0.5 s, " + cancelled.state +
+         " at once, still " + cancelled.after + " a second later");
+  const again = await run({ chapter: l.chapter, scene: "", size: "8x6", text: l.text });
+  report(again.state === "done", "after the cancel, a render: " + again.state);
+}
+
 async function main() {
   const { targetId } = await send("Target.createTarget", { url: "about:blank" });
   const { sessionId } = await send("Target.attachToTarget", { targetId, flatten: true });
@@ -284,52 +337,12 @@ async function main() {
 
   const control = await run(cases.control);
   report(control.state === "done" && control.largest > 1,
-         "the comparison can fail: chapter 2's empty scene against one of its scenes: " +
+         "the comparison can fail: chapter " + cases.control.chapter +
+         "'s empty scene against one of its scenes: " +
          control.differ + " pixels differ, by " + control.largest + " codes at most");
 
-  const m = cases.mistake;
-  const r = await run({ chapter: m.chapter, scene: "", size: "", text: m.text });
-  const expected = m.expected.trim();
-  const where = /:(\d+):(\d+): error: /.exec(expected);
-  const want = where ? offsetOf(m.text, +where[1], +where[2]) : -1;
-  report(r.state === "error" && r.stderr.trim() === expected && r.selection[0] === want,
-         "a mistake (the playground's state: " + r.state + "): \"" + r.status + "\", the program's line " +
-         (r.stderr.trim() === expected ? "as bin/ch" + m.chapter + " wrote it" : JSON.stringify(r.stderr)) +
-         ", selected from " + r.selection[0] + " (its column: " + want + ")");
-
-  // A mistake in --pixel is the option's: said so, and selected in its
-  // box, not in the scene's text.
-  const px = cases.pixelMistake;
-  const pr = await run({ chapter: px.chapter, scene: "", size: "", text: px.text, pixel: px.pixel });
-  const pwhere = /^--pixel:1:(\d+): error: (.*)$/.exec(px.expected.trim());
-  const pcol = pwhere ? +pwhere[1] : -1;
-  report(pr.state === "error" && pr.stderr.trim() === px.expected.trim() &&
-         pr.status === "--pixel, column " + pcol + ": " + (pwhere ? pwhere[2] : "") &&
-         pr.selection[0] === pr.selection[1] && pr.pixelSelection[0] === pcol - 1,
-         "a --pixel mistake: \"" + pr.status + "\", the scene's text selected from " +
-         pr.selection[0] + " to " + pr.selection[1] + ", the --pixel box from " +
-         pr.pixelSelection[0] + " (its column: " + pcol + ")");
-
-  // A render of a few seconds, with --stats: its progress in the status
-  // line while it runs, and none of it left in the statistics.
-  const g = cases.progress;
-  const gr = await run({ chapter: g.chapter, scene: "", size: g.size, pixel: g.pixel, text: g.text });
-  const stale = gr.stderr.split("\n").filter((line) => /\] +[0-9]+%|\r|, [0-9]+ s$/.test(line));
-  report(gr.state === "done" && gr.progress !== "" && stale.length === 0 &&
-         /^primary rays /m.test(gr.stderr),
-         "a render's progress: " + (gr.progress ? "\"" + gr.progress + "\" while it ran" : "none shown") +
-         "; in the statistics: " + (stale.length ? JSON.stringify(stale) : "no progress line") +
-         " (" + gr.state + ": " + gr.status + ")");
-
-  const l = cases.long;
-  const cancelled = await run({ chapter: l.chapter, scene: "", size: l.size, pixel: l.pixel,
-                                text: l.text, cancelAfter: 500 });
-  report(cancelled.before === "rendering" && cancelled.state === "cancelled" &&
-         cancelled.after === "cancelled",
-         "a long render: " + cancelled.before + " after 0.5 s, " + cancelled.state +
-         " at once, still " + cancelled.after + " a second later");
-  const again = await run({ chapter: l.chapter, scene: "", size: "8x6", text: l.text });
-  report(again.state === "done", "after the cancel, a render: " + again.state);
+  if (cases.mistake) await mistakes(run);
+  if (cases.progress) await longRenders(run);
 
   if (process.env.PAGE_CHECK_SCREENSHOT) { // to look at: the last scene's playground
     const last = cases.renders[cases.renders.length - 1];

@@ -13,6 +13,14 @@
 # cancelled, and no request outside the file. Skipped, with status 0,
 # when Chromium or node is not installed, or the page has no programs.
 #
+#     sh tools/checks/page_check.sh --scenes BOOK.html BIN_DIR SIZE NN:SCENE...
+#
+# renders only the scenes named (scenes/chNN-NAME.scene, as the chapter
+# shows it) against BIN_DIR/chNN's, and the first one's chapter's empty
+# scene against the first one's picture (the comparison must fail), with
+# no request outside the file (make check-handout-page, on a handout's
+# book).
+#
 #     sh tools/checks/page_check.sh --speed CSV ROUNDS BOOK.html BIN_DIR SIZE NN...
 #   (PAGE_SPEED_CLANG_BIN=DIR: the same programs built by clang, the page's
 #   compiler, timed beside them)
@@ -21,10 +29,11 @@
 # one thread by BIN_DIR/chNN and in the page, ROUNDS times, into CSV (make
 # chart-ch12_page; it fails without Chromium or the programs).
 set -u
-speed=""
+speed="" scenes=""
 if [ "${1:-}" = "--speed" ]; then speed=$2 rounds=$3; shift 3; fi
+if [ "${1:-}" = "--scenes" ]; then scenes=yes; shift; fi
 if [ "$#" -lt 4 ]; then
-  echo "usage: $0 [--speed CSV ROUNDS] BOOK.html BIN_DIR SIZE NN..." >&2
+  echo "usage: $0 [--speed CSV ROUNDS | --scenes] BOOK.html BIN_DIR SIZE NN... (NN:SCENE... with --scenes)" >&2
   exit 2
 fi
 book=$1 bin=$2 size=$3
@@ -70,6 +79,23 @@ case_json() {
   printf '{"chapter": "%s", "scene": "%s", "size": "%s", "reference": "%s"}' \
     "$1" "$2" "$size" "$(base64 -w 0 "$work/ref.png")"
 }
+
+# With --scenes: the scenes named, and the control.
+if [ -n "$scenes" ]; then
+  {
+    printf '{"renders": [\n'
+    sep=""
+    for named in "$@"; do
+      printf '%s' "$sep"; case_json "${named%%:*}" "${named#*:}" || exit 1; sep=",
+"
+    done
+    printf '],\n"control": '
+    case_json "${1%%:*}" "${1#*:}" | sed 's/"scene": "[^"]*"/"scene": ""/' || exit 1
+    printf '}\n'
+  } > "$work/cases.json" || exit 1
+  node "$tools_dir/page_check.js" "$browser" "$book" "$work/cases.json"
+  exit
+fi
 
 {
   printf '{"renders": [\n'

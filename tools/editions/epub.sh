@@ -11,7 +11,9 @@
 # 1.1 (the figures themselves are not changed). The parts are zipped again
 # (zip), mimetype first and stored, as EPUB asks. The file is written only
 # when all of this succeeded; make test checks it with epubcheck
-# (tools/checks/check_epub.sh).
+# (tools/checks/check_epub.sh). EPUB_PLAYGROUNDS=yes: the HTML edition
+# renders the scenes in the page, and each scene is followed by a note
+# that says so (tools/book/weave.lua's playgrounds).
 set -eu
 if [ "$#" -lt 3 ]; then
     echo "usage: $0 BOOK_MD OUT_EPUB CHAPTER..." >&2
@@ -22,11 +24,13 @@ shift 2
 tools_dir=$(cd "$(dirname "$0")" && pwd)
 mkdir -p "$(dirname "$out")"
 out_abs=$(cd "$(dirname "$out")" && pwd)/$(basename "$out")
+playgrounds=false
+[ "${EPUB_PLAYGROUNDS:-}" != yes ] || playgrounds=true
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 pandoc "$book" "$@" --from markdown --to epub3 --mathml --toc --toc-depth=2 \
     --number-sections --epub-chapter-level=1 --resource-path=. \
-    --metadata lang=en --css="$tools_dir/../book/book.css" \
+    --metadata lang=en --metadata playgrounds="$playgrounds" --css="$tools_dir/../book/book.css" \
     --lua-filter="$tools_dir/../book/weave.lua" --output="$work/pandoc.epub" 2> "$work/log" ||
     { cat "$work/log" >&2; exit 1; }
 cat "$work/log" >&2

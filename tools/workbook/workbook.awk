@@ -1,6 +1,8 @@
 # workbook.awk -- write a chapter's workbook file: its exercises to do.
 #
-#   awk -f tools/workbook/stub.awk -f tools/workbook/workbook.awk [-v solved=1] CHAPTER.md CHAPTER.md
+#   awk -f tools/workbook/stub.awk -f tools/workbook/book_code.awk -f tools/workbook/workbook.awk \
+#       [-v solved=1] [-v types=TYPES.tsv] CHAPTER.md CHAPTER.md
+#   awk ... -v mode=forward|export|book [-v headers=" ID..."] CHAPTER.md CHAPTER.md
 #
 # (the chapter twice: the first reading collects every chunk's pieces)
 # prints, for the exercises of CHAPTER.md (see tools/workbook/exercises.awk for how
@@ -10,7 +12,15 @@
 # and the line "// NOT DONE". The tangler leaves such a chunk out until its
 # reader deletes that line (tangle --skip-not-done); tools/workbook/grade.sh grades
 # it then. With solved=1 the chunk holds the book's own code instead, and
-# no "// NOT DONE" line: a workbook with every exercise done.
+# no "// NOT DONE" line: a workbook with every exercise done. After each
+# task come the <<chunk>> lines its code must keep (later chapters put
+# their code there) and, with types=TYPES.tsv (tools/workbook/types.awk's listing),
+# where the types its code uses are defined.
+#
+# With mode=forward, export or book it prints instead, for each exercise,
+# only a chunk that replaces the book's (forward, book) or adds to it
+# (export), in the form tools/workbook/book_code.awk makes for a handout; headers
+# lists the exercises whose code lands in a header.
 #
 # An exercise may mark an .append piece of a chunk that the chapter builds
 # in several pieces (and that no other chapter writes to): the workbook's
@@ -33,6 +43,7 @@ function attribute(line, key) {
 # TeX of inline math ($...$) as plain text, for a file read as it is:
 # $2^{-53}$ is 2^-53, $t_\text{max}$ t_max, $\lceil n/W \rceil$ ceil(n/W).
 function plain_math(tex) {
+    gsub(/\\[,;:!]/, "", tex)
     gsub(/\\text\{/, "{", tex)
     gsub(/\\lceil */, "ceil(", tex)
     gsub(/ *\\rceil/, ")", tex)
@@ -57,9 +68,9 @@ function plain_line(line,    out) {
     return out line
 }
 
-# The notes' text so far, joined into paragraphs.
+# The notes' text so far, joined into paragraphs (their math made plain
+# when written: a formula may span lines).
 function add_note(line) {
-    line = plain_line(line)
     if (section == "task")
         task = task line "\n"
     else if (section == "hint")
@@ -96,17 +107,104 @@ function check_stub_keeps_chunks(    book, stub) {
     stub_errors++
 }
 
-function write_exercise(    code, tests_list, fence_attr) {
-    if (!solved)
+# "Keep ..." for the <<chunk>> lines of the exercise's code, or "".
+function keep_note(    lines, n, i, list) {
+    n = split(chunk_lines(body), lines, "\n")
+    list = ""
+    for (i = 1; i <= n; i++)
+        if (lines[i] != "")
+            list = list (list == "" ? "" : ", ") "`" lines[i] "`"
+    if (list == "")
+        return ""
+    return "Keep the line" (n > 2 ? "s " : " ") list " of the stub where " \
+           (n > 2 ? "they stand" : "it stands") ": the book's other " \
+           "chunks and later chapters put their code there, and the " \
+           "grade fails an exercise that loses one."
+}
+
+# "Its types: ..." for the book's types that the exercise's code uses
+# (those it defines itself aside), in the order they first appear.
+function types_note(    rest, word, list, mine, done) {
+    rest = stub_code_part_all(body)
+    while (match(rest, /\}[ \t]*[A-Za-z_][A-Za-z_0-9]*[ \t]*;/)) {
+        word = substr(rest, RSTART + 1, RLENGTH - 2)
+        gsub(/[ \t]/, "", word)
+        mine[word] = 1
+        rest = substr(rest, RSTART + RLENGTH)
+    }
+    list = ""
+    rest = stub_code_part_all(body)
+    while (match(rest, /[A-Za-z_][A-Za-z_0-9]*/)) {
+        word = substr(rest, RSTART, RLENGTH)
+        rest = substr(rest, RSTART + RLENGTH)
+        if (!(word in type_chapter) || (word in mine) || (word in done))
+            continue
+        done[word] = 1
+        list = list (list == "" ? "" : ", ") "`" word "` (" \
+               (type_where[word] ~ /^</ ? "" : type_where[word] ", ") \
+               "chapter " type_chapter[word] \
+               (type_where[word] ~ /^</ ? ", " chunk_shown(type_where[word]) : "") ")"
+    }
+    return list == "" ? "" : "Its types are defined in the book: " list "."
+}
+
+# <name> as the book shows a chunk's name, in angle brackets.
+function chunk_shown(where) {
+    sub(/^</, "\342\237\250", where)
+    sub(/>$/, "\342\237\251", where)
+    return where
+}
+
+# TEXT without its comments and strings, line by line.
+function stub_code_part_all(text,    lines, n, i, out, in_comment, line) {
+    n = split(text, lines, "\n")
+    out = ""
+    for (i = 1; i <= n; i++) {
+        line = lines[i]
+        if (in_comment) {
+            if (!sub(/^([^*]|\*[^\/])*\*\//, "", line))
+                continue
+            in_comment = 0
+        }
+        line = stub_code_part(line)
+        if (sub(/\/\*.*/, "", line))
+            in_comment = 1
+        out = out line "\n"
+    }
+    return out
+}
+
+# TEXT in lines of at most 75 columns, broken at blanks.
+function wrapped(text,    words, n, i, out, line) {
+    n = split(text, words, " ")
+    out = line = ""
+    for (i = 1; i <= n; i++) {
+        if (line != "" && length(line) + 1 + length(words[i]) > 75) {
+            out = out line "\n"
+            line = ""
+        }
+        line = line (line == "" ? "" : " ") words[i]
+    }
+    return out line
+}
+
+function write_exercise(    code, tests_list, fence_attr, note) {
+    if (!solved && mode == "")
         check_stub_keeps_chunks()
     tests_list = tests
     gsub(/ +/, "`\n- `", tests_list)
     printf "## Exercise %s: %s \"%s\"\n\n", id, kind, key
-    printf "%s\n\n", trim_end(task)
+    printf "%s\n\n", plain_line(trim_end(task))
+    note = keep_note()
+    if (note != "")
+        printf "%s\n\n", wrapped(note)
+    note = types_note()
+    if (note != "")
+        printf "%s\n\n", wrapped(note)
     printf "Graded by `make grade-ch%02d`, with the tests:\n\n- `%s`\n\n", \
         number, tests_list
     printf "<details><summary>Hint (also: make hint EX=%s)</summary>\n\n", id
-    printf "%s\n\n</details>\n\n", trim_end(hint)
+    printf "%s\n\n</details>\n\n", plain_line(trim_end(hint))
     code = exercise_code(key)
     fence_attr = kind "=\"" key "\" .replace .exercise ex=\"" id "\""
     printf "```{.c %s}\n%s\n", fence_attr, code
@@ -119,7 +217,7 @@ function write_exercise(    code, tests_list, fence_attr) {
 NR == FNR && in_code && $0 ~ "^" fence "[`~]*[ \t]*$" {
     in_code = 0
     if (name != "")
-        piece[name, pieces[name]] = stubbing ? stub_of(text) : text
+        piece[name, pieces[name]] = stubbing ? exercise_form(text, first_id) : text
     next
 }
 NR == FNR && in_code { text = (text_lines++ ? text "\n" : "") $0; next }
@@ -127,7 +225,9 @@ NR == FNR && /^(```|~~~)/ {
     in_code = 1
     fence = substr($0, 1, 3)
     name = attribute($0, "chunk")
-    stubbing = !solved && $0 ~ /[{ ]\.exercise[ }]/
+    stubbing = (!solved || mode != "") && $0 ~ /[{ ]\.exercise[ }]/
+    if ($0 ~ /[{ ]\.exercise[ }]/)
+        first_id = chapter_number(FILENAME) "." ++first_count
     text = ""
     text_lines = 0 # a first line that is blank is kept
     if (name != "")
@@ -136,17 +236,40 @@ NR == FNR && /^(```|~~~)/ {
 }
 NR == FNR { next }
 
+# An exercise's code TEXT as the workbook or the mode shows it: the
+# book's (solved), its stub, or the handout's form of exercise ID.
+function exercise_form(text, id) {
+    if (mode != "")
+        return book_form(text, mode, index(headers " ", " " id " ") > 0)
+    return solved ? text : stub_of(text)
+}
+
 # The code of an exercise's chunk K: all its pieces, or the file's one.
-function exercise_code(k,    i, code) {
-    if (kind == "file" || pieces[k] < 2)
-        return solved ? body : stub_of(body)
+function exercise_code(k,    i, code, joined) {
+    if (kind == "file" || pieces[k] < 2 || mode == "export")
+        return exercise_form(body, id)
     code = ""
     # the book's code joined as the tangler joins it (a piece brings its
     # own blank line), the stubs a blank line apart
+    joined = solved || mode != ""
     for (i = 1; i <= pieces[k]; i++)
         if (piece[k, i] != "")
-            code = code (code == "" ? "" : solved ? "\n" : "\n\n") piece[k, i]
+            code = code (code == "" ? "" : joined ? "\n" : "\n\n") piece[k, i]
     return code
+}
+
+# The chunk of the handout's form (mode) of the exercise just read.
+function write_form(    attr) {
+    attr = kind "=\"" key "\" ." (mode == "export" ? "append" : "replace")
+    printf "```{.c %s}\n%s\n```\n\n", attr, exercise_code(key)
+}
+
+BEGIN {
+    while (types != "" && (getline line < types) > 0) {
+        split(line, f, "\t")
+        type_chapter[f[1]] = f[2]
+        type_where[f[1]] = f[3]
+    }
 }
 
 FNR == 1 {
@@ -155,6 +278,12 @@ FNR == 1 {
     in_code = 0
 }
 
+!title && mode != "" && /^# / {
+    title = $0
+    printf "# The exercises of %s, %s\n\n", FILENAME, mode
+    print "Made by tools/workbook/book_code.sh for a handout (see tools/workbook/book_code.awk):"
+    print "no exercise's code, only its functions' names and arguments.\n"
+}
 !title && /^# / {
     title = $0
     sub(/^# */, "", title)
@@ -164,8 +293,11 @@ FNR == 1 {
     print "workbook` never overwrites it). Each exercise holds a stub of one of"
     print "the chapter's chunks. Write your own code in its place, then delete"
     print "its line `// NOT DONE` to have it graded; until then the book's code"
-    printf "stands in for it. `make grade-ch%02d` grades chapters 1 to %d.\n\n", \
-        number, number
+    if (number == 1)
+        printf "stands in for it. `make grade-ch01` grades chapter 1.\n\n"
+    else
+        printf "stands in for it. `make grade-ch%02d` grades chapters 1 to %d.\n\n", \
+            number, number
 }
 
 in_code && $0 ~ "^" fence "[`~]*[ \t]*$" {
@@ -196,7 +328,14 @@ in_code { next }
 }
 
 want_notes && /^:::+ *\{\.exercise-notes\}/ { in_notes = 1; want_notes = 0; next }
-in_notes && /^:::+[ \t]*$/ { in_notes = 0; write_exercise(); next }
+in_notes && /^:::+[ \t]*$/ {
+    in_notes = 0
+    if (mode != "")
+        write_form()
+    else
+        write_exercise()
+    next
+}
 in_notes && /^\*\*Your task\.\*\*/ { section = "task" }
 in_notes && /^\*\*Hint\.\*\*/ { section = "hint"; sub(/^\*\*Hint\.\*\* */, "") }
 in_notes { add_note($0) }

@@ -27,7 +27,6 @@ static inline int sigprocmask(int how, const sigset_t *s, sigset_t *was)
     (void)how, (void)s;
     return was != NULL ? *was = 0, 0 : 0;
 }
-static inline int sigfillset(sigset_t *s) { return *s = ~0u, 0; }
 static inline int sigdelset(sigset_t *s, int sig)
 {
     return *s &= ~(1u << sig), 0;
