@@ -199,9 +199,13 @@ typedef float bvh_f4 __attribute__((vector_size(16)));
 
 #define BVH_INLINE static inline __attribute__((always_inline))
 
+/* x in every lane: lane 0 of a vector of four, shuffled into all eight,
+ * which compilers make one broadcast (the eight-lane initializer, some
+ * eight inserts). */
 BVH_INLINE bvh_f8 bvh_splat8(float x)
 {
-    return (bvh_f8){x, x, x, x, x, x, x, x};
+    bvh_f4 v = {x};
+    return __builtin_shufflevector(v, v, 0, 0, 0, 0, 0, 0, 0, 0);
 }
 
 #ifdef __SSE__ /* two halves of four */
@@ -261,16 +265,40 @@ BVH_INLINE unsigned bvh_mask8(bvh_i8 m)
 }
 #endif
 
+/* The walk's ray: bvh_ray's numbers in every lane, made once a ray, so
+ * that a node's test takes each as an operand, not broadcast at every
+ * node; near and far as rows of a node8. */
+typedef struct {
+    bvh_f8 o_near[3], o_far[3], inv[3];
+    int near[3], far[3];
+    float t_min;
+} bvh_ray8;
+
+/* r (its rows a node8's: bvh_walk_rows) in every lane. */
+BVH_INLINE bvh_ray8 bvh_ray8_of(const bvh_ray *r)
+{
+    bvh_ray8 v;
+#pragma GCC unroll 3 /* a constant each axis: no index kept */
+    for (int a = 0; a < 3; a++) {
+        v.o_near[a] = bvh_splat8(r->o_near[a]);
+        v.o_far[a] = bvh_splat8(r->o_far[a]);
+        v.inv[a] = bvh_splat8(r->inv[a]);
+        v.near[a] = r->near[a], v.far[a] = r->far[a];
+    }
+    v.t_min = r->t_min;
+    return v;
+}
+
 /* Where the ray enters (row r->near[a]) and leaves (r->far[a]) the eight
  * slabs of axis a: rows of n->face, as the walk's ray names them. */
-BVH_INLINE bvh_f8 bvh_enter8(const bvh_node8 *n, const bvh_ray *r, int a)
+BVH_INLINE bvh_f8 bvh_enter8(const bvh_node8 *n, const bvh_ray8 *r, int a)
 {
     bvh_f8 face;
     memcpy(&face, n->face[r->near[a]], sizeof face);
     return (face - r->o_near[a]) * r->inv[a];
 }
 
-BVH_INLINE bvh_f8 bvh_leave8(const bvh_node8 *n, const bvh_ray *r, int a)
+BVH_INLINE bvh_f8 bvh_leave8(const bvh_node8 *n, const bvh_ray8 *r, int a)
 {
     bvh_f8 face;
     memcpy(&face, n->face[r->far[a]], sizeof face);
@@ -283,15 +311,11 @@ BVH_INLINE bvh_f8 bvh_leave8(const bvh_node8 *n, const bvh_ray *r, int a)
 #define min8 bvh_min8
 #define mask8 bvh_mask8
 
-/* Which of n's children the ray r (its rows the walk's: bvh_walk_rows)
- * meets in [r->t_min, bound]: a bit each, and in t_near where it
- * enters. */
-static inline unsigned bvh_node8_test(const bvh_node8 *n, const bvh_ray *r,
-                                      float bound, float t_near[8])
+/* Which of n's children the ray r meets in [r->t_min, bound]: a bit
+ * each, and in t_near where it enters. */
+static inline unsigned bvh_node8_lanes(const bvh_node8 *n, const bvh_ray8 *r,
+                                       float bound, float t_near[8])
 {
-#ifdef RT_SCALAR /* chapter 9's test, lane by lane */
-    return bvh_lanes_test_scalar(&n->face[0][0], 8, 8, r, bound, t_near);
-#else
     /* <<the slab test of a node>> ch10 */
     bvh_f8 t0 = max8(bvh_enter8(n, r, 0), bvh_splat8(r->t_min));
     t0 = max8(bvh_enter8(n, r, 1), t0); /* a NaN keeps t0 */
@@ -302,6 +326,18 @@ static inline unsigned bvh_node8_test(const bvh_node8 *n, const bvh_ray *r,
     t1 = min8(t1 * BVH_FAR_WIDENING, bvh_splat8(bound)); /* once, not by axis */
     memcpy(t_near, &t0, sizeof t0);
     return mask8(t0 <= t1);
+}
+
+/* The same for r as bvh_ray_of makes it (its rows the walk's:
+ * bvh_walk_rows); lane by lane with -DRT_SCALAR, chapter 9's test. */
+static inline unsigned bvh_node8_test(const bvh_node8 *n, const bvh_ray *r,
+                                      float bound, float t_near[8])
+{
+#ifdef RT_SCALAR
+    return bvh_lanes_test_scalar(&n->face[0][0], 8, 8, r, bound, t_near);
+#else
+    bvh_ray8 v = bvh_ray8_of(r);
+    return bvh_node8_lanes(n, &v, bound, t_near);
 #endif
 }
 
@@ -323,11 +359,11 @@ static inline unsigned bvh_node8_test(const bvh_node8 *n, const bvh_ray *r,
 #define mask8(m) (unsigned)__builtin_ia32_movmskps256((bvh_f8)(m))
 #endif
 
-/* bvh_node8_test in AVX2's eight lanes, whatever the build's flags: to be
- * called only where bvh_walks_with_avx2() says yes. */
+/* bvh_node8_lanes in AVX2's eight lanes, whatever the build's flags: to
+ * be called only where bvh_walks_with_avx2() says yes. */
 BVH_AVX2_TARGET static inline unsigned
-bvh_node8_test_avx2(const bvh_node8 *n, const bvh_ray *r, float bound,
-                    float t_near[8])
+bvh_node8_lanes_avx2(const bvh_node8 *n, const bvh_ray8 *r, float bound,
+                     float t_near[8])
 {
 #if BVH_HAS_AVX2_PATH
     /* <<the slab test of a node>> ch10 */
@@ -341,17 +377,26 @@ bvh_node8_test_avx2(const bvh_node8 *n, const bvh_ray *r, float bound,
     memcpy(t_near, &t0, sizeof t0);
     return mask8(t0 <= t1);
 #else
-    return bvh_node8_test(n, r, bound, t_near);
+    return bvh_node8_lanes(n, r, bound, t_near);
 #endif
+}
+
+/* bvh_node8_test's in AVX2's lanes (for the tests). */
+BVH_AVX2_TARGET static inline unsigned
+bvh_node8_test_avx2(const bvh_node8 *n, const bvh_ray *r, float bound,
+                    float t_near[8])
+{
+    bvh_ray8 v = bvh_ray8_of(r);
+    return bvh_node8_lanes_avx2(n, &v, bound, t_near);
 }
 
 #undef max8
 #undef min8
 #undef mask8
 
-/* Each level pushes at most seven children more than it takes; the walk
- * writes a lane above the top before it knows that it keeps it. */
-#define BVH_STACK8 (7 * BVH_MAX_DEPTH + 2)
+/* Each level pushes at most seven children more than it takes; a push
+ * writes eight lanes above the top before it knows how many it keeps. */
+#define BVH_STACK8 (7 * BVH_MAX_DEPTH + 9)
 
 /* r's faces as rows of a node8 (face 2 a or 2 a + 1 of axis a), in
  * place; the shift of its octant's orders (3 o). */
@@ -378,6 +423,76 @@ static inline int bvh_push8(uint32_t *stack, float *entry, int top,
         top += (int)(mask >> c & 1); /* kept only if hit */
     }
     return top;
+}
+
+/* The origin of r rounded outward, axis by axis (bvh_ray_of's rule). */
+static inline void bvh_round_origin(const double o[3], bvh_ray *r)
+{
+    for (int a = 0; a < 3; a++) {
+        float up = bvh_float_up(o[a]), down = bvh_float_down(o[a]);
+        bool ahead = r->near[a] == 2 * a;
+        r->o_near[a] = ahead ? up : down, r->o_far[a] = ahead ? down : up;
+    }
+}
+
+/* bvh_ray_of's ray, its rows those of a node8 (bvh_walk_rows), made
+ * inline; the shift of its octant's orders in *shift. false where
+ * bvh_ray_of says false. */
+BVH_INLINE bool bvh_wide_ray_of(vec3 origin, vec3 inv, double t_min,
+                                double t_max, bvh_ray *r, unsigned *shift)
+{
+    const double o[3] = {origin.x, origin.y, origin.z};
+    const double q[3] = {inv.x, inv.y, inv.z};
+    unsigned octant = 0;
+    bool near = true, in_float = true; /* no branch until the end */
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; a++) {
+        near &= (fabs(o[a]) <= 0x1p100) & (fabs(q[a]) >= 0x1p-100);
+        float f = (float)o[a];
+        in_float &= (double)f == o[a];
+        int down = signbit(q[a]) != 0; /* enters by the upper face */
+        r->o_near[a] = r->o_far[a] = f, r->inv[a] = (float)q[a];
+        r->near[a] = 2 * a + down, r->far[a] = 2 * a + 1 - down;
+        octant |= (unsigned)down << a;
+    }
+    if (!in_float) /* a float origin needs no rounding */
+        bvh_round_origin(o, r);
+    r->t_min = bvh_float_down(t_min);
+    r->t_max = bvh_float_up(t_max * (1 + BVH_SLACK));
+    *shift = 3 * octant;
+    return near;
+}
+
+/* For each mask of eight lanes, its set lanes from the lowest, three bits
+ * each from bit 0, and their count in bits 24-27 (bvh.c fills it). */
+extern uint32_t bvh_set_lanes[256];
+
+/* bvh_push8 in AVX2's lanes, with no loop: to be called only where
+ * bvh_walks_with_avx2() says yes. */
+BVH_AVX2_TARGET static inline int
+bvh_push8_avx2(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
+               unsigned mask, const float t_near[8], unsigned shift)
+{
+#if BVH_HAS_AVX2_PATH
+    const bvh_i8 thirds = {0, 3, 6, 9, 12, 15, 18, 21};
+    bvh_i8 order, child;
+    bvh_f8 t;
+    memcpy(&order, n->order, sizeof order);
+    memcpy(&child, n->child, sizeof child);
+    memcpy(&t, t_near, sizeof t);
+    order = order >> (int)shift & 7; /* the lane at each place */
+    bvh_i8 kept = ((bvh_i8){0} + (int)mask) >> order << 31; /* sign: hit */
+    uint32_t set = bvh_set_lanes[__builtin_ia32_movmskps256((bvh_f8)kept)];
+    bvh_i8 places = ((bvh_i8){0} + (int)set) >> thirds & 7;
+    bvh_i8 lanes = __builtin_ia32_permvarsi256(order, places);
+    bvh_i8 kids = __builtin_ia32_permvarsi256(child, lanes);
+    bvh_f8 entries = __builtin_ia32_permvarsf256(t, lanes);
+    memcpy(stack + top, &kids, sizeof kids);
+    memcpy(entry + top, &entries, sizeof entries);
+    return top + (int)(set >> 24);
+#else
+    return bvh_push8(stack, entry, top, n, mask, t_near, shift);
+#endif
 }
 
 /* <<the bvh walk>> ch09 */

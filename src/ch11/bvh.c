@@ -662,6 +662,21 @@ void bvh_allow_avx2(bool allowed)
     atomic_store(&avx2_forbidden, !allowed);
 }
 
+uint32_t bvh_set_lanes[256];
+
+/* Fills bvh_set_lanes before main runs (GCC's and Clang's constructor),
+ * so that no walk finds it half made. */
+__attribute__((constructor)) static void fill_set_lanes(void)
+{
+    for (unsigned mask = 0; mask < 256; mask++) {
+        uint32_t set = 0, count = 0;
+        for (unsigned c = 0; c < 8; c++)
+            if (mask >> c & 1)
+                set |= c << 3 * count++;
+        bvh_set_lanes[mask] = set | count << 24;
+    }
+}
+
 const char *bvh_vector_width_name(const bvh *t)
 {
     if (t->width != 2 && t->avx2)

@@ -222,6 +222,9 @@ mesh_ray mesh_ray_of(ray r)
 int mesh_nearest(const mesh *m, const mesh_ray *mr, double t_min,
                  double t_max, triangle_hit *out, render_stats *stats)
 {
+    /* <<a search that tests the mesh's box itself>> ch10 */
+    if (m->bvh.node_count > 0 && m->bvh_walk != 0)
+        return mesh_search_bvh(m, mr, t_min, t_max, out, stats);
     stats->box_tests++;
     double near = t_min, far = t_max;
     if (!box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
@@ -373,6 +376,7 @@ void mesh_free_tree(mesh *m)
     /* <<free the mesh's other trees>> += ch10 */
     free(m->bvh_packets);
     m->bvh_packets = NULL, m->bvh_packet_count = 0, m->bvh_in_float = false;
+    m->bvh_walk = 0;
 }
 
 long long mesh_tree_bytes(const mesh *m)
@@ -441,6 +445,9 @@ int mesh_search_tree(const mesh *m, const mesh_ray *mr, double near,
 bool mesh_occluded(const mesh *m, const mesh_ray *mr, double t_min,
                    double t_max, render_stats *stats)
 {
+    /* <<a shadow ray's search that tests the box itself>> ch10 */
+    if (m->bvh.node_count > 0 && m->bvh_walk != 0)
+        return mesh_search_bvh(m, mr, t_min, t_max, NULL, stats) >= 0;
     double near = t_min, far = t_max;
     stats->box_tests++;
     if (!box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
@@ -696,9 +703,11 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
                            render_stats *stats, bool avx2, bool in_float)
 {
     bvh_ray r;
-    if (!bvh_ray_of(mr->r.origin, mr->inv_dir, t_min, t_max, &r))
+    unsigned shift;
+    if (!bvh_wide_ray_of(mr->r.origin, mr->inv_dir, t_min, t_max, &r,
+                         &shift))
         return mesh_search_all(m, mr, t_min, t_max, out, stats);
-    unsigned shift = bvh_walk_rows(&r);
+    bvh_ray8 v = bvh_ray8_of(&r); /* in vectors, once */
     uint32_t stack[BVH_STACK8], now = 0; /* the root */
     float entry[BVH_STACK8], bound = r.t_max;
     int top = 0, found = -1;
@@ -709,7 +718,7 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
         if (!(now & BVH_LEAF)) {
             const bvh_node8 *n = &m->bvh.nodes8[now];
             float t_near[8];
-            unsigned hit = avx2 ? bvh_node8_test_avx2(n, &r, bound, t_near)
+            unsigned hit = avx2 ? bvh_node8_lanes_avx2(n, &v, bound, t_near)
                                 : bvh_node8_test(n, &r, bound, t_near);
             nodes++;
             if (hit != 0 && (hit & (hit - 1)) == 0) { /* one: descend */
@@ -717,7 +726,10 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
                 continue;
             }
             if (hit != 0) { /* more: push them, take the nearest */
-                top = bvh_push8(stack, entry, top, n, hit, t_near, shift);
+                top = avx2 ? bvh_push8_avx2(stack, entry, top, n, hit,
+                                            t_near, shift)
+                           : bvh_push8(stack, entry, top, n, hit, t_near,
+                                       shift);
                 now = stack[--top];
                 continue;
             }
