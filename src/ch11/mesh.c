@@ -7,6 +7,8 @@
 #include "memory.h"
 /* <<mesh.c includes>> ch06 */
 #include "offset.h"
+/* <<mesh.c includes>> += ch10 */
+#include <float.h>
 /* <<mesh.c includes>> += ch11 */
 #include "pool.h"
 
@@ -695,6 +697,26 @@ static int search_bvh2(const mesh *m, const mesh_ray *mr, double t_min,
     return found;
 }
 
+/* Chapter 4's box_clip of b, inline, its branches one at the end: does
+ * mr miss b in [t_min, t_max]? The same roundings, the same answer. */
+BVH_INLINE bool bvh_misses_box(const box *b, const mesh_ray *mr,
+                               double t_min, double t_max)
+{
+    const double widen = 1 + 2 * (3 * (DBL_EPSILON / 2) /
+                                  (1 - 3 * (DBL_EPSILON / 2)));
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; a++) {
+        double o = vec3_axis(mr->r.origin, a), q = vec3_axis(mr->inv_dir, a);
+        double lo = (vec3_axis(b->lo, a) - o) * q;
+        double hi = (vec3_axis(b->hi, a) - o) * q;
+        bool swap = lo > hi; /* false for a NaN, as box_clip's */
+        double near = swap ? hi : lo, far = (swap ? lo : hi) * widen;
+        t_min = near > t_min ? near : t_min;
+        t_max = far < t_max ? far : t_max;
+    }
+    return t_min > t_max;
+}
+
 /* The walk of m's wide BVH for mr, its nodes tested with AVX2 when avx2
  * (which the caller's instructions must allow), its leaves decided in
  * float when in_float; both constants where it is inlined. */
@@ -702,6 +724,9 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
                            double t_max, triangle_hit *out,
                            render_stats *stats, bool avx2, bool in_float)
 {
+    stats->box_tests++;
+    if (bvh_misses_box(&m->bounds, mr, t_min, t_max))
+        return -1; /* missing the box, the ray misses every triangle */
     bvh_ray r;
     unsigned shift;
     if (!bvh_wide_ray_of(mr->r.origin, mr->inv_dir, t_min, t_max, &r,
