@@ -142,8 +142,7 @@ static const method METHODS[] = {
 };
 enum { N_METHODS = sizeof METHODS / sizeof METHODS[0] };
 
-/* The width of how's BVH: its own, or the program's default (eight where
- * the walk uses AVX2, four elsewhere). */
+/* The width of how's BVH: its own, or the program's default (eight). */
 static int width_of(const method *how)
 {
     return how->width ? how->width : bvh_default_params().width;
@@ -156,18 +155,13 @@ static bool is_default(const method *how)
            width_of(how) == bvh_default_params().width;
 }
 
-/* Before how's rays: may its walk use AVX2? After them: allowed again. */
-static void allow_avx2_for(const method *how)
-{
-    bvh_allow_avx2(!how->no_avx2);
-}
-
 /* A mesh and everything built over it: its kd-tree (in m), a copy of it
  * for each BVH width, and Embree's scene. */
 typedef struct {
     const char *name;
     mesh m;
     mesh bvh_of_width[9]; /* [2], [4], [8] */
+    mesh bvh8_no_avx2;    /* 8 wide, walked with the build's own lanes */
     mesh bvh_float;       /* the default width's, decided in float */
     mesh bvh_double;      /* 4 wide, leaves of doubles: see double_leaves */
     triangle_corners *corners; /* bvh_double's, lane by lane */
@@ -256,20 +250,40 @@ static double double_leaves_ray(const subject *s, const mesh_ray *mr, bool from_
     if (!box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far) ||
         !bvh_ray_of(mr->r.origin, mr->inv_dir, 0, INFINITY, &r))
         return INFINITY;
-    bvh_walk w;
-    bvh_leaf leaf;
-    int found = -1;
+    unsigned shift = bvh_walk_rows(&r);
+    uint32_t stack[BVH_STACK8], now = 0; /* the root */
+    float entry[BVH_STACK8], bound = r.t_max;
+    int top = 0, found = -1;
     triangle_hit th;
-    bvh_walk_start(&w, &m->bvh, &r);
-    while (bvh_walk_next(&w, t_max, &leaf)) {
-        int first = leaf.first * PACKET_W; /* the lane of its first packet */
-        int k = from_mesh ? mesh_corners_leaf(m, &mr->shear, s->lane_items + first,
-                                              leaf.count, t_max, found, &th)
-                          : triangle_nearest_of_leaf(&mr->shear, s->corners + first,
-                                                     s->lane_items + first, leaf.count, 0,
-                                                     t_max, found, &th);
-        if (k >= 0)
-            found = s->lane_items[first + k], t_max = th.t;
+    for (;;) { /* chapter 10's walk (search_bvh8), its leaves these */
+        if (!(now & BVH_LEAF)) {
+            const bvh_node8 *n = &m->bvh.nodes8[now];
+            float t_near[8];
+            unsigned hit = bvh_node8_test(n, &r, bound, t_near);
+            if (hit != 0) {
+                top = bvh_push8(stack, entry, top, n, hit, t_near, shift);
+                now = stack[--top];
+                continue;
+            }
+        } else {
+            int first = (int)(now & BVH_FIRST_MASK) * PACKET_W; /* a lane */
+            int count = (int)(now >> BVH_COUNT_SHIFT & 15);
+            int k = from_mesh ? mesh_corners_leaf(m, &mr->shear, s->lane_items + first,
+                                                  count, t_max, found, &th)
+                              : triangle_nearest_of_leaf(&mr->shear, s->corners + first,
+                                                         s->lane_items + first, count, 0,
+                                                         t_max, found, &th);
+            if (k >= 0) {
+                found = s->lane_items[first + k], t_max = th.t;
+                float b = bvh_float_up(t_max * (1 + BVH_SLACK));
+                bound = b < r.t_max ? b : r.t_max;
+            }
+        }
+        while (top > 0 && !(entry[top - 1] <= bound))
+            top--;
+        if (top == 0)
+            break;
+        now = stack[--top];
     }
     return t_max;
 }
@@ -305,6 +319,7 @@ static double our_ray(const trace_ctx *c, long k, render_stats *stats, int *tria
 {
     const mesh *m = c->how->kind != BVH ? &c->s->m
                     : c->how->in_float  ? &c->s->bvh_float
+                    : c->how->no_avx2   ? &c->s->bvh8_no_avx2
                                         : &c->s->bvh_of_width[width_of(c->how)];
     if (triangle != NULL)
         *triangle = -1;
@@ -330,11 +345,9 @@ static void run_rays(void *ctx, long reps)
     struct RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     double sum = 0;
-    allow_avx2_for(c->how);
     for (long k = 0; k < reps; k++)
         sum += (c->how->kind == EMBREE ? embree_ray(c, k % c->n_rays, &context, NULL)
                                        : our_ray(c, k % c->n_rays, &stats, NULL)) < INFINITY;
-    bvh_allow_avx2(true);
     bench_sink += sum;
 }
 
@@ -469,13 +482,11 @@ static void print_agreement(const trace_ctx *c, int n, const char *param)
         id[j] = malloc((size_t)n_rays * sizeof *id[j]);
         if (t[j] == NULL || id[j] == NULL)
             exit(1);
-        allow_avx2_for(c[j].how);
         for (long k = 0; k < n_rays; k++) {
             double d = c[j].how->kind == EMBREE ? embree_ray(&c[j], k, &context, &id[j][k])
                                                 : our_ray(&c[j], k, &stats, &id[j][k]);
             t[j][k] = d, hits += d < INFINITY;
         }
-        bvh_allow_avx2(true);
         printf("hits,%s,0,%ld,%s_hits\n", param, hits, c[j].how->name);
         if (c[j].how->kind == BVH) /* what a ray of the walk visits */
             printf("hits,%s,0,%.2f,%s_nodes_per_ray\n"
@@ -599,6 +610,14 @@ static void prepare(subject *s, RTCDevice device)
         if (!mesh_build_bvh(copy, &bp))
             exit(1);
     }
+    s->bvh8_no_avx2 = s->m;
+    s->bvh8_no_avx2.tree = (kdtree){0}, s->bvh8_no_avx2.leaf_corners = NULL;
+    bvh_params b8 = {.width = 8};
+    bvh_allow_avx2(false); /* the walk is chosen when the tree is built */
+    bool built = mesh_build_bvh(&s->bvh8_no_avx2, &b8);
+    bvh_allow_avx2(true);
+    if (!built)
+        exit(1);
     s->bvh_float = s->bvh_of_width[bvh_default_params().width]; /* shared */
     s->bvh_float.bvh_in_float = true;
     double_leaves(s);
@@ -613,6 +632,7 @@ static void release(subject *s)
     for (int w = 2; w <= 8; w *= 2)
         mesh_free_tree(&s->bvh_of_width[w]);
     mesh_free_tree(&s->bvh_double);
+    mesh_free_tree(&s->bvh8_no_avx2);
     free(s->corners), free(s->lane_items);
     rtcReleaseScene(s->scene), rtcReleaseScene(s->scene_medium);
     mesh_free(&s->m);
@@ -639,7 +659,9 @@ int main(int argc, char **argv)
     subjects[4].m = slivers_mesh(4000);
     bench_print_machine();
     bench_csv_header();
-    printf("vector,%s,0,0,bvh_vector_width\n", bvh_vector_width_name());
+    printf("vector,%s,0,0,bvh_vector_width\n",
+           bvh_walks_with_avx2() ? "AVX2 chosen at run time"
+                                 : "the build's own instructions");
     printf("default,bvh%d,0,0,default_method\n", bvh_default_params().width);
     /* CH10_QUICK=1: the bunny at K = 1 alone, no builds (a quick look) */
     bool quick = getenv("CH10_QUICK") != NULL || getenv("CH09_QUICK") != NULL;

@@ -1,7 +1,7 @@
 /* ch10_wide.c: chapter 10's wide nodes and packet leaves: the same
  * answers as brute force and as chapter 8's kd-tree, bit for bit, at
  * widths 4 and 8 (with AVX2 chosen at run time and without); vector and
- * scalar node tests that agree; wide nodes and packets that hold their
+ * scalar node tests that agree; octant orders and pushes; wide nodes and packets that hold their
  * items; the BVH's bytes; and the accelerator bvh-float. */
 #include <check.h>
 #include <math.h>
@@ -17,7 +17,6 @@
 #include "scene_file.h"
 #include "test_util.h"
 
-_Static_assert(sizeof(bvh_node4) == 128, "a 4-wide node, two lines");
 _Static_assert(sizeof(bvh_node8) == 256, "an 8-wide node, four lines");
 
 /* From tests/ch09_bvh.c. */
@@ -111,11 +110,12 @@ static void random_node(bvh_node8 *n, int lanes)
     for (int c = 0; c < 8; c++) {
         for (int a = 0; a < 3; a++) {
             float x = random_coordinate(), y = random_coordinate();
-            n->box[a][c] = x < y ? x : y, n->box[a + 3][c] = x < y ? y : x;
+            n->face[2 * a][c] = x < y ? x : y;
+            n->face[2 * a + 1][c] = x < y ? y : x;
             if (c >= lanes) /* unused: empty */
-                n->box[a][c] = INFINITY, n->box[a + 3][c] = -INFINITY;
+                n->face[2 * a][c] = INFINITY, n->face[2 * a + 1][c] = -INFINITY;
         }
-        n->child[c] = c < lanes ? (uint32_t)c : BVH_NO_CHILD, n->count[c] = 0;
+        n->child[c] = (uint32_t)c;
     }
 }
 
@@ -125,9 +125,9 @@ static ray random_ray(const bvh_node8 *n, int k)
     ray r = {{random_coordinate(), random_coordinate(), random_coordinate()},
              {random_coordinate(), random_coordinate(), random_coordinate()}};
     if (k % 3 == 0) /* on a face's plane and parallel to it: 0 * inf */
-        r.origin.x = n->box[k % 2 ? 0 : 3][k % 8], r.dir.x = 0;
+        r.origin.x = n->face[k % 2 ? 0 : 1][k % 8], r.dir.x = 0;
     if (k % 5 == 0) /* from a corner, along an edge */
-        r.origin = (vec3){n->box[0][k % 8], n->box[1][k % 8], n->box[5][k % 8]},
+        r.origin = (vec3){n->face[0][k % 8], n->face[2][k % 8], n->face[5][k % 8]},
         r.dir = (vec3){k % 2 ? 1 : -0.0, 0, 0};
     return r;
 }
@@ -135,34 +135,83 @@ static ray random_ray(const bvh_node8 *n, int k)
 START_TEST(test_vector_and_scalar_node_tests_agree)
 {
     bvh_node8 n8;
-    bvh_node4 n4;
     int hits = 0;
     for (int k = 0; k < 20000; k++) {
         random_node(&n8, 1 + k % 8);
-        for (int f = 0; f < 6; f++)
-            memcpy(n4.box[f], n8.box[f], sizeof n4.box[f]);
+        float box[6 * 8]; /* the same boxes, faces as bvh_node's */
+        for (int a = 0; a < 3; a++)
+            for (int c = 0; c < 8; c++)
+                box[a * 8 + c] = n8.face[2 * a][c],
+                box[(a + 3) * 8 + c] = n8.face[2 * a + 1][c];
         ray r = random_ray(&n8, k);
-        bvh_ray br;
+        bvh_ray br, rows;
         if (!bvh_ray_of(r.origin, ray_inverse_dir(r), 0, INFINITY, &br))
             continue;
+        rows = br;
+        bvh_walk_rows(&rows);
         float t_max = k % 4 ? INFINITY : (float)rng_uniform01(&rng);
-        float v8[8], s8[8], v4[4], s4[4];
-        unsigned m8 = bvh_node8_test_vector(&n8, &br, t_max, v8);
+        float v8[8], s8[8], b8[8];
+        unsigned m8 = bvh_node8_test(&n8, &rows, t_max, v8);
         if (bvh_walks_with_avx2()) { /* AVX2's eight lanes as well */
             float a8[8];
-            ck_assert_uint_eq(bvh_node8_test_avx2(&n8, &br, t_max, a8), m8);
+            ck_assert_uint_eq(bvh_node8_test_avx2(&n8, &rows, t_max, a8), m8);
             ck_assert(memcmp(a8, v8, sizeof a8) == 0);
         }
-        unsigned m4 = bvh_node4_test_vector(&n4, &br, t_max, v4);
-        ck_assert_uint_eq(m8, bvh_lanes_test_scalar(&n8.box[0][0], 8, 8, &br,
-                                                    t_max, s8));
-        ck_assert_uint_eq(m4, bvh_lanes_test_scalar(&n4.box[0][0], 4, 4, &br,
-                                                    t_max, s4));
+        ck_assert_uint_eq(m8, bvh_lanes_test_scalar(&n8.face[0][0], 8, 8,
+                                                    &rows, t_max, s8));
+        ck_assert_uint_eq(m8, bvh_lanes_test_scalar(box, 8, 8, &br, t_max,
+                                                    b8));
         ck_assert(memcmp(v8, s8, sizeof v8) == 0);
-        ck_assert(memcmp(v4, s4, sizeof v4) == 0);
+        ck_assert(memcmp(v8, b8, sizeof v8) == 0);
         hits += __builtin_popcount(m8);
     }
     ck_assert_int_gt(hits, 1000); /* the rays meet boxes, not only miss */
+}
+END_TEST
+
+/* Each octant's order is the eight lanes, the used ones farthest first
+ * along its diagonal; a push keeps exactly the lanes hit, in that order. */
+START_TEST(test_octant_orders_and_pushes)
+{
+    box *b = ch09_random_boxes(&rng, 2000, (vec3){3, -2, 1}, 10, 0.5);
+    bvh t;
+    ck_assert(bvh_build(&t, 2000, b, &(bvh_params){.width = 8}));
+    for (int k = 0; k < t.node_count; k++) {
+        const bvh_node8 *n = &t.nodes8[k];
+        for (unsigned o = 0; o < 8; o++) {
+            unsigned seen = 0;
+            double last = INFINITY;
+            for (int j = 0; j < 8; j++) {
+                unsigned c = n->order[j] >> 3 * o & 7;
+                seen |= 1u << c;
+                if (n->face[0][c] > n->face[1][c])
+                    continue; /* unused */
+                double far = 0;
+                for (int a = 0; a < 3; a++) {
+                    double centre = (double)n->face[2 * a][c] +
+                                    n->face[2 * a + 1][c];
+                    far += (o >> a & 1) ? -centre : centre;
+                }
+                ck_assert(far <= last);
+                last = far;
+            }
+            ck_assert_uint_eq(seen, 0xff);
+            unsigned mask = (unsigned)(k * 37 + o * 11) & 0xff;
+            uint32_t stack[9];
+            float entry[9], t_near[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+            int top = bvh_push8(stack, entry, 0, n, mask, t_near, 3 * o);
+            ck_assert_int_eq(top, __builtin_popcount(mask));
+            for (int j = 0, at = 0; j < 8; j++) {
+                unsigned c = n->order[j] >> 3 * o & 7;
+                if (!(mask >> c & 1))
+                    continue;
+                ck_assert_uint_eq(stack[at], n->child[c]);
+                ck_assert(entry[at++] == (float)c);
+            }
+        }
+    }
+    bvh_free(&t);
+    free(b);
 }
 END_TEST
 
@@ -175,17 +224,17 @@ START_TEST(test_wide_nodes_hold_their_leaves_items)
         ck_assert(bvh_build(&t, 3000, b, &(bvh_params){.width = width}));
         int items = 0;
         for (int k = 0; k < t.node_count; k++)
-            for (int c = 0; c < width; c++) {
-                const float *box = width == 4 ? &t.nodes4[k].box[0][0]
-                                              : &t.nodes8[k].box[0][0];
-                uint32_t first = width == 4 ? t.nodes4[k].child[c]
-                                            : t.nodes8[k].child[c];
-                uint32_t n = width == 4 ? t.nodes4[k].count[c]
-                                        : t.nodes8[k].count[c];
+            for (int c = 0; c < 8; c++) {
+                const bvh_node8 *node = &t.nodes8[k];
+                uint32_t word = node->child[c];
+                uint32_t first = word & BVH_FIRST_MASK;
+                uint32_t n = word & BVH_LEAF ? word >> BVH_COUNT_SHIFT & 15 : 0;
+                ck_assert(c < width || node->face[0][c] > node->face[1][c]);
                 for (uint32_t i = 0; i < n; i++, items++) {
                     float f[6];
-                    for (int face = 0; face < 6; face++)
-                        f[face] = box[face * width + c];
+                    for (int a = 0; a < 3; a++)
+                        f[a] = node->face[2 * a][c],
+                        f[a + 3] = node->face[2 * a + 1][c];
                     ck_assert(ch09_holds(f, &b[t.items[first + i]]));
                 }
             }
@@ -202,9 +251,9 @@ static uint32_t leaf_of(const bvh *t, int k, int c, uint32_t *count)
 {
     if (t->width == 2)
         return *count = t->nodes[k].count, t->nodes[k].index;
-    if (t->width == 4)
-        return *count = t->nodes4[k].count[c], t->nodes4[k].child[c];
-    return *count = t->nodes8[k].count[c], t->nodes8[k].child[c];
+    uint32_t word = t->nodes8[k].child[c];
+    *count = word & BVH_LEAF ? word >> BVH_COUNT_SHIFT & 15 : 0;
+    return word & BVH_FIRST_MASK;
 }
 
 START_TEST(test_every_leaf_s_packets_hold_its_triangles)
@@ -215,7 +264,7 @@ START_TEST(test_every_leaf_s_packets_hold_its_triangles)
         int *seen = memory_alloc((size_t)m.triangle_count, sizeof *seen);
         ck_assert_ptr_nonnull(seen);
         memset(seen, 0, (size_t)m.triangle_count * sizeof *seen);
-        int packets = 0, refs = width == 2 ? 1 : width;
+        int packets = 0, refs = width == 2 ? 1 : 8;
         for (int k = 0; k < b.bvh.node_count; k++)
             for (int c = 0; c < refs; c++) {
                 uint32_t count, first = leaf_of(&b.bvh, k, c, &count);
@@ -351,6 +400,7 @@ Suite *ch10_wide_suite(void)
     tcase_add_checked_fixture(nodes, reseed, NULL);
     tcase_set_timeout(nodes, 120);
     tcase_add_test(nodes, test_vector_and_scalar_node_tests_agree);
+    tcase_add_test(nodes, test_octant_orders_and_pushes);
     tcase_add_test(nodes, test_wide_nodes_hold_their_leaves_items);
     tcase_add_test(nodes, test_every_leaf_s_packets_hold_its_triangles);
     tcase_add_test(nodes, test_the_bvh_of_a_mesh_stays_within_its_bytes);

@@ -30,15 +30,13 @@ static mesh with_bvh(const mesh *m, int width, int threads)
 
 static size_t node_bytes(const bvh *t)
 {
-    size_t size = t->width == 2 ? sizeof(bvh_node)
-                  : t->width == 4 ? sizeof(bvh_node4) : sizeof(bvh_node8);
+    size_t size = t->width == 2 ? sizeof(bvh_node) : sizeof(bvh_node8);
     return (size_t)t->node_count * size;
 }
 
 static const void *node_array(const bvh *t)
 {
-    return t->width == 2 ? (const void *)t->nodes
-           : t->width == 4 ? (const void *)t->nodes4 : (const void *)t->nodes8;
+    return t->width == 2 ? (const void *)t->nodes : (const void *)t->nodes8;
 }
 
 START_TEST(test_thread_counts_build_the_same_tree)

@@ -14,7 +14,7 @@
 bvh_params bvh_default_params(void)
 {
     /* <<the default width>> ch10 */
-    int width = BVH_WIDTH;
+    int width = 8;
     return (bvh_params){.width = width, .bins = 32, .max_leaf_items = 8,
                         .traversal_cost = 1, .intersection_cost = 1,
                         .min_items = 1, .item_group = 1};
@@ -40,7 +40,7 @@ void bvh_free(bvh *t)
 {
     free(t->nodes), free(t->items);
     /* <<free more of a bvh>> ch10 */
-    free(t->nodes4), free(t->nodes8);
+    free(t->nodes8);
     *t = (bvh){0};
 }
 
@@ -48,9 +48,7 @@ long long bvh_bytes(const bvh *t)
 {
     long long node = (long long)sizeof(bvh_node);
     /* <<the size of a wider node>> ch10 */
-    if (t->width == 4)
-        node = (long long)sizeof(bvh_node4);
-    else if (t->width == 8)
+    if (t->width == 4 || t->width == 8)
         node = (long long)sizeof(bvh_node8);
     return t->node_capacity * node + (long long)t->item_count * sizeof(int);
 }
@@ -525,22 +523,6 @@ static int close_gaps(const bvh_node *slots, int s, bvh *t, int depth)
 
 /* <<more of a bvh build>> ch10 */
 /* <<collapsing to wide nodes>> ch10 */
-/* A wide node's lanes: box[face * width + child], child, count. */
-typedef struct {
-    float *box;
-    uint32_t *child, *count;
-    int width;
-} bvh_lanes;
-
-static bvh_lanes lanes_of(bvh *t, int k)
-{
-    if (t->width == 4)
-        return (bvh_lanes){&t->nodes4[k].box[0][0], t->nodes4[k].child,
-                           t->nodes4[k].count, 4};
-    return (bvh_lanes){&t->nodes8[k].box[0][0], t->nodes8[k].child,
-                       t->nodes8[k].count, 8};
-}
-
 static double float_box_area(const float b[6])
 {
     double x = b[3] - b[0], y = b[4] - b[1], z = b[5] - b[2];
@@ -570,6 +552,39 @@ static int open_children(const bvh_node *nodes, int k, int width,
     return n;
 }
 
+/* How far lane c of n lies along octant o's diagonal (empty: -inf). */
+static double along_octant(const bvh_node8 *n, int c, int o)
+{
+    if (n->face[0][c] > n->face[1][c])
+        return -INFINITY; /* an unused lane */
+    double far = 0;
+    for (int a = 0; a < 3; a++) {
+        double centre = (double)n->face[2 * a][c] + n->face[2 * a + 1][c];
+        far += (o >> a & 1) ? -centre : centre;
+    }
+    return far;
+}
+
+/* n's order for each octant: the lanes farthest first (insertion sort,
+ * equal ones in the order of their lanes). */
+static void order_children(bvh_node8 *n)
+{
+    for (int k = 0; k < 8; k++)
+        n->order[k] = 0;
+    for (int o = 0; o < 8; o++) {
+        int lane[8];
+        for (int k = 0; k < 8; k++) {
+            int j = k;
+            for (; j > 0 && along_octant(n, lane[j - 1], o) <
+                                along_octant(n, k, o); j--)
+                lane[j] = lane[j - 1];
+            lane[j] = k;
+        }
+        for (int k = 0; k < 8; k++)
+            n->order[k] |= (uint32_t)lane[k] << 3 * o;
+    }
+}
+
 /* Fills wide node w with the children of binary node k, and the wide
  * nodes below it from t->node_count on. */
 static void collapse(bvh *t, const bvh_node *nodes, int k, int w)
@@ -578,63 +593,59 @@ static void collapse(bvh *t, const bvh_node *nodes, int k, int w)
     kids[0] = k; /* a root that is a leaf: one child */
     if (nodes[k].count == 0)
         n = open_children(nodes, k, t->width, kids);
-    bvh_lanes lane = lanes_of(t, w);
-    for (int c = 0; c < lane.width; c++) {
-        for (int f = 0; f < 6; f++) /* no box yet: lo +inf, hi -inf */
-            lane.box[f * lane.width + c] = f < 3 ? INFINITY : -INFINITY;
-        lane.child[c] = BVH_NO_CHILD, lane.count[c] = 0;
+    bvh_node8 *node = &t->nodes8[w];
+    for (int c = 0; c < 8; c++) {
+        for (int a = 0; a < 3; a++) /* no box yet: lo +inf, hi -inf */
+            node->face[2 * a][c] = INFINITY, node->face[2 * a + 1][c] =
+                                                 -INFINITY;
+        node->child[c] = 0;
     }
     for (int c = 0; c < n; c++) {
         const bvh_node *kid = &nodes[kids[c]];
-        for (int f = 0; f < 6; f++)
-            lane.box[f * lane.width + c] = kid->box[f];
-        lane.count[c] = kid->count, lane.child[c] = kid->index;
+        for (int a = 0; a < 3; a++)
+            node->face[2 * a][c] = kid->box[a],
+            node->face[2 * a + 1][c] = kid->box[a + 3];
+        assert(kid->count < 16);
+        node->child[c] = bvh_leaf_word(kid->index, kid->count);
         if (kid->count == 0) {
-            lane.child[c] = (uint32_t)t->node_count++;
-            collapse(t, nodes, kids[c], (int)lane.child[c]);
+            node->child[c] = (uint32_t)t->node_count++;
+            collapse(t, nodes, kids[c], (int)node->child[c]);
         }
     }
+    order_children(node);
 }
 
 /* t's wide nodes in an array of their number, which the collapse knows
  * only at its end (kept larger when a smaller one cannot be had). */
-static void shrink_wide(bvh *t, size_t size)
+static void shrink_wide(bvh *t)
 {
-    void *old = t->width == 4 ? (void *)t->nodes4 : (void *)t->nodes8;
+    size_t size = sizeof(bvh_node8);
     void *fit = memory_alloc_aligned(64, (size_t)t->node_count, size);
     if (fit == NULL)
         return;
-    memcpy(fit, old, (size_t)t->node_count * size);
-    free(old);
-    if (t->width == 4)
-        t->nodes4 = fit;
-    else
-        t->nodes8 = fit;
-    t->node_capacity = t->node_count;
+    memcpy(fit, t->nodes8, (size_t)t->node_count * size);
+    free(t->nodes8);
+    t->nodes8 = fit, t->node_capacity = t->node_count;
 }
 
 /* t's binary nodes collapsed into nodes of t->width; false: no memory. */
 static bool make_wide(bvh *t)
 {
     int most = t->node_count - t->leaf_count + 1; /* wide nodes at most */
-    size_t size = t->width == 4 ? sizeof(bvh_node4) : sizeof(bvh_node8);
-    void *wide = memory_alloc_aligned(64, (size_t)most, size);
-    if (wide == NULL)
+    t->nodes8 = memory_alloc_aligned(64, (size_t)most, sizeof(bvh_node8));
+    if (t->nodes8 == NULL)
         return false;
-    if (t->width == 4)
-        t->nodes4 = wide;
-    else
-        t->nodes8 = wide;
     bvh_node *binary = t->nodes;
     t->nodes = NULL, t->node_count = 1, t->node_capacity = most;
     collapse(t, binary, 0, 0);
     free(binary);
-    shrink_wide(t, size);
+    shrink_wide(t);
+    t->avx2 = bvh_walks_with_avx2();
     return true;
 }
 
 /* <<choosing AVX2 when the program runs>> ch10 */
-/* Set by bvh_allow_avx2 (the tests); read by every walk. */
+/* Set by bvh_allow_avx2 (the tests); read when a tree is built. */
 static atomic_bool avx2_forbidden;
 
 bool bvh_walks_with_avx2(void)
@@ -651,22 +662,31 @@ void bvh_allow_avx2(bool allowed)
     atomic_store(&avx2_forbidden, !allowed);
 }
 
-const char *bvh_vector_width_name(void)
+uint32_t bvh_set_lanes[256];
+
+/* Fills bvh_set_lanes before main runs (GCC's and Clang's constructor),
+ * so that no walk finds it half made. */
+__attribute__((constructor)) static void fill_set_lanes(void)
 {
-    if (bvh_walks_with_avx2())
+    for (unsigned mask = 0; mask < 256; mask++) {
+        uint32_t set = 0, count = 0;
+        for (unsigned c = 0; c < 8; c++)
+            if (mask >> c & 1)
+                set |= c << 3 * count++;
+        bvh_set_lanes[mask] = set | count << 24;
+    }
+}
+
+const char *bvh_vector_width_name(const bvh *t)
+{
+    if (t->width != 2 && t->avx2)
         return "AVX2 chosen at run time";
 #if defined(RT_SCALAR)
     return "scalar";
-#elif defined(__AVX512F__)
-    return "AVX-512";
-#elif defined(__AVX2__)
-    return "AVX2";
 #elif defined(__AVX__)
     return "AVX";
 #elif defined(__SSE2__)
     return "SSE2";
-#elif defined(__ARM_NEON)
-    return "NEON";
 #else
     return "vector extensions";
 #endif

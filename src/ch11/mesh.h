@@ -52,6 +52,7 @@ typedef struct {
     triangle_packet *bvh_packets; /* the BVH's leaves' triangles, leaf by leaf */
     int bvh_packet_count;
     bool bvh_in_float; /* its leaves decided in float alone (bvh-float) */
+    unsigned char bvh_walk; /* its walk: 0 binary, 2 plain, 4 AVX2 */
     /* <<mesh members>> += ch11 */
     int parts; /* of chapter 11's reader; 0: chapter 4's read it */
     double file_seconds, arrays_seconds; /* its reading on one thread */

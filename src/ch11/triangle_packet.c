@@ -95,13 +95,23 @@ static inline int lane_set(int m)
     return m != 0;
 }
 
+/* Lane k of a mask (-1 or 0 in each) in bit k: SSE's one instruction
+ * where the lanes are its four. */
+static inline unsigned packet_bits(packet_int m)
+{
+#if defined(__SSE__) && PACKET_W == 4 && !defined(RT_SCALAR)
+    return (unsigned)__builtin_ia32_movmskps((packet_float)m);
+#else
+    unsigned bits = 0;
+    for (int k = 0; k < PACKET_W; k++)
+        bits |= (unsigned)(m[k] & 1) << k;
+    return bits;
+#endif
+}
+
 static inline int packet_all_set(packet_int m)
 {
-    packet_int none = m == 0; /* -1 where a lane is clear */
-    int clear = 0;
-    for (int k = 0; k < PACKET_W; k++)
-        clear |= none[k];
-    return clear == 0;
+    return packet_bits(m) == (1u << PACKET_W) - 1;
 }
 #define lanes_all(m) _Generic((m), int: lane_set, default: packet_all_set)(m)
 
@@ -260,6 +270,20 @@ typedef struct {
     int t_filter;
 } float_interval;
 
+/* nextafter(x, INFINITY) as a step of the bits, without a call: read as
+ * an integer, a double's bits count its magnitude, so that one more is
+ * the next double away from zero, one less the next towards it. */
+static inline double double_after(double x)
+{
+    if (!(x < INFINITY) || x == 0) /* inf, NaN; either zero */
+        return x == 0 ? 0x1p-1074 : x;
+    int64_t bits;
+    memcpy(&bits, &x, sizeof bits);
+    bits += x > 0 ? 1 : -1;
+    memcpy(&x, &bits, sizeof x);
+    return x;
+}
+
 static float_interval float_interval_of(double t_min, double t_max)
 {
     float up = (float)t_max;
@@ -286,10 +310,7 @@ static unsigned candidates(const triangle_packet *p, const packet_ray *r,
             bits |= (unsigned)kept_alone(p, k, r, in.t_max, in.t_filter) << k;
         return bits;
     }
-    packet_int kept = kept_in_vectors(p, r, in.t_max, in.t_filter);
-    for (int k = 0; k < PACKET_W; k++)
-        bits |= (unsigned)(kept[k] & 1) << k;
-    return bits;
+    return packet_bits(kept_in_vectors(p, r, in.t_max, in.t_filter));
 }
 
 unsigned triangle_packet_candidates(const triangle_packet *p,
@@ -319,7 +340,7 @@ int triangle_packets_nearest_in_mesh(const packet_ray *r,
                                      triangle_hit *out, long long *decided)
 {
     int nearest = -1;
-    double t_upto = nextafter(t_max, INFINITY); /* t_max itself, for a tie */
+    double t_upto = double_after(t_max); /* t_max itself, for a tie */
     float_interval in = float_interval_of(t_min, t_upto);
     for (int p = 0; p < count; p++)
         for (unsigned bits = candidates(&packets[p], r, in, LANE_BY_LANE);
@@ -331,7 +352,7 @@ int triangle_packets_nearest_in_mesh(const packet_ray *r,
             if (hit_in_mesh(r, vertices, triangles, i, t_min, t_upto, &th) &&
                 (th.t < t_max || i < best)) { /* a tie: the lower index */
                 *out = th, t_max = th.t, best = i, nearest = i;
-                t_upto = nextafter(t_max, INFINITY);
+                t_upto = double_after(t_max);
                 in = float_interval_of(t_min, t_upto);
             }
         }
@@ -446,10 +467,7 @@ static unsigned float_hit_bits(const triangle_packet *p, const packet_ray *r,
             bits |= (unsigned)float_hit_alone(p, k, r, t_min, t_max, h) << k;
         return bits;
     }
-    packet_int hit = float_hits_in_vectors(p, r, t_min, t_max, h);
-    for (int k = 0; k < PACKET_W; k++)
-        bits |= (unsigned)(hit[k] & 1) << k;
-    return bits;
+    return packet_bits(float_hits_in_vectors(p, r, t_min, t_max, h));
 }
 
 unsigned triangle_packet_float_hits(const triangle_packet *p,

@@ -48,17 +48,13 @@ typedef struct {
 bvh_params bvh_default_params(void);
 /* <<bvh parameters>> += ch10 */
 
-/* The default width, with AVX2 or without: where a node of eight is two
- * tests of four, the fewer nodes a walk visits still pay for them. */
-#define BVH_WIDTH 8
-
-/* Does the walk test eight-wide nodes with AVX2's eight lanes? Where the
- * processor has AVX2 and bvh_allow_avx2 has not forbidden it; the build's
- * flags need not name AVX2 (the answer is known when the program runs). */
+/* Does the walk test nodes with AVX2's eight lanes? Where the processor
+ * has AVX2 and bvh_allow_avx2 has not forbidden it; the build's flags
+ * need not name AVX2 (the answer is known when the program runs). */
 bool bvh_walks_with_avx2(void);
 
-/* false: the walk keeps to the build's own instructions (for the tests,
- * which compare the two). */
+/* false: trees built from now on are walked with the build's own
+ * instructions (for the tests, which compare the two). */
 void bvh_allow_avx2(bool allowed);
 /* <<bvh parameters>> += ch11 */
 
@@ -82,25 +78,29 @@ typedef struct {
 _Static_assert(sizeof(bvh_node) == 32, "a node is 32 bytes");
 
 /* <<more kinds of bvh node>> ch10 */
-/* A node of four or eight children: their boxes as a structure of
- * arrays, box[face][child], faces as in bvh_node, so that one vector
- * reads one face of every child. Child c is node child[c] (count[c] 0),
- * or a leaf of count[c] items from items[child[c]]; an unused child has
- * count 0, child BVH_NO_CHILD and an empty box (lo +inf, hi -inf). */
-#define BVH_NO_CHILD UINT32_MAX
-
+/* A node of up to eight children, laid out for the walk: face[2 a] the
+ * lower and face[2 a + 1] the upper faces of axis a of the eight
+ * children, a lane each; an unused lane has an empty box (lo +inf, hi
+ * -inf). child[c] is a node's index, or (BVH_LEAF set) a leaf: its item
+ * count in bits 27-30, its first item (or packet) below. order[k] holds,
+ * in bits 3 o to 3 o + 2, the lane at place k of octant o's order
+ * (bit a of o: the ray goes down axis a), farthest first. */
 typedef struct {
-    float box[6][4];
-    uint32_t child[4], count[4];
-} bvh_node4;
-
-typedef struct {
-    float box[6][8];
-    uint32_t child[8], count[8];
+    float face[6][8];
+    uint32_t child[8], order[8];
 } bvh_node8;
 
-_Static_assert(sizeof(bvh_node4) == 128, "two cache lines");
 _Static_assert(sizeof(bvh_node8) == 256, "four cache lines");
+
+#define BVH_LEAF 0x80000000u
+#define BVH_COUNT_SHIFT 27
+#define BVH_FIRST_MASK ((1u << BVH_COUNT_SHIFT) - 1)
+
+/* A leaf's word: count items (1 to 15) from first. */
+static inline uint32_t bvh_leaf_word(uint32_t first, uint32_t count)
+{
+    return BVH_LEAF | count << BVH_COUNT_SHIFT | first;
+}
 
 /* <<a bvh>> ch09 */
 typedef struct bvh {
@@ -111,8 +111,8 @@ typedef struct bvh {
     int *items;        /* leaf after leaf */
     int item_count, leaf_count, depth;
     /* <<more of a bvh>> ch10 */
-    bvh_node4 *nodes4; /* width 4; node 0 is the root */
-    bvh_node8 *nodes8; /* width 8 */
+    bvh_node8 *nodes8; /* width 4 or 8; node 0 is the root */
+    bool avx2; /* walked with AVX2 (bvh_walks_with_avx2 when collapsed) */
     /* <<more of a bvh>> += ch11 */
     int build_threads; /* its subtrees were shared among */
     double gaps_seconds, collapse_seconds; /* its walks on one thread */
@@ -130,10 +130,9 @@ void bvh_free(bvh *t);
 long long bvh_bytes(const bvh *t);
 /* <<bvh building>> += ch10 */
 
-/* Which node test the walk uses: "scalar", the vector instructions the
- * compiler was allowed ("SSE2", "AVX2", ...), or AVX2 chosen when the
- * program runs. */
-const char *bvh_vector_width_name(void);
+/* The instructions of t's walk: "scalar", the build's own ("SSE2", ...),
+ * or AVX2 chosen when the program runs. */
+const char *bvh_vector_width_name(const bvh *t);
 
 /* <<bvh ray tests>> ch09 */
 /* <<the ray's float constants>> ch09 */
@@ -202,132 +201,161 @@ static inline unsigned bvh_lanes_test_scalar(const float *box, int stride,
 
 /* <<more node tests>> ch10 */
 /* <<the vector node tests>> ch10 */
-typedef float bvh_f4 __attribute__((vector_size(16)));
-typedef int32_t bvh_i4 __attribute__((vector_size(16)));
-
-/* a > b ? a : b and a < b ? a : b, lane by lane, b where either is a NaN:
- * SSE's maxps and minps do exactly that, and the compiler does not find
- * them in the comparison and the masks it replaces. */
-static inline bvh_f4 bvh_max4(bvh_f4 a, bvh_f4 b)
-{
-#ifdef __SSE__
-    return __builtin_ia32_maxps(a, b);
-#else
-    bvh_i4 take = a > b; /* false for a NaN */
-    return (bvh_f4)(((bvh_i4)a & take) | ((bvh_i4)b & ~take));
-#endif
-}
-
-static inline bvh_f4 bvh_min4(bvh_f4 a, bvh_f4 b)
-{
-#ifdef __SSE__
-    return __builtin_ia32_minps(a, b);
-#else
-    bvh_i4 take = a < b;
-    return (bvh_f4)(((bvh_i4)a & take) | ((bvh_i4)b & ~take));
-#endif
-}
-
-/* Lane c's comparison (-1 or 0) in bit c. SSE has one instruction for it,
- * which the vector extensions cannot name and the compiler does not find
- * in the loop. */
-static inline unsigned bvh_mask4(bvh_i4 hit)
-{
-#ifdef __SSE__
-    return (unsigned)__builtin_ia32_movmskps((bvh_f4)hit);
-#else
-    unsigned mask = 0;
-    for (int c = 0; c < 4; c++)
-        mask |= (unsigned)(hit[c] & 1) << c;
-    return mask;
-#endif
-}
-
-/* <<the slab test in four lanes>> ch10 */
-/* The slab of axis a narrows [*t0, *t1], lane by lane. */
-static inline void bvh_slab4(const float *box, int stride, const bvh_ray *r,
-                             int a, bvh_f4 *t0, bvh_f4 *t1)
-{
-    bvh_f4 face;
-    memcpy(&face, box + r->near[a] * stride, sizeof face);
-    bvh_f4 tn = (face - r->o_near[a]) * r->inv[a];
-    memcpy(&face, box + r->far[a] * stride, sizeof face);
-    bvh_f4 tf = (face - r->o_far[a]) * r->inv[a] * BVH_FAR_WIDENING;
-    *t0 = bvh_max4(tn, *t0), *t1 = bvh_min4(tf, *t1);
-}
-
-/* bvh_lanes_test_scalar of four lanes at once; the three axes written
- * out, not looped over (the compiler does not unroll the loop at -O2). */
-static inline unsigned bvh_lanes4_test_vector(const float *box, int stride,
-                                              const bvh_ray *r, float t_max,
-                                              float t_near[4])
-{
-    bvh_f4 t0 = {r->t_min, r->t_min, r->t_min, r->t_min};
-    bvh_f4 t1 = {t_max, t_max, t_max, t_max};
-    bvh_slab4(box, stride, r, 0, &t0, &t1);
-    bvh_slab4(box, stride, r, 1, &t0, &t1);
-    bvh_slab4(box, stride, r, 2, &t0, &t1);
-    memcpy(t_near, &t0, sizeof t0);
-    return bvh_mask4(t0 <= t1);
-}
-
-static inline unsigned bvh_node4_test_vector(const bvh_node4 *n,
-                                             const bvh_ray *r, float t_max,
-                                             float t_near[4])
-{
-    return bvh_lanes4_test_vector(&n->box[0][0], 4, r, t_max, t_near);
-}
+/* GCC warns that a vector of eight floats is passed otherwise with AVX
+ * than without: these functions are always inlined, never called. */
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 typedef float bvh_f8 __attribute__((vector_size(32)));
 typedef int32_t bvh_i8 __attribute__((vector_size(32)));
+typedef float bvh_f4 __attribute__((vector_size(16)));
 
-static inline unsigned bvh_node8_test_vector(const bvh_node8 *n,
-                                             const bvh_ray *r, float t_max,
-                                             float t_near[8])
+#define BVH_INLINE static inline __attribute__((always_inline))
+
+/* x in every lane: lane 0 of a vector of four, shuffled into all eight,
+ * which compilers make one broadcast (the eight-lane initializer, some
+ * eight inserts). */
+BVH_INLINE bvh_f8 bvh_splat8(float x)
 {
-#ifndef __AVX__ /* no vectors of eight floats: two of four */
-    const float *box = &n->box[0][0];
-    return bvh_lanes4_test_vector(box, 8, r, t_max, t_near) |
-           bvh_lanes4_test_vector(box + 4, 8, r, t_max, t_near + 4) << 4;
+    bvh_f4 v = {x};
+    return __builtin_shufflevector(v, v, 0, 0, 0, 0, 0, 0, 0, 0);
+}
+
+#ifdef __SSE__ /* two halves of four */
+BVH_INLINE bvh_f4 bvh_low(bvh_f8 a)
+{
+    return __builtin_shufflevector(a, a, 0, 1, 2, 3);
+}
+
+BVH_INLINE bvh_f4 bvh_high(bvh_f8 a)
+{
+    return __builtin_shufflevector(a, a, 4, 5, 6, 7);
+}
+
+BVH_INLINE bvh_f8 bvh_join(bvh_f4 lo, bvh_f4 hi)
+{
+    return __builtin_shufflevector(lo, hi, 0, 1, 2, 3, 4, 5, 6, 7);
+}
+
+/* a > b ? a : b lane by lane, b where either is a NaN (maxps) */
+BVH_INLINE bvh_f8 bvh_max8(bvh_f8 a, bvh_f8 b)
+{
+    return bvh_join(__builtin_ia32_maxps(bvh_low(a), bvh_low(b)),
+                    __builtin_ia32_maxps(bvh_high(a), bvh_high(b)));
+}
+
+BVH_INLINE bvh_f8 bvh_min8(bvh_f8 a, bvh_f8 b)
+{
+    return bvh_join(__builtin_ia32_minps(bvh_low(a), bvh_low(b)),
+                    __builtin_ia32_minps(bvh_high(a), bvh_high(b)));
+}
+
+/* lane c's comparison (-1 or 0) in bit c */
+BVH_INLINE unsigned bvh_mask8(bvh_i8 m)
+{
+    return (unsigned)__builtin_ia32_movmskps(bvh_low((bvh_f8)m)) |
+           (unsigned)__builtin_ia32_movmskps(bvh_high((bvh_f8)m)) << 4;
+}
 #else
-    /* <<the slab test in eight lanes>> ch10 */
-    float lo = r->t_min, hi = t_max;
-    bvh_f8 t0 = {lo, lo, lo, lo, lo, lo, lo, lo};
-    bvh_f8 t1 = {hi, hi, hi, hi, hi, hi, hi, hi}, face;
+BVH_INLINE bvh_f8 bvh_max8(bvh_f8 a, bvh_f8 b)
+{
+    bvh_i8 take = a > b; /* false for a NaN */
+    return (bvh_f8)(((bvh_i8)a & take) | ((bvh_i8)b & ~take));
+}
+
+BVH_INLINE bvh_f8 bvh_min8(bvh_f8 a, bvh_f8 b)
+{
+    bvh_i8 take = a < b;
+    return (bvh_f8)(((bvh_i8)a & take) | ((bvh_i8)b & ~take));
+}
+
+BVH_INLINE unsigned bvh_mask8(bvh_i8 m)
+{
+    unsigned mask = 0;
+    for (int c = 0; c < 8; c++)
+        mask |= (unsigned)(m[c] & 1) << c;
+    return mask;
+}
+#endif
+
+/* The walk's ray: bvh_ray's numbers in every lane, made once a ray, so
+ * that a node's test takes each as an operand, not broadcast at every
+ * node; near and far as rows of a node8. */
+typedef struct {
+    bvh_f8 o_near[3], o_far[3], inv[3];
+    int near[3], far[3];
+    float t_min;
+} bvh_ray8;
+
+/* r (its rows a node8's: bvh_walk_rows) in every lane. */
+BVH_INLINE bvh_ray8 bvh_ray8_of(const bvh_ray *r)
+{
+    bvh_ray8 v;
+#pragma GCC unroll 3 /* a constant each axis: no index kept */
     for (int a = 0; a < 3; a++) {
-        memcpy(&face, n->box[r->near[a]], sizeof face);
-        bvh_f8 tn = (face - r->o_near[a]) * r->inv[a];
-        memcpy(&face, n->box[r->far[a]], sizeof face);
-        bvh_f8 tf = (face - r->o_far[a]) * r->inv[a] * BVH_FAR_WIDENING;
-        t0 = __builtin_ia32_maxps256(tn, t0); /* as bvh_max4 */
-        t1 = __builtin_ia32_minps256(tf, t1);
+        v.o_near[a] = bvh_splat8(r->o_near[a]);
+        v.o_far[a] = bvh_splat8(r->o_far[a]);
+        v.inv[a] = bvh_splat8(r->inv[a]);
+        v.near[a] = r->near[a], v.far[a] = r->far[a];
     }
+    v.t_min = r->t_min;
+    return v;
+}
+
+/* Where the ray enters (row r->near[a]) and leaves (r->far[a]) the eight
+ * slabs of axis a: rows of n->face, as the walk's ray names them. */
+BVH_INLINE bvh_f8 bvh_enter8(const bvh_node8 *n, const bvh_ray8 *r, int a)
+{
+    bvh_f8 face;
+    memcpy(&face, n->face[r->near[a]], sizeof face);
+    return (face - r->o_near[a]) * r->inv[a];
+}
+
+BVH_INLINE bvh_f8 bvh_leave8(const bvh_node8 *n, const bvh_ray8 *r, int a)
+{
+    bvh_f8 face;
+    memcpy(&face, n->face[r->far[a]], sizeof face);
+    return (face - r->o_far[a]) * r->inv[a];
+}
+
+/* The text of the node test (below) names its operations max8, min8 and
+ * mask8: here those of the build's own instructions. */
+#define max8 bvh_max8
+#define min8 bvh_min8
+#define mask8 bvh_mask8
+
+/* Which of n's children the ray r meets in [r->t_min, bound]: a bit
+ * each, and in t_near where it enters. */
+static inline unsigned bvh_node8_lanes(const bvh_node8 *n, const bvh_ray8 *r,
+                                       float bound, float t_near[8])
+{
+    /* <<the slab test of a node>> ch10 */
+    bvh_f8 t0 = max8(bvh_enter8(n, r, 0), bvh_splat8(r->t_min));
+    t0 = max8(bvh_enter8(n, r, 1), t0); /* a NaN keeps t0 */
+    t0 = max8(bvh_enter8(n, r, 2), t0);
+    bvh_f8 t1 = min8(bvh_leave8(n, r, 0), bvh_splat8(INFINITY));
+    t1 = min8(bvh_leave8(n, r, 1), t1);
+    t1 = min8(bvh_leave8(n, r, 2), t1);
+    t1 = min8(t1 * BVH_FAR_WIDENING, bvh_splat8(bound)); /* once, not by axis */
     memcpy(t_near, &t0, sizeof t0);
-    return (unsigned)__builtin_ia32_movmskps256((bvh_f8)(t0 <= t1));
-#endif
+    return mask8(t0 <= t1);
 }
 
-/* <<the node tests this build uses>> ch10 */
-/* The vector tests, unless the program is built with -DRT_SCALAR. */
-static inline unsigned bvh_node4_test(const bvh_node4 *n, const bvh_ray *r,
-                                      float t_max, float t_near[4])
-{
-#ifdef RT_SCALAR
-    return bvh_lanes_test_scalar(&n->box[0][0], 4, 4, r, t_max, t_near);
-#else
-    return bvh_node4_test_vector(n, r, t_max, t_near);
-#endif
-}
-
+/* The same for r as bvh_ray_of makes it (its rows the walk's:
+ * bvh_walk_rows); lane by lane with -DRT_SCALAR, chapter 9's test. */
 static inline unsigned bvh_node8_test(const bvh_node8 *n, const bvh_ray *r,
-                                      float t_max, float t_near[8])
+                                      float bound, float t_near[8])
 {
 #ifdef RT_SCALAR
-    return bvh_lanes_test_scalar(&n->box[0][0], 8, 8, r, t_max, t_near);
+    return bvh_lanes_test_scalar(&n->face[0][0], 8, 8, r, bound, t_near);
 #else
-    return bvh_node8_test_vector(n, r, t_max, t_near);
+    bvh_ray8 v = bvh_ray8_of(r);
+    return bvh_node8_lanes(n, &v, bound, t_near);
 #endif
 }
+
+#undef max8
+#undef min8
+#undef mask8
 
 #if defined(__x86_64__) && !defined(RT_SCALAR)
 #define BVH_AVX2_TARGET __attribute__((target("avx2")))
@@ -337,29 +365,145 @@ static inline unsigned bvh_node8_test(const bvh_node8 *n, const bvh_ray *r,
 #define BVH_HAS_AVX2_PATH 0
 #endif
 
-/* bvh_node8_test in AVX2's eight lanes, whatever the build's flags: to be
- * called only where bvh_walks_with_avx2() says yes. */
+#if BVH_HAS_AVX2_PATH
+#define max8 __builtin_ia32_maxps256
+#define min8 __builtin_ia32_minps256
+#define mask8(m) (unsigned)__builtin_ia32_movmskps256((bvh_f8)(m))
+#endif
+
+/* bvh_node8_lanes in AVX2's eight lanes, whatever the build's flags: to
+ * be called only where bvh_walks_with_avx2() says yes. */
 BVH_AVX2_TARGET static inline unsigned
-bvh_node8_test_avx2(const bvh_node8 *n, const bvh_ray *r, float t_max,
+bvh_node8_lanes_avx2(const bvh_node8 *n, const bvh_ray8 *r, float bound,
+                     float t_near[8])
+{
+#if BVH_HAS_AVX2_PATH
+    /* <<the slab test of a node>> ch10 */
+    bvh_f8 t0 = max8(bvh_enter8(n, r, 0), bvh_splat8(r->t_min));
+    t0 = max8(bvh_enter8(n, r, 1), t0); /* a NaN keeps t0 */
+    t0 = max8(bvh_enter8(n, r, 2), t0);
+    bvh_f8 t1 = min8(bvh_leave8(n, r, 0), bvh_splat8(INFINITY));
+    t1 = min8(bvh_leave8(n, r, 1), t1);
+    t1 = min8(bvh_leave8(n, r, 2), t1);
+    t1 = min8(t1 * BVH_FAR_WIDENING, bvh_splat8(bound)); /* once, not by axis */
+    memcpy(t_near, &t0, sizeof t0);
+    return mask8(t0 <= t1);
+#else
+    return bvh_node8_lanes(n, r, bound, t_near);
+#endif
+}
+
+/* bvh_node8_test's in AVX2's lanes (for the tests). */
+BVH_AVX2_TARGET static inline unsigned
+bvh_node8_test_avx2(const bvh_node8 *n, const bvh_ray *r, float bound,
                     float t_near[8])
 {
-#if BVH_HAS_AVX2_PATH /* the text of the eight-wide test with AVX */
-    /* <<the slab test in eight lanes>> ch10 */
-    float lo = r->t_min, hi = t_max;
-    bvh_f8 t0 = {lo, lo, lo, lo, lo, lo, lo, lo};
-    bvh_f8 t1 = {hi, hi, hi, hi, hi, hi, hi, hi}, face;
+    bvh_ray8 v = bvh_ray8_of(r);
+    return bvh_node8_lanes_avx2(n, &v, bound, t_near);
+}
+
+#undef max8
+#undef min8
+#undef mask8
+
+/* Each level pushes at most seven children more than it takes; a push
+ * writes eight lanes above the top before it knows how many it keeps. */
+#define BVH_STACK8 (7 * BVH_MAX_DEPTH + 9)
+
+/* r's faces as rows of a node8 (face 2 a or 2 a + 1 of axis a), in
+ * place; the shift of its octant's orders (3 o). */
+static inline unsigned bvh_walk_rows(bvh_ray *r)
+{
+    unsigned octant = 0;
     for (int a = 0; a < 3; a++) {
-        memcpy(&face, n->box[r->near[a]], sizeof face);
-        bvh_f8 tn = (face - r->o_near[a]) * r->inv[a];
-        memcpy(&face, n->box[r->far[a]], sizeof face);
-        bvh_f8 tf = (face - r->o_far[a]) * r->inv[a] * BVH_FAR_WIDENING;
-        t0 = __builtin_ia32_maxps256(tn, t0); /* as bvh_max4 */
-        t1 = __builtin_ia32_minps256(tf, t1);
+        int down = r->near[a] != a; /* enters by the upper face */
+        octant |= (unsigned)down << a;
+        r->near[a] = 2 * a + down, r->far[a] = 2 * a + 1 - down;
     }
-    memcpy(t_near, &t0, sizeof t0);
-    return (unsigned)__builtin_ia32_movmskps256((bvh_f8)(t0 <= t1));
+    return 3 * octant;
+}
+
+/* The children of n in mask (more than one), onto the stack at top in
+ * the order of the ray's octant (shift), farthest first: the new top. */
+static inline int bvh_push8(uint32_t *stack, float *entry, int top,
+                            const bvh_node8 *n, unsigned mask,
+                            const float t_near[8], unsigned shift)
+{
+    for (int k = 0; k < 8; k++) {
+        unsigned c = n->order[k] >> shift & 7;
+        stack[top] = n->child[c], entry[top] = t_near[c];
+        top += (int)(mask >> c & 1); /* kept only if hit */
+    }
+    return top;
+}
+
+/* The origin of r rounded outward, axis by axis (bvh_ray_of's rule). */
+static inline void bvh_round_origin(const double o[3], bvh_ray *r)
+{
+    for (int a = 0; a < 3; a++) {
+        float up = bvh_float_up(o[a]), down = bvh_float_down(o[a]);
+        bool ahead = r->near[a] == 2 * a;
+        r->o_near[a] = ahead ? up : down, r->o_far[a] = ahead ? down : up;
+    }
+}
+
+/* bvh_ray_of's ray, its rows those of a node8 (bvh_walk_rows), made
+ * inline; the shift of its octant's orders in *shift. false where
+ * bvh_ray_of says false. */
+BVH_INLINE bool bvh_wide_ray_of(vec3 origin, vec3 inv, double t_min,
+                                double t_max, bvh_ray *r, unsigned *shift)
+{
+    const double o[3] = {origin.x, origin.y, origin.z};
+    const double q[3] = {inv.x, inv.y, inv.z};
+    unsigned octant = 0;
+    bool near = true, in_float = true; /* no branch until the end */
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; a++) {
+        near &= (fabs(o[a]) <= 0x1p100) & (fabs(q[a]) >= 0x1p-100);
+        float f = (float)o[a];
+        in_float &= (double)f == o[a];
+        int down = signbit(q[a]) != 0; /* enters by the upper face */
+        r->o_near[a] = r->o_far[a] = f, r->inv[a] = (float)q[a];
+        r->near[a] = 2 * a + down, r->far[a] = 2 * a + 1 - down;
+        octant |= (unsigned)down << a;
+    }
+    if (!in_float) /* a float origin needs no rounding */
+        bvh_round_origin(o, r);
+    r->t_min = bvh_float_down(t_min);
+    r->t_max = bvh_float_up(t_max * (1 + BVH_SLACK));
+    *shift = 3 * octant;
+    return near;
+}
+
+/* For each mask of eight lanes, its set lanes from the lowest, three bits
+ * each from bit 0, and their count in bits 24-27 (bvh.c fills it). */
+extern uint32_t bvh_set_lanes[256];
+
+/* bvh_push8 in AVX2's lanes, with no loop: to be called only where
+ * bvh_walks_with_avx2() says yes. */
+BVH_AVX2_TARGET static inline int
+bvh_push8_avx2(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
+               unsigned mask, const float t_near[8], unsigned shift)
+{
+#if BVH_HAS_AVX2_PATH
+    const bvh_i8 thirds = {0, 3, 6, 9, 12, 15, 18, 21};
+    bvh_i8 order, child;
+    bvh_f8 t;
+    memcpy(&order, n->order, sizeof order);
+    memcpy(&child, n->child, sizeof child);
+    memcpy(&t, t_near, sizeof t);
+    order = order >> (int)shift & 7; /* the lane at each place */
+    bvh_i8 kept = ((bvh_i8){0} + (int)mask) >> order << 31; /* sign: hit */
+    uint32_t set = bvh_set_lanes[__builtin_ia32_movmskps256((bvh_f8)kept)];
+    bvh_i8 places = ((bvh_i8){0} + (int)set) >> thirds & 7;
+    bvh_i8 lanes = __builtin_ia32_permvarsi256(order, places);
+    bvh_i8 kids = __builtin_ia32_permvarsi256(child, lanes);
+    bvh_f8 entries = __builtin_ia32_permvarsf256(t, lanes);
+    memcpy(stack + top, &kids, sizeof kids);
+    memcpy(entry + top, &entries, sizeof entries);
+    return top + (int)(set >> 24);
 #else
-    return bvh_node8_test(n, r, t_max, t_near);
+    return bvh_push8(stack, entry, top, n, mask, t_near, shift);
 #endif
 }
 
@@ -371,9 +515,9 @@ typedef struct {
     float t_near;
 } bvh_todo;
 
-/* <<the walk's stack>> ch10 */
-/* Each level pushes at most seven children more than it takes. */
-#define BVH_STACK (7 * BVH_MAX_DEPTH + 1)
+/* <<the walk's stack>> ch09 */
+/* Each level pushes at most one child more than it takes. */
+#define BVH_STACK (BVH_MAX_DEPTH + 1)
 
 typedef struct {
     const bvh *t;
@@ -384,9 +528,6 @@ typedef struct {
     double best;       /* the last nearest hit given to bvh_walk_next */
     float t_max;       /* and its bound in float */
     bool sorted;       /* nearest child first; false: any order (any hit) */
-    /* <<more of a walk>> ch10 */
-    bool avx2; /* eight-wide nodes tested with AVX2 (the caller's code
-                  compiled for it: bvh_node8_test_avx2) */
 } bvh_walk;
 
 /* A leaf: its items are items[first .. first + count). */
@@ -406,8 +547,6 @@ static inline void bvh_walk_start(bvh_walk *w, const bvh *t,
     w->best = NAN, w->t_max = r->t_max; /* no bound yet: made at first */
     w->stack[0] = (bvh_todo){leaf ? root->index : 0, leaf ? root->count : 0,
                              r->t_min};
-    /* <<start more of a walk>> ch10 */
-    w->avx2 = false; /* the caller's code may say otherwise: see bvh_visit */
 }
 
 /* <<taking the children a node's test found>> ch09 */
@@ -461,19 +600,6 @@ static inline bool bvh_visit(bvh_walk *w, bvh_todo now, float t_max,
                              bvh_todo *next)
 {
     w->visited++;
-    /* <<visit a node of another width>> ch10 */
-    float t_near[8];
-    if (w->t->width == 4) {
-        const bvh_node4 *n = &w->t->nodes4[now.child];
-        unsigned mask = bvh_node4_test(n, w->r, t_max, t_near);
-        return bvh_take(w, mask, n->child, n->count, t_near, next);
-    }
-    if (w->t->width == 8) {
-        const bvh_node8 *n = &w->t->nodes8[now.child];
-        unsigned mask = w->avx2 ? bvh_node8_test_avx2(n, w->r, t_max, t_near)
-                                : bvh_node8_test(n, w->r, t_max, t_near);
-        return bvh_take(w, mask, n->child, n->count, t_near, next);
-    }
     return bvh_visit2(w, now.child, t_max, next);
 }
 
