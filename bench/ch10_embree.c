@@ -26,11 +26,11 @@
  *   bvh4-double-mesh  the same, the corners read from the mesh through
  *                the triangles' indices instead of a copy;
  *   bvh2|4|8     the BVH, binary, 4 and 8 wide, with leaves of packets;
- *   bvh8-noavx2  the 8-wide BVH with the walk kept from AVX2
- *                (bvh_allow_avx2(false)): the build's own instructions;
- *                timed only in the widths' group: bvh4, bvh8 and
- *                bvh8-noavx2 alone, on the bunny and the teapot at
- *                K = 1, as MESH-1.0-widths;
+ *   bvh4-noavx2, bvh8-noavx2  the 4- and 8-wide BVHs with the walk kept
+ *                from AVX2 (bvh_allow_avx2(false) when built): the
+ *                build's own instructions; timed only in the widths'
+ *                group: bvh4, bvh8 and these two alone, on the bunny and
+ *                the teapot at K = 1, as MESH-1.0-widths;
  *   embree       rtcIntersect1 (Embree's BVH, RTC_BUILD_QUALITY_HIGH, its
  *                spatial-split builder, a device with threads=1; the
  *                scene without RTC_SCENE_FLAG_ROBUST, as Embree's
@@ -131,6 +131,7 @@ static const method METHODS[] = {
     {"bvh2", BVH, 2, false, false, false, false},
     {"bvh4", BVH, 4, false, false, false, false},
     {"bvh8", BVH, 8, false, false, false, false},
+    {"bvh4-noavx2", BVH, 4, false, false, false, true},
     {"bvh8-noavx2", BVH, 8, false, false, false, true},
     {"fast", BVH, 0, false, false, true, false},
     {"embree", EMBREE, 0, false, false, false, false},
@@ -161,7 +162,7 @@ typedef struct {
     const char *name;
     mesh m;
     mesh bvh_of_width[9]; /* [2], [4], [8] */
-    mesh bvh8_no_avx2;    /* 8 wide, walked with the build's own lanes */
+    mesh bvh_no_avx2_of_width[9]; /* [4], [8]: walked with the build's own lanes */
     mesh bvh_float;       /* the default width's, decided in float */
     mesh bvh_double;      /* 4 wide, leaves of doubles: see double_leaves */
     triangle_corners *corners; /* bvh_double's, lane by lane */
@@ -242,7 +243,10 @@ static int mesh_corners_leaf(const mesh *m, const watertight_ray *w, const int *
     return nearest;
 }
 
-static double double_leaves_ray(const subject *s, const mesh_ray *mr, bool from_mesh)
+/* The walk of search_bvh8 (chapter 10) with these leaves, its nodes
+ * tested with AVX2 when avx2, as the program's own walk tests them. */
+BVH_INLINE double double_leaves_walk(const subject *s, const mesh_ray *mr, bool from_mesh,
+                                     bool avx2)
 {
     const mesh *m = &s->bvh_double;
     double t_max = INFINITY, near = 0, far = INFINITY;
@@ -251,6 +255,7 @@ static double double_leaves_ray(const subject *s, const mesh_ray *mr, bool from_
         !bvh_ray_of(mr->r.origin, mr->inv_dir, 0, INFINITY, &r))
         return INFINITY;
     unsigned shift = bvh_walk_rows(&r);
+    bvh_ray8 v = bvh_ray8_of(&r);
     uint32_t stack[BVH_STACK8], now = 0; /* the root */
     float entry[BVH_STACK8], bound = r.t_max;
     int top = 0, found = -1;
@@ -259,9 +264,11 @@ static double double_leaves_ray(const subject *s, const mesh_ray *mr, bool from_
         if (!(now & BVH_LEAF)) {
             const bvh_node8 *n = &m->bvh.nodes8[now];
             float t_near[8];
-            unsigned hit = bvh_node8_test(n, &r, bound, t_near);
+            unsigned hit = avx2 ? bvh_node8_lanes_avx2(n, &v, bound, t_near)
+                                : bvh_node8_test(n, &r, bound, t_near);
             if (hit != 0) {
-                top = bvh_push8(stack, entry, top, n, hit, t_near, shift);
+                top = avx2 ? bvh_push8_avx2(stack, entry, top, n, hit, t_near, shift)
+                           : bvh_push8(stack, entry, top, n, hit, t_near, shift);
                 now = stack[--top];
                 continue;
             }
@@ -286,6 +293,24 @@ static double double_leaves_ray(const subject *s, const mesh_ray *mr, bool from_
         now = stack[--top];
     }
     return t_max;
+}
+
+BVH_AVX2_TARGET __attribute__((flatten)) static double
+double_leaves_avx2(const subject *s, const mesh_ray *mr, bool from_mesh)
+{
+    return double_leaves_walk(s, mr, from_mesh, true);
+}
+
+static double double_leaves_plain(const subject *s, const mesh_ray *mr, bool from_mesh)
+{
+    return double_leaves_walk(s, mr, from_mesh, false);
+}
+
+/* The double leaves' walk, with AVX2 where the program's walk takes it. */
+static double double_leaves_ray(const subject *s, const mesh_ray *mr, bool from_mesh)
+{
+    return s->bvh_double.bvh.avx2 ? double_leaves_avx2(s, mr, from_mesh)
+                                  : double_leaves_plain(s, mr, from_mesh);
 }
 
 /* Ray k by Embree: its distance, or infinity (any: 0 for a hit); the
@@ -319,7 +344,7 @@ static double our_ray(const trace_ctx *c, long k, render_stats *stats, int *tria
 {
     const mesh *m = c->how->kind != BVH ? &c->s->m
                     : c->how->in_float  ? &c->s->bvh_float
-                    : c->how->no_avx2   ? &c->s->bvh8_no_avx2
+                    : c->how->no_avx2   ? &c->s->bvh_no_avx2_of_width[width_of(c->how)]
                                         : &c->s->bvh_of_width[width_of(c->how)];
     if (triangle != NULL)
         *triangle = -1;
@@ -422,8 +447,8 @@ static bool is_chosen(const method *how)
     return false;
 }
 
-/* The methods of the widths' own group: the exact BVH 4 and 8 wide, and 8
- * wide kept from AVX2, timed apart from the rest (a close comparison). */
+/* The methods of the widths' own group: the exact BVH 4 and 8 wide, with
+ * AVX2 and kept from it, timed apart from the rest (a close comparison). */
 static bool in_widths(const method *how)
 {
     return how->kind == BVH && !how->any && !how->in_float && how->width >= 4;
@@ -610,14 +635,17 @@ static void prepare(subject *s, RTCDevice device)
         if (!mesh_build_bvh(copy, &bp))
             exit(1);
     }
-    s->bvh8_no_avx2 = s->m;
-    s->bvh8_no_avx2.tree = (kdtree){0}, s->bvh8_no_avx2.leaf_corners = NULL;
-    bvh_params b8 = {.width = 8};
-    bvh_allow_avx2(false); /* the walk is chosen when the tree is built */
-    bool built = mesh_build_bvh(&s->bvh8_no_avx2, &b8);
-    bvh_allow_avx2(true);
-    if (!built)
-        exit(1);
+    for (int w = 4; w <= 8; w *= 2) {
+        mesh *copy = &s->bvh_no_avx2_of_width[w];
+        *copy = s->m;
+        copy->tree = (kdtree){0}, copy->leaf_corners = NULL;
+        bvh_params bp = {.width = w};
+        bvh_allow_avx2(false); /* the walk is chosen when the tree is built */
+        bool built = mesh_build_bvh(copy, &bp);
+        bvh_allow_avx2(true);
+        if (!built)
+            exit(1);
+    }
     s->bvh_float = s->bvh_of_width[bvh_default_params().width]; /* shared */
     s->bvh_float.bvh_in_float = true;
     double_leaves(s);
@@ -632,7 +660,8 @@ static void release(subject *s)
     for (int w = 2; w <= 8; w *= 2)
         mesh_free_tree(&s->bvh_of_width[w]);
     mesh_free_tree(&s->bvh_double);
-    mesh_free_tree(&s->bvh8_no_avx2);
+    for (int w = 4; w <= 8; w *= 2)
+        mesh_free_tree(&s->bvh_no_avx2_of_width[w]);
     free(s->corners), free(s->lane_items);
     rtcReleaseScene(s->scene), rtcReleaseScene(s->scene_medium);
     mesh_free(&s->m);
