@@ -1,8 +1,9 @@
 /* ch10_wide.c: chapter 10's wide nodes and packet leaves: the same
  * answers as brute force and as chapter 8's kd-tree, bit for bit, at
  * widths 4 and 8 (with AVX2 chosen at run time and without); vector and
- * scalar node tests that agree; octant orders and pushes; wide nodes and packets that hold their
- * items; the BVH's bytes; and the accelerator bvh-float. */
+ * scalar node tests that agree; octant orders and pushes; wide nodes and
+ * packets that hold their items; the BVH's bytes; and the accelerator
+ * bvh-float. */
 #include <check.h>
 #include <math.h>
 #include <stdint.h>
@@ -127,7 +128,8 @@ static ray random_ray(const bvh_node8 *n, int k)
     if (k % 3 == 0) /* on a face's plane and parallel to it: 0 * inf */
         r.origin.x = n->face[k % 2 ? 0 : 1][k % 8], r.dir.x = 0;
     if (k % 5 == 0) /* from a corner, along an edge */
-        r.origin = (vec3){n->face[0][k % 8], n->face[2][k % 8], n->face[5][k % 8]},
+        r.origin = (vec3){n->face[0][k % 8], n->face[2][k % 8],
+                          n->face[5][k % 8]},
         r.dir = (vec3){k % 2 ? 1 : -0.0, 0, 0};
     return r;
 }
