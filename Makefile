@@ -41,6 +41,8 @@
 #   make WERROR=1     warnings are errors (CI)
 #   make SCALAR=1, NATIVE=1   chapter 10's BVH tests in scalar code, or with
 #                     every instruction of this machine
+#   make ALONE=1 test-chNN   chapter NN's program and suites built without
+#                     the chapters before it (CI's sanitized pass)
 
 .DELETE_ON_ERROR:
 .SECONDARY:
@@ -237,7 +239,10 @@ ch$(1): deps $(BIN)/ch$(1)
 
 # A file compiled in the chapter before is compiled first there, so that
 # its object can serve here when nothing it was compiled from changed.
-ifneq ($(call previous,$(1)),)
+# make ALONE=1 builds a chapter without the chapters before it (its every
+# file compiled): quicker where one late chapter is all that is wanted, as
+# in CI's sanitized pass.
+ifneq ($(if $(ALONE),,$(call previous,$(1))),)
 $$(patsubst %.c,$$(O$(1))/%.o,$$(filter $$(SRC$(call previous,$(1))),$$(SRC$(1)))): \
   $$(O$(1))/%.o: | $(B)/obj/ch$(call previous,$(1))/%.o
 $$(patsubst tests/%.c,$$(O$(1))/tests/%.o,$$(filter $$(SUITES$(call previous,$(1))),$$(SUITES$(1)))): \
