@@ -213,12 +213,13 @@ typedef float bvh_f4 __attribute__((vector_size(16)));
 
 /* x in every lane: lane 0 of a vector of four, shuffled into all eight,
  * which compilers make one broadcast (the eight-lane initializer, some
- * eight inserts). */
-BVH_INLINE bvh_f8 bvh_splat8(float x)
-{
-    bvh_f4 v = {x};
-    return __builtin_shufflevector(v, v, 0, 0, 0, 0, 0, 0, 0, 0);
-}
+ * eight inserts). A macro, not a function, so that it is compiled with
+ * the instructions of the function that uses it: Clang will not let a
+ * function with AVX call one without it that returns eight floats (the
+ * two would pass them differently), inlined or not. */
+#define bvh_splat8(x)                                                        \
+    __builtin_shufflevector((bvh_f4){(x)}, (bvh_f4){0}, 0, 0, 0, 0, 0, 0, 0, \
+                            0)
 
 #ifdef __SSE__ /* two halves of four */
 BVH_INLINE bvh_f4 bvh_low(bvh_f8 a)
@@ -301,21 +302,20 @@ BVH_INLINE bvh_ray8 bvh_ray8_of(const bvh_ray *r)
     return v;
 }
 
-/* Where the ray enters (row r->near[a]) and leaves (r->far[a]) the eight
- * slabs of axis a: rows of n->face, as the walk's ray names them. */
-BVH_INLINE bvh_f8 bvh_enter8(const bvh_node8 *n, const bvh_ray8 *r, int a)
-{
-    bvh_f8 face;
-    memcpy(&face, n->face[r->near[a]], sizeof face);
-    return (face - r->o_near[a]) * r->inv[a];
-}
+/* A row of eight faces read as a vector wherever it lies, as memcpy
+ * would read it. */
+typedef float bvh_f8_row
+    __attribute__((vector_size(32), aligned(4), may_alias));
 
-BVH_INLINE bvh_f8 bvh_leave8(const bvh_node8 *n, const bvh_ray8 *r, int a)
-{
-    bvh_f8 face;
-    memcpy(&face, n->face[r->far[a]], sizeof face);
-    return (face - r->o_far[a]) * r->inv[a];
-}
+/* Where the ray enters (row r->near[a]) and leaves (r->far[a]) the eight
+ * slabs of axis a: rows of n->face, as the walk's ray names them. Macros,
+ * for the reason bvh_splat8 is one. */
+#define bvh_enter8(n, r, a)                                                  \
+    ((*(const bvh_f8_row *)(n)->face[(r)->near[a]] - (r)->o_near[a]) *       \
+     (r)->inv[a])
+#define bvh_leave8(n, r, a)                                                  \
+    ((*(const bvh_f8_row *)(n)->face[(r)->far[a]] - (r)->o_far[a]) *         \
+     (r)->inv[a])
 
 /* The text of the node test (below) names its operations max8, min8 and
  * mask8: here those of the build's own instructions. */
