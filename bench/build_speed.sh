@@ -9,7 +9,7 @@
 #   make test-ch04     a fresh clone of its own, one chapter's suites
 #   make grade-ch02    after a graded workbook, exercise 2.1's chunk edited
 #   make grade-ch08    the same, exercise 8.1's chunk edited
-#   make grade-ch10    the same, exercise 10.1's chunk edited (each grade
+#   make grade-ch12    the same, exercise 12.1's chunk edited (each grade
 #                      after a grade of its chapter with the edits before,
 #                      so that one chunk is new to it)
 #   .ci/run            a fresh clone of its own, CI=true (with --ci only:
@@ -58,11 +58,14 @@ timed() {
   fi
 }
 
-# edit_one_chunk EX FILE: exercise EX's code in workbook/FILE gets a
-# comment line.
+# edit_one_chunk EX NN: exercise EX's code in chapter NN's workbook file
+# gets a comment line; fails when there is no such exercise.
 edit_one_chunk() {
+  f=$(ls workbook/"$2"-*.md 2>/dev/null | head -n 1)
+  [ -n "$f" ] && grep -q "ex=\"$1\"" "$f" ||
+    { echo "build_speed: no exercise $1 in workbook/$2-*.md" >&2; return 1; }
   awk -v ex="ex=\"$1\"" 'index($0, ex) { print; print "/* edited */"; next } { print }' \
-    "workbook/$2" > "workbook/$2.new" && mv "workbook/$2.new" "workbook/$2"
+    "$f" > "$f.new" && mv "$f.new" "$f"
 }
 
 k=0
@@ -75,13 +78,13 @@ while [ "$k" -lt "$runs" ]; do
   timed "make test-ch04, fresh clone" "$d" make test-ch04
   # A solved workbook, graded once; then one chunk edited and graded again.
   (cd "$d" && make -s workbook SOLVED=1 && sed -i '/^\/\/ NOT DONE/d' workbook/*.md &&
-     make -s grade-ch02 grade-ch08 grade-ch10) > "$scratch/grade-setup.log" 2>&1
-  for edit in "02 2.1 02-spheres.md" "08 8.1 08-kdtree.md" "10 10.1 10-antialiasing.md"; do
+     make -s grade-ch02 grade-ch08 grade-ch12) > "$scratch/grade-setup.log" 2>&1
+  for edit in "02 2.1" "08 8.1" "12 12.1"; do
     set -- $edit
     # graded again first, untimed: the edits of the chapters before are
     # in its program too, and only this one chunk is new to it
     (cd "$d" && make -s grade-ch$1) >> "$scratch/grade-setup.log" 2>&1
-    (cd "$d" && edit_one_chunk "$2" "$3")
+    (cd "$d" && edit_one_chunk "$2" "$1") || exit 1
     timed "make grade-ch$1, one chunk edited" "$d" make grade-ch$1
   done
   if [ -n "$ci" ]; then
@@ -108,7 +111,7 @@ load=$(cut -d ' ' -f 1 /proc/loadavg 2>/dev/null || echo "?")
       target["make test-ch04, fresh clone"] = "20"
       target["make grade-ch02, one chunk edited"] = "5"
       target["make grade-ch08, one chunk edited"] = "5"
-      target["make grade-ch10, one chunk edited"] = "10"
+      target["make grade-ch12, one chunk edited"] = "10"
       target[".ci/run, fresh clone"] = "420"
       for (i = 1; i <= n; i++) {
         s = order[i]; m = split(substr(step[s], 2), v, " ")
