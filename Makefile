@@ -96,9 +96,11 @@ $(B)/obj/%/tests/ch10_packets.o: TEST_OPT := -O1
 # The first pass, forked and with time limits, has stopped any test that hangs.
 RUNNER_ENV := $(if $(SAN),RUNNER_FORKLESS=1)
 # In a handout (below) the static helpers and variables that only an
-# exercise's code uses go unused until the student writes it.
+# exercise's code uses go unused until the student writes it, and so do the
+# parameters of a function whose exercise is a fragment of its body (its
+# stub, a return of zero, cannot call the book's compiled code).
 ALL_CFLAGS = $(CSTD) $(WARN) $(HANDOUT_WARN) $(OPT) $(ARCH) -pthread $(CFLAGS) -MMD -MP
-HANDOUT_WARN = $(if $(HANDOUT),-Wno-unused-function -Wno-unused-variable $(if $(BOOK_CODE),,$(STUB_WARN)))
+HANDOUT_WARN = $(if $(HANDOUT),-Wno-unused-function -Wno-unused-variable -Wno-unused-parameter $(if $(BOOK_CODE),,$(STUB_WARN)))
 # (and where the stubs stand in, their parameters and variables too)
 STUB_WARN = -Wno-unused-parameter -Wno-unused-variable -Wno-unused-but-set-variable -Wno-missing-braces
 

@@ -721,12 +721,8 @@ static void expect_same_with_either(const char *scene_path, const char *size)
 
 START_TEST(test_the_bunny_scene_is_the_same_with_either_tree)
 {
-    /* the committed tangle's scene, or (a handout has no src/) the
-     * build's */
-    const char *scene = "src/ch09/scenes/ch08-bunny.scene";
-    if (!file_exists(scene))
-        scene = "build/tangle/ch09/scenes/ch08-bunny.scene";
-    expect_same_with_either(scene, "200x150");
+    expect_same_with_either(chapter_scene("ch09", "ch08-bunny.scene"),
+                            "200x150");
 }
 END_TEST
 

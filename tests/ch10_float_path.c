@@ -83,7 +83,7 @@ START_TEST(test_float_shadows_are_blocked_as_often_as_exact_ones)
     /* Offset by double's bound, 21,951 of these 63,590 shadow rays were
      * blocked in float against 11,970 exact: rays from lit points that
      * found their own triangle again. */
-    const char *scene = "src/ch10/scenes/ch08-bunny.scene";
+    const char *scene = chapter_scene("ch10", "ch08-bunny.scene");
     char errors[4096];
     shadow_count n[2];
     const char *accelerators[2] = {"bvh", "bvh-float"};
@@ -113,8 +113,9 @@ static const char *chapter_of_bin(void)
 
 START_TEST(test_the_float_path_draws_every_scene_as_the_exact_path)
 {
-    char folder[64], scene[320], errors[4096];
-    snprintf(folder, sizeof folder, "src/%s/scenes", chapter_of_bin());
+    char folder[128], scene[400], errors[4096];
+    snprintf(folder, sizeof folder, "%s",
+             chapter_scene_folder(chapter_of_bin()));
     DIR *dir = opendir(folder);
     ck_assert_msg(dir != NULL, "no folder %s", folder);
     int scenes = 0, drawn = 0;

@@ -90,6 +90,27 @@ static inline bool file_exists(const char *path)
     return stat(path, &st) == 0;
 }
 
+/* Chapter NN's folder of scenes: the committed tangle's (src/chNN/scenes),
+ * or, in a handout, which has no src/, the build's tangle of it. */
+static inline const char *chapter_scene_folder(const char *chapter)
+{
+    static char path[128];
+    snprintf(path, sizeof path, "src/%s/scenes", chapter);
+    if (!file_exists(path))
+        snprintf(path, sizeof path, "build/tangle/%s/scenes", chapter);
+    return path;
+}
+
+/* The scene file name of chapter NN's folder of scenes. */
+static inline const char *chapter_scene(const char *chapter,
+                                        const char *name)
+{
+    static char path[256];
+    snprintf(path, sizeof path, "%s/%s", chapter_scene_folder(chapter),
+             name);
+    return path;
+}
+
 /* How many entries the folder has (. and .. not counted). */
 static inline int count_entries(const char *dir)
 {

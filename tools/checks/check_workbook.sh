@@ -13,7 +13,8 @@
 # and runs a few tests. The exercises are named by their chunk or file,
 # not by number (a chapter put before another renumbers them). Checks that
 #   untouched: an untouched workbook grades "Progress: 0 of N", N >= 36, at
-#      least 4 exercises a chapter, exit 0; make workbook overwrites no
+#      least 4 exercises a chapter, exit 0; no stub is the book's code;
+#      make workbook overwrites no
 #      file; no task holds TeX; make grade EX=N.k exits 0 for a right 1.1,
 #      and not 0 for 1.2, not started;
 #   stubs: with every stub started, no exercise passes (each stub fails
@@ -134,6 +135,12 @@ solution() {
         "$top/workbook-solved/$(file_of "$1")"
 }
 
+# The stub of exercise KEY, as make workbook writes it.
+stub_code() {
+    awk -v id="ex=\"$(id_of "$1")\"" 'index($0, id) { code = 1; next } code && /^```/ { exit } code && !/^\/\/ NOT DONE/' \
+        "$top/workbook-stubs/$(file_of "$1")"
+}
+
 # answer KEY FILE: exercise KEY started with the code in FILE.
 answer() {
     awk -v id="$(id_of "$1")" -v answer="$2" '
@@ -189,6 +196,11 @@ check_untouched() {
     # (a formula may span lines: a line with a dollar or a command is TeX)
     tex=$(awk '/^```/ { code = !code; next } !code && /\$[^ ]|\\[a-zA-Z]+/' "$wb"/*.md | head -3)
     [ -z "$tex" ] || fail "a task holds TeX: $tex"
+    # no stub is its exercise's own code: the handout would hold it
+    same=$(cut -f 5 "$list" | while read -r key; do
+        [ "$(stub_code "$key")" != "$(solution "$key")" ] || printf '%s ' "$(id_of "$key")"
+    done)
+    [ -z "$same" ] || fail "these exercises' stubs are the book's code: $same"
     make_grade grade
     [ "$status" = 0 ] || fail "an untouched workbook should grade with status 0"
     grep -qx "Progress: 0 of $n exercises" "$t/out" || fail "expected Progress: 0 of $n"

@@ -167,6 +167,10 @@ function bc_function(sig_text, sig, body, one_line_body, mode, header,
 # (forward, export or book; see above); HEADER: the chunk is in a header.
 function book_form(code, mode, header,    lines, n, i, out, depth, sig,
                    sig_text, in_body, line, body, one) {
+    # a fragment of a body has no function to call the book's through:
+    # the handout gets its stub, not its code
+    if (mode == "forward" && stub_is_fragment(code))
+        return stub_of(code)
     n = split(code, lines, "\n")
     out = header ? "" : bc_macros()
     depth = 0

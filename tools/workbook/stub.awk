@@ -5,7 +5,8 @@
 # every function replaced by a comment and a return of zero: what is not a
 # function body (comments, #include, types, prototypes, tables, <<chunk>>
 # lines between functions) is kept, so that the stub declares what the
-# book's code declares. A <<chunk>> line in a body stays too, so that the
+# book's code declares; a fragment of a body (stub_is_fragment) becomes a
+# return of zero. A <<chunk>> line in a body stays too, so that the
 # chapters that add to that chunk still find it: when the body returns a
 # variable of its own, the stub declares it, zero, before the chunk lines. The book writes a function's "{" alone at column 0,
 # or the whole function on one line; a body is what lies between that "{"
@@ -94,7 +95,16 @@ function stub_body(type,    i, chunks, name, declared) {
            "    return " name ";\n"
 }
 
+# A function's body in pieces, not a function (statements at column 0 that
+# return, as a chunk that the book includes inside a function): its stub
+# is a return of zero.
+function stub_is_fragment(code) {
+    return code ~ /(^|\n)return[ \t;(]/
+}
+
 function stub_of(code,    lines, n, i, out, depth, sig, in_body, line, type) {
+    if (stub_is_fragment(code))
+        return "return 0; /* your code here */"
     n = split(code, lines, "\n")
     out = ""
     depth = 0
