@@ -44,10 +44,10 @@
 #      lines; 8.3's loop one edge short is failing, every failing test
 #      laid on it; 2.4 without its line <<the sphere's hit-point bound>>
 #      fails at chapter 2, saying so, its file left out;
-#   11.3 with static first and last, and 12.1 with a static hash state,
-#      in one workbook: data races, caught by ThreadSanitizer (where the
-#      compiler has it) and laid on their exercises; 12.1's hash also
-#      leaves out the axis, which its own test sees.
+#   11.3 with static first and last, and 12.1 with a static hash state:
+#      data races, caught by ThreadSanitizer (where the compiler has it)
+#      and laid on their exercises; 12.1's hash also leaves out the axis,
+#      which its own test sees.
 # Prints what went wrong in each failed check and exits 1.
 set -u
 MAKE=${MAKE:-make}
@@ -420,24 +420,32 @@ check_lost_line() {
         fail "the lost chunk line should be reported at its exercise in $wb/$(file_of sphere.c)"
 }
 
-# State the threads share, in one workbook (one build with ThreadSanitizer):
-# 11.3 with static first and last, and 12.1 with a static hash state that
-# also leaves out the axis, which its own test sees.
-check_races() {
-    use races
+# state the threads share: a static variable in a function
+check_band_race() {
+    use band-race
     fresh
     plant "a band's job" 's/^    int first = band_of_turn/    static int first;\
     first = band_of_turn/; s/^    int last = first/    static int last;\
     last = first/'
+    grade "$(chapter_of "a band's job")" \
+        GRADE_TESTS="$(tests_of "a band's job") test_a_tall_image_on_four_threads_is_one_renders"
+    grep -q "^(no ThreadSanitizer" "$t/out" && return 0
+    [ "$status" != 0 ] || fail "a data race should not grade with status 0"
+    expect "a band's job" "data race (ThreadSanitizer) at $wb/$(file_of "a band's job"):"
+    expect "a band's job" "a static variable, which every thread shares"
+}
+
+check_hash_race() {
+    use hash-race
+    fresh
+    # 12.1 keeps its hash in a static variable, and leaves out the axis
     plant "the sample hash" 's/^    uint64_t h = mix64(/    static uint64_t h;\
     h = mix64(/; s/h = mix64(h ^ ((uint64_t)(uint32_t)k << 1 | (uint64_t)(axis \& 1)));/h = mix64(h ^ (uint64_t)(uint32_t)k);/'
     grade "$(chapter_of "the sample hash")" \
-        GRADE_TESTS="$(tests_of "a band's job" "the sample hash") test_a_tall_image_on_four_threads_is_one_renders test_a_jittered_render_is_the_same_on_any_thread_count"
-    [ "$status" != 0 ] || fail "11.3 and 12.1 planted should not grade with status 0"
+        GRADE_TESTS="$(tests_of "the sample hash") test_a_jittered_render_is_the_same_on_any_thread_count"
+    [ "$status" != 0 ] || fail "12.1 planted should not grade with status 0"
     expect "the sample hash" "the axis must change the number"
     grep -q "^(no ThreadSanitizer" "$t/out" && return 0
-    expect "a band's job" "data race (ThreadSanitizer) at $wb/$(file_of "a band's job"):"
-    expect "a band's job" "a static variable, which every thread shares"
     # the race, which the verdict does not show behind the failing test
     grep -q "^$(id_of "the sample hash")	a data race (ThreadSanitizer) at $wb/$(file_of "the sample hash"):.* on h, a static variable" \
         "$t/build/ch$(chapter_of "the sample hash")/races.tsv" ||
@@ -445,7 +453,7 @@ check_races() {
 }
 
 # The checks, the longest first (WB_CHECKS: those named only).
-CHECKS="${WB_CHECKS:-stubs solved races untouched crash camera shared clip_short
+CHECKS="${WB_CHECKS:-stubs solved hash_race band_race untouched crash camera shared clip_short
 clip_warnings loop sheet_snell sheet_normal unstratified seeds inside far_root
 lost_line cone directional digits return sheet_sphere sheet_half_vector
 sheet_tone_map}"
