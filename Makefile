@@ -384,10 +384,13 @@ ifneq ($(HAVE_EMBREE),yes)
 BENCHES  := $(filter-out %_embree,$(BENCHES))
 endif
 $(B)/bench/ch10_embree: BENCH_LIBS := -lembree3
-# Chapter 11's build chart shows Embree's builds beside ours where it can.
+# Chapter 11's build chart, and chapter 10's count of instructions a ray,
+# show Embree beside ours where they can.
 ifeq ($(HAVE_EMBREE),yes)
 $(B)/bench/ch11_build: BENCH_LIBS := -lembree3
 $(B)/obj/ch11/bench/ch11_build.o: ALL_CFLAGS += -DHAVE_EMBREE
+$(B)/bench/ch10_instructions: BENCH_LIBS := -lembree3
+$(B)/obj/ch10/bench/ch10_instructions.o: ALL_CFLAGS += -DHAVE_EMBREE
 endif
 
 src: $(foreach n,$(NUMS),src-ch$(n))

@@ -69,6 +69,11 @@
  *   hits,MESH-K,0,error,METHOD_largest_t_error  (their largest relative
  *       difference of t from the exact one, over the rays where both hit
  *       the same triangle: another triangle counts as another answer)
+ *   METHOD,bunny-1.0/KIND,ns_per_ray,...  and  ratio,METHOD@bunny-1.0/KIND
+ *       (the bunny's rays at K = 1 of one kind, timed apart: KIND miss-box,
+ *       the rays that miss the mesh's box; enter-miss, those that enter it
+ *       and hit nothing; hit, those that hit; by the default BVH, fast,
+ *       embree and embree-medium), with hits,bunny-1.0/KIND,0,COUNT,rays
  *   vector,WIDTH_NAME,0,0,bvh_vector_width  (the node test's instructions)
  *   default,bvhN,0,0,default_method  (the program's default: N wide, where
  *       bvh-any, fast and fast-any are N wide as well) */
@@ -76,6 +81,7 @@
 #include <string.h>
 
 #include "ch09_meshes.h"
+#include "embree_scene.h"
 #include "timing.h"
 
 /* The rays a side of the image: the failure meshes, where a ray costs
@@ -83,31 +89,6 @@
 enum { SIDE = 1024, FAILURE_SIDE = 256 };
 
 /* ---------------------------------------------------------------- Embree */
-
-static RTCScene embree_scene(RTCDevice device, const mesh *m,
-                             enum RTCBuildQuality quality)
-{
-    RTCScene scene = rtcNewScene(device);
-    rtcSetSceneBuildQuality(scene, quality);
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    float *v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                       3 * sizeof(float), (size_t)m->vertex_count);
-    for (int k = 0; k < m->vertex_count; k++) {
-        v[3 * k] = (float)m->vertices[k].x;
-        v[3 * k + 1] = (float)m->vertices[k].y;
-        v[3 * k + 2] = (float)m->vertices[k].z;
-    }
-    unsigned *ix = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                           3 * sizeof(unsigned), (size_t)m->triangle_count);
-    for (int k = 0; k < m->triangle_count; k++)
-        for (int c = 0; c < 3; c++)
-            ix[3 * k + c] = (unsigned)m->triangles[k].v[c];
-    rtcSetGeometryBuildQuality(g, quality);
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(scene, g);
-    rtcReleaseGeometry(g);
-    return scene;
-}
 
 /* ---------------------------------------------------------------- the methods */
 
@@ -570,6 +551,64 @@ static void print_rays(const trace_ctx *c, const bench_case *cases, const bench_
     }
 }
 
+/* The kind of ray f for s: 0, it misses the mesh's box; 1, it enters the
+ * box and hits nothing; 2, it hits (the kd-tree's exact answer). */
+static int kind_of(const subject *s, const float_ray *f)
+{
+    ray r = ray_of(f);
+    mesh_ray mr = mesh_ray_of(r);
+    double near = 0, far = INFINITY;
+    if (!box_clip(&s->m.bounds, r.origin, mr.inv_dir, &near, &far))
+        return 0;
+    render_stats stats = {0};
+    triangle_hit th;
+    return mesh_nearest(&s->m, &mr, 0, INFINITY, &th, &stats) >= 0 ? 2 : 1;
+}
+
+/* Is how timed on each kind of ray apart: the default BVH, the float
+ * path and Embree's two builds, by closest hit? */
+static bool in_kinds(const method *how)
+{
+    return !how->any && (is_default(how) || strcmp(how->name, "fast") == 0 ||
+                          how->kind == EMBREE);
+}
+
+/* The n rays of s at distance K sorted by kind, each kind timed apart by
+ * the methods of in_kinds, as MESH-K/KIND (miss-box, enter-miss, hit). */
+static void time_kinds(const subject *s, const float_ray *rays, long n, double K)
+{
+    static const char *const KINDS[] = {"miss-box", "enter-miss", "hit"};
+    float_ray *kept = malloc((size_t)n * sizeof *kept);
+    int *kind = malloc((size_t)n * sizeof *kind);
+    if (kept == NULL || kind == NULL)
+        exit(1);
+    for (long k = 0; k < n; k++)
+        kind[k] = kind_of(s, &rays[k]);
+    for (int which = 0; which < 3; which++) {
+        long count = 0;
+        for (long k = 0; k < n; k++)
+            if (kind[k] == which)
+                kept[count++] = rays[k];
+        char param[64];
+        snprintf(param, sizeof param, "%s-%.1f/%s", s->name, K, KINDS[which]);
+        trace_ctx c[N_METHODS];
+        bench_case cases[N_METHODS];
+        bench_timing t[N_METHODS];
+        int m = 0;
+        for (int j = 0; j < N_METHODS && count > 0; j++)
+            if (in_kinds(&METHODS[j])) {
+                c[m] = (trace_ctx){&METHODS[j], s, kept, count};
+                cases[m] = (bench_case){METHODS[j].name, param, run_rays, &c[m], count};
+                m++;
+            }
+        printf("hits,%s,0,%ld,rays\n", param, count);
+        bench_time_cases(cases, m, t);
+        print_rays(c, cases, t, m);
+        fflush(stdout);
+    }
+    free(kept), free(kind);
+}
+
 /* Every method's rays of subject s at distance K, timed together (widths:
  * the widths' group alone, as MESH-K-widths). */
 static void time_rays(const subject *s, double K, bool widths)
@@ -593,6 +632,8 @@ static void time_rays(const subject *s, double K, bool widths)
     print_rays(c, cases, t, n);
     print_agreement(c, n, param);
     fflush(stdout);
+    if (strcmp(s->name, "bunny") == 0 && K == 1.0 && !widths)
+        time_kinds(s, rays, n_rays, K);
     free(rays);
 }
 

@@ -286,10 +286,7 @@ static inline double double_after(double x)
 
 static float_interval float_interval_of(double t_min, double t_max)
 {
-    float up = (float)t_max;
-    if (up < t_max)
-        up = nextafterf(up, INFINITY);
-    return (float_interval){up, t_min >= 0 ? -1 : 0};
+    return (float_interval){float_up_by_bits(t_max), t_min >= 0 ? -1 : 0};
 }
 
 /* The program's filter and decision: in vectors, unless built with

@@ -13,6 +13,7 @@
 #define TRIANGLE_PACKET_H
 
 #include <stdint.h>
+#include <string.h>
 #include "triangle.h"
 
 /* <<a packet of triangles>> ch10 */
@@ -67,6 +68,21 @@ typedef struct {
 packet_ray packet_ray_of(const watertight_ray *w);
 
 /* <<the tests of packets>> ch10 */
+/* x rounded to the float at or above it, as chapter 9's bvh_float_up,
+ * with no call: read as an integer, a float's bits count its magnitude,
+ * so that one more (one less below zero) is nextafterf's step up. */
+static inline float float_up_by_bits(double x)
+{
+    float f = (float)x;
+    if (!((double)f < x)) /* exact, rounded up already, or a NaN */
+        return f;
+    int32_t bits;
+    memcpy(&bits, &f, sizeof bits);
+    bits += f >= 0 ? 1 : -1; /* below zero, up is towards it */
+    memcpy(&f, &bits, sizeof f);
+    return f;
+}
+
 /* The lanes of p that chapter 4's test could hit in (t_min, t_max), lane
  * k in bit k: computed in vectors, or (alone) lane by lane, which gives
  * the same bits. */

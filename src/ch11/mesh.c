@@ -727,21 +727,27 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
     stats->box_tests++;
     if (bvh_misses_box(&m->bounds, mr, t_min, t_max))
         return -1; /* missing the box, the ray misses every triangle */
-    bvh_ray r;
+    bvh_ray r;  /* the plain walk's ray */
+    bvh_ray8 v; /* AVX2's, in vectors */
     unsigned shift;
-    if (!bvh_wide_ray_of(mr->r.origin, mr->inv_dir, t_min, t_max, &r,
-                         &shift))
+    float ray_bound; /* the bound of the boxes that no hit has narrowed */
+    if (avx2 ? !bvh_ray8_setup_avx2(mr->r.origin, mr->inv_dir, t_min, t_max,
+                                    &v, &ray_bound, &shift)
+             : !bvh_wide_ray_of(mr->r.origin, mr->inv_dir, t_min, t_max, &r,
+                                &shift))
         return mesh_search_all(m, mr, t_min, t_max, out, stats);
-    bvh_ray8 v = bvh_ray8_of(&r); /* in vectors, once */
+    if (!avx2)
+        ray_bound = r.t_max;
+    const bvh_node8 *tree = m->bvh.nodes8; /* a local: never read again */
     uint32_t stack[BVH_STACK8], now = 0; /* the root */
-    float entry[BVH_STACK8], bound = r.t_max;
+    float entry[BVH_STACK8], bound = ray_bound;
     int top = 0, found = -1;
     long long nodes = 0, tests = 0, decided = 0;
     packet_ray pr;
     bool made = false; /* pr: made at the first leaf, if any */
     for (;;) {
         if (!(now & BVH_LEAF)) {
-            const bvh_node8 *n = &m->bvh.nodes8[now];
+            const bvh_node8 *n = &tree[now];
             float t_near[8];
             unsigned hit = avx2 ? bvh_node8_lanes_avx2(n, &v, bound, t_near)
                                 : bvh_node8_test(n, &r, bound, t_near);
@@ -773,8 +779,8 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
             }
             if (k >= 0) {
                 found = k, t_max = out->t;
-                float b = bvh_float_up(t_max * (1 + BVH_SLACK));
-                bound = b < r.t_max ? b : r.t_max;
+                float b = float_up_by_bits(t_max * (1 + BVH_SLACK));
+                bound = b < ray_bound ? b : ray_bound;
             }
         }
         while (top > 0 && !(entry[top - 1] <= bound))

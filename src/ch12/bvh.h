@@ -211,15 +211,17 @@ typedef float bvh_f4 __attribute__((vector_size(16)));
 
 #define BVH_INLINE static inline __attribute__((always_inline))
 
-/* x in every lane: lane 0 of a vector of four, shuffled into all eight,
- * which compilers make one broadcast (the eight-lane initializer, some
- * eight inserts). A macro, not a function, so that it is compiled with
+/* x in every lane: the eight-lane initializer, which GCC and Clang make
+ * one broadcast. A macro, not a function, so that it is compiled with
  * the instructions of the function that uses it: Clang will not let a
  * function with AVX call one without it that returns eight floats (the
  * two would pass them differently), inlined or not. */
 #define bvh_splat8(x)                                                        \
-    __builtin_shufflevector((bvh_f4){(x)}, (bvh_f4){0}, 0, 0, 0, 0, 0, 0, 0, \
-                            0)
+    __extension__({                                                          \
+        float bvh_x_ = (x); /* x read once */                                \
+        (bvh_f8){bvh_x_, bvh_x_, bvh_x_, bvh_x_,                             \
+                 bvh_x_, bvh_x_, bvh_x_, bvh_x_};                            \
+    })
 
 #ifdef __SSE__ /* two halves of four */
 BVH_INLINE bvh_f4 bvh_low(bvh_f8 a)
@@ -473,6 +475,84 @@ BVH_INLINE bool bvh_wide_ray_of(vec3 origin, vec3 inv, double t_min,
     r->t_max = bvh_float_up(t_max * (1 + BVH_SLACK));
     *shift = 3 * octant;
     return near;
+}
+
+/* bvh_wide_ray_of and bvh_ray8_of at once, with no bvh_ray between them:
+ * the walk's ray in vectors, bvh_ray_of's numbers to the bit; the bound
+ * of the boxes (bvh_ray_of's t_max) in *ray_bound. */
+BVH_INLINE bool bvh_ray8_setup(vec3 origin, vec3 inv, double t_min,
+                               double t_max, bvh_ray8 *v, float *ray_bound,
+                               unsigned *shift)
+{
+    const double o[3] = {origin.x, origin.y, origin.z};
+    const double q[3] = {inv.x, inv.y, inv.z};
+    unsigned octant = 0;
+    bool near = true, in_float = true;
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; a++) {
+        near &= (fabs(o[a]) <= 0x1p100) & (fabs(q[a]) >= 0x1p-100);
+        in_float &= (double)(float)o[a] == o[a];
+        octant |= (unsigned)(signbit(q[a]) != 0) << a;
+    }
+    if (!near)
+        return false;
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; a++) {
+        int down = octant >> a & 1; /* enters by the upper face */
+        float o_near = (float)o[a], o_far = o_near;
+        if (!in_float) /* rounded outward, as bvh_round_origin does */
+            o_near = down ? bvh_float_down(o[a]) : bvh_float_up(o[a]),
+            o_far = down ? bvh_float_up(o[a]) : bvh_float_down(o[a]);
+        v->o_near[a] = bvh_splat8(o_near), v->o_far[a] = bvh_splat8(o_far);
+        v->inv[a] = bvh_splat8((float)q[a]);
+        v->near[a] = 2 * a + down, v->far[a] = 2 * a + 1 - down;
+    }
+    v->t_min = bvh_float_down(t_min);
+    *ray_bound = bvh_float_up(t_max * (1 + BVH_SLACK));
+    *shift = 3 * octant;
+    return true;
+}
+
+typedef double bvh_d4 __attribute__((vector_size(32)));
+typedef int64_t bvh_l4 __attribute__((vector_size(32)));
+
+/* bvh_ray8_setup in AVX's lanes, the three axes at once (the fourth lane
+ * a harmless 1): to be called only where bvh_walks_with_avx2() says yes.
+ * An origin that is not a float takes the axis-by-axis way. */
+BVH_AVX2_TARGET static inline bool
+bvh_ray8_setup_avx2(vec3 origin, vec3 inv, double t_min, double t_max,
+                    bvh_ray8 *v, float *ray_bound, unsigned *shift)
+{
+#if BVH_HAS_AVX2_PATH
+    const bvh_d4 o = {origin.x, origin.y, origin.z, 1};
+    const bvh_d4 q = {inv.x, inv.y, inv.z, 1};
+    const bvh_l4 size = {INT64_MAX, INT64_MAX, INT64_MAX, INT64_MAX};
+    bvh_l4 near = ((bvh_d4)((bvh_l4)o & size) <= 0x1p100) &
+                  ((bvh_d4)((bvh_l4)q & size) >= 0x1p-100);
+    bvh_f4 o_f = __builtin_convertvector(o, bvh_f4);
+    bvh_l4 in_float = __builtin_convertvector(o_f, bvh_d4) == o;
+    if (__builtin_ia32_movmskpd256((bvh_d4)(near & in_float)) != 15)
+        return bvh_ray8_setup(origin, inv, t_min, t_max, v, ray_bound, shift);
+    bvh_f4 q_f = __builtin_convertvector(q, bvh_f4);
+    unsigned octant = (unsigned)__builtin_ia32_movmskpd256(q); /* signs */
+    v->o_near[0] = v->o_far[0] = __builtin_shufflevector(o_f, o_f, 0, 0, 0, 0, 0, 0, 0, 0);
+    v->o_near[1] = v->o_far[1] = __builtin_shufflevector(o_f, o_f, 1, 1, 1, 1, 1, 1, 1, 1);
+    v->o_near[2] = v->o_far[2] = __builtin_shufflevector(o_f, o_f, 2, 2, 2, 2, 2, 2, 2, 2);
+    v->inv[0] = __builtin_shufflevector(q_f, q_f, 0, 0, 0, 0, 0, 0, 0, 0);
+    v->inv[1] = __builtin_shufflevector(q_f, q_f, 1, 1, 1, 1, 1, 1, 1, 1);
+    v->inv[2] = __builtin_shufflevector(q_f, q_f, 2, 2, 2, 2, 2, 2, 2, 2);
+#pragma GCC unroll 3
+    for (int a = 0; a < 3; a++) {
+        int down = octant >> a & 1; /* enters by the upper face */
+        v->near[a] = 2 * a + down, v->far[a] = 2 * a + 1 - down;
+    }
+    v->t_min = bvh_float_down(t_min);
+    *ray_bound = bvh_float_up(t_max * (1 + BVH_SLACK));
+    *shift = 3 * (octant & 7);
+    return true;
+#else
+    return bvh_ray8_setup(origin, inv, t_min, t_max, v, ray_bound, shift);
+#endif
 }
 
 /* For each mask of eight lanes, its set lanes from the lowest, three bits
