@@ -432,18 +432,6 @@ check-diagrams: $(DIAGRAM_PROGRAMS)
 $(foreach n,$(NUMS),$(B)/obj/ch$(n)/bench/timing.o): \
   ALL_CFLAGS += '-DBENCH_FLAGS="$(strip $(OPT) $(CFLAGS))"'
 
-# Chapter 10's profile names the functions a ray's time goes to, which
-# link-time optimization would inline into one another: its chart is made
-# from the plain build (bench/ch10_profile.c).
-.PHONY: chart-ch10_profile chart-ch10_profile-plain
-chart-ch10_profile: | deps
-	+@$(MAKE) --no-print-directory LTO= chart-ch10_profile-plain
-chart-ch10_profile-plain: $(B)/bench/ch10_profile | deps
-	$< > figures/ch10-profile.csv.tmp
-	mv figures/ch10-profile.csv.tmp figures/ch10-profile.csv
-	gnuplot -e "csv='figures/ch10-profile.csv'; stem='figures/ch10-profile'" bench/ch10_profile.gp
-	@echo "wrote figures/ch10-profile*.svg"
-
 # Chapter 12's chart of the programs in the page: each chapter's own scene
 # rendered in the book's page (headless Chromium) and by bin/chNN, the
 # everyday build, and by the same programs built by clang, the page's

@@ -1,40 +1,52 @@
-/* ch10_profile.c: where a ray's time goes, in chapter 8's kd-tree and in
- * chapter 9's BVH (chapter 10's wide nodes and packets), exact and in float, by Linux's profiler.
+/* ch10_profile.c: where a ray's instructions go, in chapter 8's kd-tree
+ * and in chapter 9's BVH (chapter 10's wide nodes and packets), exact and
+ * in float, counted by Valgrind's callgrind.
  *
  *   build/rel/bench/ch10_profile > figures/ch10-profile.csv
  *
- * Run without arguments, the program runs itself under `perf record -e
- * cpu-clock` once for each tree and distance of RUNS (the kd-tree, the
- * BVH of the default width and the same BVH with its leaves decided in
- * float, the bunny at K = 1 and K = 2.5), with the
- * arguments TREE K: then it traces the closest hits of the 1024 x 1024
- * rays of bench/ch08_rays.h (the Embree comparison's) PASSES times. `perf
- * report` gives each function's share of the samples, and the functions
- * are added up in the groups of GROUPS: the ray's setup (its constants,
- * the clip of the root box), the walk of the interior nodes, the leaves
- * (the kd-tree's loop over a leaf's triangles; the BVH's filter of four
- * triangles at once in float), the triangles' tests in double, and the
- * rest (the loop, making the rays, reading the mesh and building its
- * tree, a few per cent). `make chart-ch10_profile` builds it without
- * -flto, unlike the other charts: link-time optimization inlines these
- * functions into one another, and a function inlined is counted in its
- * caller. The shares are those of the plain build, each function its
- * own.
+ * Run without arguments, the program runs itself under `valgrind
+ * --tool=callgrind --dump-instr=yes` once for each tree and distance of
+ * RUNS (the kd-tree, the BVH of the default width and the same BVH with
+ * its leaves decided in float, the bunny at K = 1 and K = 2.5), with the
+ * arguments TREE K: then it reads the mesh, builds the tree and makes the
+ * SIDE x SIDE rays of bench/ch08_rays.h (the Embree comparison's), and
+ * only then counts, over the closest hits of every ray (callgrind's
+ * client requests start and stop the count). Callgrind counts the
+ * instructions executed at each address of the program; addr2line names
+ * the chain of functions inlined at that address, and an instruction
+ * belongs to the group of GROUPS of the innermost function of its chain
+ * that GROUPS names: the ray's setup (its constants, the clip of the
+ * mesh's box), the walk of the interior nodes, the leaves (the kd-tree's
+ * loop over a leaf's triangles; the BVH's filter of four triangles at
+ * once in float, or its test in float), the triangles' tests in double,
+ * and the rest (the loop over the rays, a few per cent). Since the
+ * chain is read through the inlining, the program is measured as the
+ * charts build it, with link-time optimization. Instructions, not
+ * times: a count does not change when the machine is busy, and a
+ * processor runs some instructions faster than others, so that a share
+ * of the instructions is near a share of the time, not equal to it.
  *
  * Rows (method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns):
- *   profile,TREE@K,0,SHARE,share_GROUP     (SHARE: of that run's samples)
- *   profile,TREE@K,0,SAMPLES,samples       (perf's count, to its 3 digits)
- * Without perf, or when it cannot record: profile,absent,0,0,absent. */
-#include <math.h>
+ *   profile,TREE@K,0,SHARE,share_GROUP     (SHARE: of that run's count)
+ *   profile,TREE@K,0,N,instructions_per_ray
+ * Without Valgrind (or its callgrind.h when built), or without addr2line:
+ * profile,absent,0,0,absent. */
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
+#if defined(__has_include)
+#if __has_include(<valgrind/callgrind.h>)
+#include <valgrind/callgrind.h>
+#define HAVE_CALLGRIND 1
+#endif
+#endif
+
 #include "ch08_rays.h"
 #include "timing.h"
 
-enum { SIDE = 1024, PASSES = 60 }; /* the tree's build: a few per cent */
+enum { SIDE = 256 };
 
 static const struct {
     const char *tree, *name; /* as the command line and the CSV name it */
@@ -44,43 +56,76 @@ static const struct {
             {"bvh-float", "bvh-float@1.0", 1.0}, {"bvh-float", "bvh-float@2.5", 2.5}};
 enum { N_RUNS = sizeof RUNS / sizeof RUNS[0] };
 
-/* Which group each function the profile names belongs to; any other is
- * "other". */
+/* Which group each function belongs to; an instruction whose chain of
+ * inlined functions names none of them is "other". */
 static const struct {
     const char *function, *group;
 } GROUPS[] = {
-    {"mesh_ray_of", "setup"},           {"watertight_ray_of", "setup"},
-    {"bvh_ray_of", "setup"},            {"packet_ray_of", "setup"},
-    {"box_clip", "setup"},              {"mesh_nearest", "setup"},
-    {"mesh_search_tree", "interior"},   {"nearest_in", "interior"},
-    {"mesh_search_bvh", "interior"},    {"bvh_walk", "interior"},
-    {"search_bvh", "interior"},         {"search_bvh_avx2", "interior"},
-    {"search_bvh_plain", "interior"},
-    {"kept_in_vectors", "leaves"},      {"nearest_of_packets", "leaves"},
-    {"hit_lane", "leaves"},             {"triangle_nearest_of_leaf", "leaves"},
-    {"float_hits_in_vectors", "leaves"}, {"triangle_packets_nearest_float", "leaves"},
-    {"hit_corners", "double"},          {"hit_sheared", "double"},
-    {"triangle_hit_prepared", "double"}, {"triangle_hit_tightened", "double"},
+    {"mesh_ray_of", "setup"},            {"watertight_ray_of", "setup"},
+    {"ray_inverse_dir", "setup"},        {"box_clip", "setup"},
+    {"bvh_misses_box", "setup"},         {"bvh_ray_of", "setup"},
+    {"bvh_wide_ray_of", "setup"},        {"bvh_ray8_of", "setup"},
+    {"bvh_ray8_setup", "setup"},         {"bvh_ray8_setup_avx2", "setup"},
+    {"bvh_round_origin", "setup"},       {"bvh_walk_rows", "setup"},
+    {"packet_ray_of", "setup"},          {"mesh_nearest", "setup"},
+    {"mesh_search_bvh", "setup"},        {"search_avx2_exact", "setup"},
+    {"search_avx2_float", "setup"},      {"search_plain_exact", "setup"},
+    {"search_plain_float", "setup"}, /* the walk's entry and return */
+    {"mesh_search_tree", "interior"},    {"nearest_in", "interior"},
+    {"search_bvh8", "interior"},         {"search_bvh2", "interior"},
+    {"bvh_node8_lanes", "interior"},     {"bvh_node8_lanes_avx2", "interior"},
+    {"bvh_node8_test", "interior"},      {"bvh_push8", "interior"},
+    {"bvh_push8_avx2", "interior"},      {"bvh_walk_next", "interior"},
+    {"bvh_leaf_test", "leaves"},         {"candidates", "leaves"},
+    {"kept_in_vectors", "leaves"},       {"kept_alone", "leaves"},
+    {"triangle_packets_nearest_in_mesh", "leaves"},
+    {"triangle_packets_any_in_mesh", "leaves"},
+    {"triangle_packets_nearest_float", "leaves"},
+    {"triangle_packets_any_float", "leaves"},
+    {"float_hits_in_vectors", "leaves"}, {"float_interval_of", "leaves"},
+    {"nearest_of_packets", "leaves"},    {"hit_lane", "leaves"},
+    {"triangle_nearest_of_leaf", "leaves"},
+    {"hit_in_mesh", "double"},           {"hit_corners", "double"},
+    {"hit_sheared", "double"},           {"triangle_hit_prepared", "double"},
+    {"triangle_hit_tightened", "double"},
 };
 static const char *const GROUP_NAMES[] = {"setup", "interior", "leaves",
                                           "double", "other"};
 enum { N_GROUPS = 5 };
 
-/* The group of function name (a compiler's suffix, ".constprop.0", cut). */
+/* The group of function name (a compiler's suffix, ".constprop.0", cut),
+ * or -1 if GROUPS does not name it. */
 static int group_of(const char *name)
 {
-    size_t n = strcspn(name, ".");
+    size_t n = strcspn(name, ".\n");
     for (size_t k = 0; k < sizeof GROUPS / sizeof GROUPS[0]; k++)
         if (strlen(GROUPS[k].function) == n &&
             strncmp(GROUPS[k].function, name, n) == 0)
             for (int g = 0; g < N_GROUPS; g++)
                 if (strcmp(GROUP_NAMES[g], GROUPS[k].group) == 0)
                     return g;
-    return N_GROUPS - 1;
+    return -1;
 }
 
-/* The profiled part: the rays of K through the bunny's tree, PASSES
- * times. */
+#ifdef HAVE_CALLGRIND
+/* The counted part: the closest hits of n rays through m. */
+static __attribute__((noinline)) double trace_rays(const mesh *m,
+                                                   const float_ray *rays,
+                                                   long n)
+{
+    render_stats st = {0};
+    double sum = 0;
+    CALLGRIND_TOGGLE_COLLECT;
+    for (long k = 0; k < n; k++) {
+        mesh_ray mr = mesh_ray_of(ray_of(&rays[k]));
+        triangle_hit th;
+        sum += mesh_nearest(m, &mr, 0, INFINITY, &th, &st);
+    }
+    CALLGRIND_TOGGLE_COLLECT;
+    return sum;
+}
+
+/* The child, under callgrind: the rays of K through the bunny's tree. */
 static int trace(const char *tree, double K)
 {
     mesh m;
@@ -92,72 +137,173 @@ static int trace(const char *tree, double K)
         return 1;
     m.bvh_in_float = strcmp(tree, "bvh-float") == 0; /* the float path */
     float_ray *rays = make_rays(&m, K, SIDE);
-    render_stats st = {0};
-    double sum = 0;
-    for (int p = 0; p < PASSES; p++)
-        for (long k = 0; k < (long)SIDE * SIDE; k++) {
-            mesh_ray mr = mesh_ray_of(ray_of(&rays[k]));
-            triangle_hit th;
-            sum += mesh_nearest(&m, &mr, 0, INFINITY, &th, &st);
-        }
-    bench_sink += sum;
+    bench_sink += trace_rays(&m, rays, (long)SIDE * SIDE);
     free(rays);
     return 0;
 }
+#endif
 
-/* Records run r under perf into path; false if perf is absent or fails. */
-static bool record(const char *self, int r, const char *path)
+/* An address of the program and the instructions counted there. */
+typedef struct {
+    unsigned long address;
+    double count;
+} counted;
+
+/* The program's addresses in callgrind's file at path (--dump-instr=yes,
+ * --dump-line=no), into *out (grown with realloc); their number, or -1.
+ * Other objects' instructions (the C library's) are added to *elsewhere. */
+static long read_counts(const char *path, const char *self, counted **out,
+                        double *elsewhere)
 {
-    char command[4096];
-    snprintf(command, sizeof command,
-             "perf record -q -e cpu-clock -F 4000 -o '%s' -- '%s' %s %.1f "
-             ">/dev/null 2>&1", path, self, RUNS[r].tree, RUNS[r].K);
-    return system(command) == 0;
+    FILE *f = fopen(path, "r");
+    char line[4096];
+    long n = 0, room = 0;
+    unsigned long address = 0;
+    bool ours = false, call_cost = false;
+    char our_id[32] = ""; /* callgrind's number for this program */
+    *elsewhere = 0;
+    while (f != NULL && fgets(line, sizeof line, f) != NULL) {
+        bool ob = strncmp(line, "ob=", 3) == 0;
+        if (ob || strncmp(line, "cob=", 4) == 0) {
+            char *id = strchr(line, '('), *close = strchr(line, ')');
+            if (id == NULL || close == NULL)
+                continue;
+            *close = '\0'; /* "(N) name" the first time, then "(N)" */
+            if (close[1] == ' ' && strncmp(close + 2, self, strlen(self)) == 0)
+                snprintf(our_id, sizeof our_id, "%s", id + 1);
+            if (ob)
+                ours = our_id[0] != '\0' && strcmp(id + 1, our_id) == 0;
+            continue;
+        }
+        if (strncmp(line, "calls=", 6) == 0) {
+            call_cost = true; /* the next line is a call's inclusive cost */
+            continue;
+        }
+        char *end;
+        if (line[0] == '0' && line[1] == 'x')
+            address = strtoul(line, &end, 16);
+        else if (line[0] == '+' || line[0] == '-')
+            address += (unsigned long)strtol(line, &end, 10);
+        else if (line[0] == '*')
+            end = line + 1;
+        else
+            continue;
+        double cost = strtod(end, NULL);
+        if (call_cost) {
+            call_cost = false;
+            continue;
+        }
+        if (!ours) {
+            *elsewhere += cost;
+            continue;
+        }
+        if (n == room) {
+            room = room ? 2 * room : 4096;
+            counted *grown = realloc(*out, (size_t)room * sizeof **out);
+            if (grown == NULL)
+                return fclose(f), -1;
+            *out = grown;
+        }
+        (*out)[n++] = (counted){address, cost};
+    }
+    if (f == NULL)
+        return -1;
+    fclose(f);
+    return n;
 }
 
-/* The shares of the groups in the profile at path, into share; the
- * samples, or 0 when it cannot be read. */
-static long shares_of(const char *path, double share[N_GROUPS])
+/* Adds each address's count to the group of the innermost function of
+ * its chain that GROUPS names, as addr2line reads the chains from self. */
+static bool add_groups(const char *self, const counted *c, long n,
+                       double share[N_GROUPS])
 {
-    char command[1024], line[1024], name[512];
+    char list[] = "/tmp/ch10-profile-addresses-XXXXXX", command[4400];
+    int fd = mkstemp(list);
+    FILE *out = fd >= 0 ? fdopen(fd, "w") : NULL;
+    if (out == NULL)
+        return false;
+    for (long k = 0; k < n; k++)
+        fprintf(out, "0x%lx\n", c[k].address);
+    fclose(out);
     snprintf(command, sizeof command,
-             "perf report -i '%s' --no-children --sort symbol --stdio "
-             "2>/dev/null", path);
-    FILE *report = popen(command, "r");
-    long samples = 0;
+             "addr2line -i -f -a -e '%s' < '%s' 2>/dev/null", self, list);
+    FILE *in = popen(command, "r");
+    char line[4096];
+    long k = -1;
+    int group = -1; /* of address k, once its innermost named function */
+    bool any = false;
+    while (in != NULL && fgets(line, sizeof line, in) != NULL) {
+        if (strncmp(line, "0x", 2) == 0) { /* the next address's chain */
+            if (k >= 0)
+                share[group >= 0 ? group : N_GROUPS - 1] += c[k].count;
+            k++, group = -1, any = true;
+        } else if (k >= 0 && k < n && group < 0 && line[0] != '/' &&
+                   line[0] != '?' && strchr(line, ':') == NULL)
+            group = group_of(line); /* a function's line, not a place's */
+    }
+    if (k >= 0 && k < n)
+        share[group >= 0 ? group : N_GROUPS - 1] += c[k].count;
+    bool ok = in != NULL && pclose(in) == 0 && any && k == n - 1;
+    remove(list);
+    return ok;
+}
+
+/* Runs run r under callgrind and adds up its groups into share; the
+ * instructions a ray, or 0 when it cannot. */
+static double profile_run(const char *self, int r, double share[N_GROUPS])
+{
+    char dir[] = "/tmp/ch10-profile-XXXXXX", command[4400], path[1100];
+    if (mkdtemp(dir) == NULL)
+        return 0;
+    snprintf(path, sizeof path, "%s/callgrind.out", dir);
+    snprintf(command, sizeof command,
+             "valgrind --tool=callgrind --collect-atstart=no "
+             "--dump-instr=yes --dump-line=no --callgrind-out-file='%s' "
+             "'%s' %s %.1f >/dev/null 2>&1", path, self, RUNS[r].tree,
+             RUNS[r].K);
+    counted *c = NULL;
+    double elsewhere = 0, total = 0;
+    long n = system(command) == 0 ? read_counts(path, self, &c, &elsewhere)
+                                  : -1;
     for (int g = 0; g < N_GROUPS; g++)
         share[g] = 0;
-    while (report != NULL && fgets(line, sizeof line, report) != NULL) {
-        double percent;
-        long n;
-        char unit = ' ';
-        if (sscanf(line, "# Samples: %ld%c", &n, &unit) >= 1)
-            samples = n * (unit == 'K' ? 1000 : unit == 'M' ? 1000000 : 1);
-        else if (line[0] != '#' &&
-                 sscanf(line, " %lf%% [%*[^]]] %511s", &percent, name) == 2)
-            share[group_of(name)] += percent / 100;
+    if (n > 0 && add_groups(self, c, n, share)) {
+        share[N_GROUPS - 1] += elsewhere;
+        for (int g = 0; g < N_GROUPS; g++)
+            total += share[g];
+        for (int g = 0; g < N_GROUPS && total > 0; g++)
+            share[g] /= total;
     }
-    if (report != NULL)
-        pclose(report);
-    return samples;
+    free(c);
+    snprintf(command, sizeof command, "rm -rf '%s'", dir);
+    if (system(command) != 0)
+        fprintf(stderr, "ch10_profile: %s left behind\n", dir);
+    return total / ((double)SIDE * SIDE);
 }
 
 int main(int argc, char **argv)
 {
+#ifdef HAVE_CALLGRIND
     if (argc == 3)
         return trace(argv[1], atof(argv[2]));
+#endif
+    (void)argv;
+    if (argc != 1) {
+        fprintf(stderr, "usage: ch10_profile > CSV\n");
+        return 2;
+    }
     bench_print_machine();
     bench_csv_header();
-    char path[] = "/tmp/ch10-profile-XXXXXX", self[1024];
-    int fd = mkstemp(path);
+    char self[1024];
     ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-    self[n > 0 ? n : 0] = '\0'; /* this program, for perf to run */
+    self[n > 0 ? n : 0] = '\0'; /* this program, for valgrind to run */
     for (int r = 0; r < N_RUNS; r++) {
-        double share[N_GROUPS];
-        long samples = 0;
-        if (fd >= 0 && n > 0 && record(self, r, path))
-            samples = shares_of(path, share);
-        if (samples == 0) {
+        double share[N_GROUPS], per_ray = 0;
+#ifdef HAVE_CALLGRIND
+        if (n > 0)
+            per_ray = profile_run(self, r, share);
+#endif
+        if (per_ray <= 0) {
             printf("profile,absent,0,0,absent\n");
             break;
         }
@@ -167,10 +313,8 @@ int main(int argc, char **argv)
             snprintf(kind, sizeof kind, "share_%s", GROUP_NAMES[g]);
             bench_row("profile", RUNS[r].name, &none, "%.4f", share[g], kind);
         }
-        bench_row("profile", RUNS[r].name, &none, "%.0f", (double)samples,
-                  "samples");
+        bench_row("profile", RUNS[r].name, &none, "%.1f", per_ray,
+                  "instructions_per_ray");
     }
-    if (fd >= 0)
-        close(fd), remove(path);
     return 0;
 }

@@ -724,9 +724,6 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
                            double t_max, triangle_hit *out,
                            render_stats *stats, bool avx2, bool in_float)
 {
-    stats->box_tests++;
-    if (bvh_misses_box(&m->bounds, mr, t_min, t_max))
-        return -1; /* missing the box, the ray misses every triangle */
     bvh_ray r;  /* the plain walk's ray */
     bvh_ray8 v; /* AVX2's, in vectors */
     unsigned shift;
@@ -836,6 +833,11 @@ static const bvh_search searches[6] = {
 int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
                     double t_max, triangle_hit *out, render_stats *stats)
 {
+    if (m->bvh_walk != 0) { /* the wide walk: its box tested here */
+        stats->box_tests++;
+        if (bvh_misses_box(&m->bounds, mr, t_min, t_max))
+            return -1; /* missing the box, the ray misses every triangle */
+    }
     return searches[m->bvh_walk + m->bvh_in_float](m, mr, t_min, t_max,
                                                     out, stats);
 }
