@@ -432,6 +432,15 @@ check-diagrams: $(DIAGRAM_PROGRAMS)
 $(foreach n,$(NUMS),$(B)/obj/ch$(n)/bench/timing.o): \
   ALL_CFLAGS += '-DBENCH_FLAGS="$(strip $(OPT) $(CFLAGS))"'
 
+# Chapter 10's profile and count of instructions run the program under
+# Valgrind's callgrind (Debian: valgrind, with the valgrind/callgrind.h
+# that the two benchmarks are built with), installed first where it can be;
+# without it, their charts say that it was absent.
+.PHONY: deps-valgrind
+deps-valgrind:
+	@sh tools/book/deps.sh valgrind || echo "deps: no valgrind: chapter 10's counts will say so"
+chart-ch10_profile chart-ch10_instructions: | deps-valgrind
+
 # Chapter 12's chart of the programs in the page: each chapter's own scene
 # rendered in the book's page (headless Chromium) and by bin/chNN, the
 # everyday build, and by the same programs built by clang, the page's

@@ -2,9 +2,9 @@
 #   gnuplot -e "csv='figures/ch10-profile.csv'; stem='figures/ch10-profile'" bench/ch10_profile.gp
 # stem.svg: for the kd-tree, the BVH and the BVH in float (bvh-float),
 #   the bunny at K = 1 and K = 2.5,
-#   the share of perf's samples in each group of functions (the ray's
+#   the share of the instructions in each group of functions (the ray's
 #   setup, the interior nodes, the leaves, the triangle tests in double,
-#   the rest), as a bar of 100%. Where perf was absent (the CSV has the
+#   the rest), as a bar of 100%. Where Valgrind was absent (the CSV has the
 #   row profile,absent), the chart says so.
 load "bench/chart.gp"
 set terminal svg size 1000,520 font "Helvetica,12" background "white"
@@ -18,7 +18,7 @@ label(r) = r eq "kdtree@1.0" ? "kd-tree, K = 1" : r eq "kdtree@2.5" ? "kd-tree, 
 title(g) = g eq "setup" ? "the ray's setup (constants, root box)" : \
            g eq "interior" ? "interior nodes" : \
            g eq "leaves" ? "leaves (kd-tree: the loop; BVH: the float filter, or test)" : \
-           g eq "double" ? "triangle tests in double" : "the rest (loop, rays, build)"
+           g eq "double" ? "triangle tests in double" : "the rest (the loop over the rays)"
 colour(k) = word("#7570b3 #1b9e77 #e6ab02 #d95f02 #999999", k)
 # the share of group g in run r, in per cent
 share(r, g) = real(system(sprintf("awk -F, '$1 == \"profile\" && $2 == \"%s\" && $5 == \"share_%s\" {print 100 * $4}' %s", r, g, csv)))
@@ -26,11 +26,11 @@ share(r, g) = real(system(sprintf("awk -F, '$1 == \"profile\" && $2 == \"%s\" &&
 before(r, k) = k <= 1 ? 0 : sum [j=1:k-1] share(r, word(groups, j))
 
 eval machine_label
-set title (absent ? "Chapter 10: where a ray's time goes (perf was absent when this chart was made)" : \
-           "Chapter 10: where a ray's time goes, closest hits through the bunny (perf's samples)") font ",13"
+set title (absent ? "Chapter 10: where a ray's instructions go (Valgrind was absent when this chart was made)" : \
+           "Chapter 10: where a ray's instructions go, closest hits through the bunny (callgrind)") font ",13"
 set xrange [0:100]
 set yrange [-0.7:5.7]
-set xlabel "share of the samples (%)"
+set xlabel "share of the instructions (%)"
 set ytics () 
 do for [k=1:words(runs)] { set ytics add (label(word(runs, k)) words(runs) - k) }
 set key at screen 0.5, screen 0.13 center horizontal maxrows 2 font ",10" width 2
