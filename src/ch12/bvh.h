@@ -155,7 +155,7 @@ typedef struct {
 
 /* The constants of the ray origin + t d over [t_min, t_max], with
  * inv = 1 / d; false for a ray beyond float's reach (a coordinate of
- * the origin past 2^100, or of 1 / d below 2^-100 but not 0), which is
+ * the origin past 2^100, or of 1 / d below 2^-100, 0 included), which is
  * then searched without the tree. t_min >= 0. */
 bool bvh_ray_of(vec3 origin, vec3 inv, double t_min, double t_max,
                 bvh_ray *out);
