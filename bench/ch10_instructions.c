@@ -34,7 +34,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#if defined(__has_include)
+#if defined(__has_include) && !defined(NO_CALLGRIND) /* -D: as without */
 #if __has_include(<valgrind/callgrind.h>)
 #include <valgrind/callgrind.h>
 #define HAVE_CALLGRIND 1
@@ -49,6 +49,7 @@
 
 enum { SIDE = 256 };
 
+#ifdef HAVE_CALLGRIND
 static const char *const KINDS[] = {"all", "miss-box", "enter-miss", "hit"};
 static const char *const METHODS[] = {"loop", "bvh", "fast", "embree"};
 enum { N_KINDS = 4, N_METHODS = 4 };
@@ -61,7 +62,6 @@ typedef struct {
 #endif
 } subject;
 
-#ifdef HAVE_CALLGRIND
 /* Ray f by method (an index of METHODS): 1 for a hit, else 0. The
  * program's counters in *stats, kept from one ray to the next as the
  * renderer keeps them. */
@@ -230,6 +230,28 @@ static void print_counts(const char *prefix, const long rays[N_KINDS])
         }
     }
 }
+
+/* Counts every method's instructions under callgrind and prints their
+ * rows; false if it cannot. */
+static bool count_all(void)
+{
+    char dir[] = "/tmp/ch10-instructions-XXXXXX", self[1024];
+    char prefix[2048];
+    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+    self[n > 0 ? n : 0] = '\0'; /* this program, for valgrind to run */
+    long rays[N_KINDS] = {0};
+    if (n <= 0 || mkdtemp(dir) == NULL)
+        return false;
+    snprintf(prefix, sizeof prefix, "%s/callgrind.out", dir);
+    bool ran = run_counts(self, prefix, rays);
+    if (ran)
+        print_counts(prefix, rays);
+    char command[2200];
+    snprintf(command, sizeof command, "rm -rf '%s'", dir);
+    if (system(command) != 0)
+        fprintf(stderr, "ch10_instructions: %s left behind\n", dir);
+    return ran;
+}
 #endif
 
 int main(int argc, char **argv)
@@ -248,27 +270,10 @@ int main(int argc, char **argv)
     printf("vector,%s,0,0,bvh_vector_width\n",
            bvh_walks_with_avx2() ? "AVX2 chosen at run time"
                                  : "the build's own instructions");
-    char dir[] = "/tmp/ch10-instructions-XXXXXX", self[1024];
-    char prefix[2048];
-    ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
-    self[n > 0 ? n : 0] = '\0'; /* this program, for valgrind to run */
-    long rays[N_KINDS] = {0};
-    bool made = mkdtemp(dir) != NULL;
-    snprintf(prefix, sizeof prefix, "%s/callgrind.out", dir);
 #ifdef HAVE_CALLGRIND
-    bool ran = made && n > 0 && run_counts(self, prefix, rays);
-#else
-    bool ran = false;
+    if (count_all())
+        return 0;
 #endif
-    if (ran)
-        print_counts(prefix, rays);
-    else
-        printf("instructions,absent,0,0,absent\n");
-    if (made) {
-        char command[2200];
-        snprintf(command, sizeof command, "rm -rf '%s'", dir);
-        if (system(command) != 0)
-            fprintf(stderr, "ch10_instructions: %s left behind\n", dir);
-    }
+    printf("instructions,absent,0,0,absent\n");
     return 0;
 }

@@ -36,7 +36,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#if defined(__has_include)
+#if defined(__has_include) && !defined(NO_CALLGRIND) /* -D: as without */
 #if __has_include(<valgrind/callgrind.h>)
 #include <valgrind/callgrind.h>
 #define HAVE_CALLGRIND 1
@@ -56,6 +56,11 @@ static const struct {
             {"bvh-float", "bvh-float@1.0", 1.0}, {"bvh-float", "bvh-float@2.5", 2.5}};
 enum { N_RUNS = sizeof RUNS / sizeof RUNS[0] };
 
+static const char *const GROUP_NAMES[] = {"setup", "interior", "leaves",
+                                          "double", "other"};
+enum { N_GROUPS = 5 };
+
+#ifdef HAVE_CALLGRIND
 /* Which group each function belongs to; an instruction whose chain of
  * inlined functions names none of them is "other". */
 static const struct {
@@ -89,10 +94,6 @@ static const struct {
     {"hit_sheared", "double"},           {"triangle_hit_prepared", "double"},
     {"triangle_hit_tightened", "double"},
 };
-static const char *const GROUP_NAMES[] = {"setup", "interior", "leaves",
-                                          "double", "other"};
-enum { N_GROUPS = 5 };
-
 /* The group of function name (a compiler's suffix, ".constprop.0", cut),
  * or -1 if GROUPS does not name it. */
 static int group_of(const char *name)
@@ -107,7 +108,6 @@ static int group_of(const char *name)
     return -1;
 }
 
-#ifdef HAVE_CALLGRIND
 /* The counted part: the closest hits of n rays through m. */
 static __attribute__((noinline)) double trace_rays(const mesh *m,
                                                    const float_ray *rays,
@@ -143,6 +143,7 @@ static int trace(const char *tree, double K)
 }
 #endif
 
+#ifdef HAVE_CALLGRIND
 /* An address of the program and the instructions counted there. */
 typedef struct {
     unsigned long address;
@@ -280,6 +281,7 @@ static double profile_run(const char *self, int r, double share[N_GROUPS])
         fprintf(stderr, "ch10_profile: %s left behind\n", dir);
     return total / ((double)SIDE * SIDE);
 }
+#endif
 
 int main(int argc, char **argv)
 {

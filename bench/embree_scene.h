@@ -8,8 +8,8 @@
 
 #include "mesh.h"
 
-static RTCScene embree_scene(RTCDevice device, const mesh *m,
-                             enum RTCBuildQuality quality)
+static inline RTCScene embree_scene(RTCDevice device, const mesh *m,
+                                    enum RTCBuildQuality quality)
 {
     RTCScene scene = rtcNewScene(device);
     rtcSetSceneBuildQuality(scene, quality);
