@@ -16,7 +16,7 @@
 #      least 4 exercises a chapter, exit 0; no stub is the book's code;
 #      make workbook overwrites no
 #      file; no task holds TeX; make grade EX=N.k exits 0 for a right 1.1,
-#      and not 0 for 1.2, not started;
+#      and not 0 for 1.2, not started (the two exercises' tests run);
 #   stubs: with every stub started, no exercise passes (each stub fails
 #      one of its tests), and the exit status is not 0;
 #   solved: a SOLVED=1 workbook grades "Progress: N of N", exit 0, and
@@ -498,7 +498,7 @@ clip_warnings loop sheet_snell sheet_normal unstratified seeds inside far_root
 lost_line cone directional digits return sheet_sphere sheet_half_vector
 sheet_tone_map}"
 
-n=$(wc -l < "$list" 2> /dev/null || echo 0)
+n=$( (wc -l < "$list") 2> /dev/null || echo 0)
 last=$(ls chapters/[0-9][0-9]-*.md | tail -n 1 | sed 's|.*/||' | cut -c1-2)
 if [ "$#" -gt 0 ]; then # one check, in a process of its own
     for check in "$@"; do
