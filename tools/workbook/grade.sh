@@ -390,7 +390,7 @@ run_threads_sanitized() {
             timeout 1800 "$WB_BUILD/tsan/test/ch$target" > "$work/tsan/$name.out" 2>&1
         for report in "$work/tsan/$name".*; do
             [ -f "$report" ] || continue
-            awk -v wb="$WB_DIR/" -v test="$name" -v state="$state" '
+            awk -v wb="$WB_DIR/" -v cwd="$PWD/" -v test="$name" -v state="$state" '
                 BEGIN {
                     while ((getline l < state) > 0) {
                         split(l, f, "\t")
@@ -403,7 +403,10 @@ run_threads_sanitized() {
                     what = $0; sub(/.*ThreadSanitizer: /, "", what); sub(/ \(pid.*/, "", what)
                     where = func = variable = id = ""
                 }
+                # (Clang names a file by its absolute path: made relative)
                 /^ *#[0-9]+ / && where == "" {
+                    for (i = 1; i <= NF; i++)
+                        if (index($i, cwd wb) == 1) $i = substr($i, length(cwd) + 1)
                     for (i = 1; i <= NF; i++)
                         if (index($i, wb) == 1) {
                             where = $i; func = $2
