@@ -125,7 +125,7 @@ tab=$(printf '\t')
 # look_up KEY: sets f_id, f_chapter (its Markdown) and f_tests of exercise KEY.
 look_up() {
     f_id="" f_chapter="" f_tests=""
-    while IFS=$tab read -r e_id e_chapter e_line e_kind e_key e_tests; do
+    while IFS=$tab read -r e_id e_chapter _ _ e_key e_tests; do
         if [ "$e_key" = "$1" ]; then
             f_id=$e_id f_chapter=$e_chapter f_tests=$e_tests
             return 0
