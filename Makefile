@@ -144,16 +144,21 @@ NUMS     := $(foreach c,$(CHAPTERS),$(firstword $(subst -, ,$(notdir $(c)))))
 link_meshes = if [ -d $(1)/scenes ]; then ln -sfn $(2)meshes $(1)/scenes/meshes; fi
 
 # nums_upto NN: the two-digit numbers 01..NN, whether or not each has a chapter
-TWO_DIGITS := $(shell seq -w 1 99)
+DIGITS     := 0 1 2 3 4 5 6 7 8 9
+TWO_DIGITS := $(filter-out 00,$(foreach a,$(DIGITS),$(addprefix $(a),$(DIGITS))))
 nums_upto = $(wordlist 1,$(patsubst 0%,%,$(1)),$(TWO_DIGITS))
 # chapters_upto NN: the Markdown of the chapters numbered 01..NN (a chapter
 # may be written before the one before it: the numbers may have gaps)
 chapters_upto = $(foreach c,$(CHAPTERS),$(if $(filter $(firstword $(subst -, ,$(notdir $(c)))),$(call nums_upto,$(1))),$(c)))
+# The files the chapters declare with file="..." on a fence's line, each
+# as NN:FILE (NN its chapter), read once (tools/book/file_decls.awk): every
+# make, the grader's too, reads them.
+FILE_DECLS := $(shell awk -f tools/book/file_decls.awk $(CHAPTERS))
 # c_files NN: the .c files that chapters 01..NN declare with file="..."
-c_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\([^"]*\.c\)".*/\1/p' $(call chapters_upto,$(1))))
+c_files = $(sort $(foreach n,$(call nums_upto,$(1)),$(patsubst $(n):%,%,$(filter $(n):%.c,$(FILE_DECLS)))))
 # scene_files NN: scenes declared by chapter NN itself, one figure each (found
 # by number: chapters may be missing in between)
-scene_files = $(sort $(shell sed -n 's/^[`~]\{3,\}.*file="\(scenes\/ch$(1)-[^"]*\.scene\)".*/\1/p' $(filter chapters/$(1)-%,$(CHAPTERS))))
+scene_files = $(sort $(patsubst $(1):%,%,$(filter $(1):scenes/ch$(1)-%.scene,$(FILE_DECLS))))
 # suites_upto NN: the Check suites of chapters 01..NN
 suites_upto = $(foreach n,$(filter $(call nums_upto,$(1)),$(NUMS)),$(wildcard tests/ch$(n)_*.c))
 # previous NN: the chapter before NN, empty for the first
@@ -378,8 +383,12 @@ figures/%.png: $(B)/fig/%.png
 # Chapter 10 compares chapter 08's kd-tree with Intel Embree 3 where it is installed
 # (Debian: libembree-dev); without it that benchmark is not built, and
 # `make charts` draws its chart from this program's rates alone.
+# Asked once, by the first make: its sub-makes (the grader's) get the answer.
+ifeq ($(origin HAVE_EMBREE),undefined)
 HAVE_EMBREE := $(shell printf '\043include <embree3/rtcore.h>\n' | \
                  $(CC) -E -x c - >/dev/null 2>&1 && echo yes)
+endif
+export HAVE_EMBREE
 ifneq ($(HAVE_EMBREE),yes)
 BENCHES  := $(filter-out %_embree,$(BENCHES))
 endif

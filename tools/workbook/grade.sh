@@ -66,10 +66,12 @@ MAKE=${MAKE:-make}
 WB_DIR=${WB_DIR:-workbook}
 WB_BUILD=${WB_BUILD:-build/workbook}
 GRADE_TIMEOUT=${GRADE_TIMEOUT:-10}
-tools_dir=$(dirname "$0")
+# (every process counts: a grade runs hundreds of them, and on some
+# machines each costs milliseconds; builtins where they do)
+case $0 in */*) tools_dir=${0%/*} ;; *) tools_dir=. ;; esac
 work=$WB_BUILD/ch$target
 previous=""
-[ "$#" -gt 1 ] && previous=$(printf '%02d' "$(expr "$target" - 1)")
+[ "$#" -gt 1 ] && previous=$(printf '%02d' "$((${target#0} - 1))")
 mkdir -p "$work"
 list=$work/exercises.tsv     # ID CHAPTER LINE KIND KEY TESTS
 state=$work/state.tsv        # ID STATE WORKBOOK FIRST LAST
@@ -87,7 +89,13 @@ done
 awk -f "$tools_dir/exercises.awk" "$@" > "$list" || exit 1
 awk -f "$tools_dir/test_index.awk" tests/ch[0-9][0-9]_*.c > "$work/tests.tsv"
 
-workbook_of() { echo "$WB_DIR/$(basename "$1")"; }
+# Whether workbook file $1 is left out (in $bad_files).
+is_bad() {
+    while IFS= read -r bad; do
+        [ "$bad" = "$1" ] && return 0
+    done < "$bad_files"
+    return 1
+}
 
 # The handout's stand-ins for the book's code of chapters "$@", before
 # (forward) or after (export) the workbook: nothing outside a handout.
@@ -96,44 +104,15 @@ book_code() {
     shift
     [ -d book/$kind ] && [ "${GRADE_BOOK_CODE:-}" != no ] || return 0
     for chapter in "$@"; do
-        [ -f "book/$kind/$(basename "$chapter")" ] &&
-            echo "book/$kind/$(basename "$chapter")"
+        [ -f "book/$kind/${chapter##*/}" ] && echo "book/$kind/${chapter##*/}"
     done
-}
-
-# The fence of exercise ID in FILE: "FIRST LAST STARTED", or nothing.
-find_fence() {
-    awk -v id="$2" '
-        !open && /^```/ && index($0, "ex=\"" id "\"") { open = NR; started = 1; next }
-        open && /^[ \t]*\/\/ NOT DONE/ { started = 0 }
-        open && /^```[ \t]*$/ { print open, NR, started; exit }' "$1"
-}
-
-# Where exercise ID's fence belongs in FILE: the first line after its hint
-# (the heading's line if there is none; 1 if there is no heading).
-fence_place() {
-    awk -v id="$2" '
-        index($0, "## Exercise " id ":") == 1 { heading = NR; next }
-        heading && !hint_done && /^<\/details>/ { hint_done = 1; next }
-        hint_done && NF { print NR; found = 1; exit }
-        heading && /^## Exercise / { exit }
-        END { if (!found) print (heading ? heading : 1) }' "$1"
-}
-
-# The <<chunk>> lines of the book's code of exercise ID (its chapter
-# CHAPTER; a handout's stubs keep them too), one a line, trimmed.
-book_chunk_lines() {
-    awk -v k="${2#*.}" '
-        /^(```|~~~)/ && !code { code = 1; n += /[{ ]\.exercise[ }]/; mine = n == k && /\.exercise/; next }
-        code && /^(```|~~~)[ \t]*$/ { code = 0; mine = 0; next }
-        mine && /^[ \t]*<<[^>]+>>[ \t]*$/ { gsub(/^[ \t]+|[ \t]+$/, ""); print }' "$1"
 }
 
 # Checks one workbook file with the chapters; records its exercises.
 check_file() {
     chapter=$1
     shift
-    wb=$(workbook_of "$chapter")
+    wb=$WB_DIR/${chapter##*/}
     if [ ! -f "$wb" ]; then
         awk -F '\t' -v c="$chapter" '$2 == c { print $1 "\tabsent\t-\t0\t0" }' \
             "$list" >> "$state"
@@ -145,39 +124,19 @@ check_file() {
             $(book_code forward "$@") "$wb" $(book_code export "$@") \
             > "$work/check.log" 2>&1; then
         grep -v ': warning: ' "$work/check.log" >&2
-        echo "$wb: left out: the book's code of chapter $(basename "$wb" .md) stands in" >&2
+        base=${wb##*/}
+        echo "$wb: left out: the book's code of chapter ${base%.md} stands in" >&2
         echo "$wb" >> "$bad_files"
     fi
-    awk -F '\t' -v c="$chapter" '$2 == c { print $1 }' "$list" |
-    while read -r id; do
-        fence=$(find_fence "$wb" "$id")
-        if [ -z "$fence" ]; then
-            echo "$wb:$(fence_place "$wb" "$id"): error: exercise $id has lost its" \
-                 "chunk fence (a line \`\`\`{.c ... .exercise ex=\"$id\"})" >&2
-            grep -qx "$wb" "$bad_files" || echo "$wb" >> "$bad_files"
-            printf '%s\tbroken\t%s\t0\t0\n' "$id" "$wb" >> "$state"
-            continue
-        fi
-        set -- $fence
-        kind=$([ "$3" = 1 ] && echo started || echo "not-started")
-        printf '%s\t%s\t%s\t%s\t%s\n' "$id" "$kind" "$wb" "$1" "$2" >> "$state"
-        [ "$kind" = started ] || continue
-        first=$1 last=$2
-        book_chunk_lines "$chapter" "$id" | while IFS= read -r want; do
-            sed -n "${first},${last}p" "$wb" | sed 's/^[ \t]*//; s/[ \t]*$//' |
-                grep -qxF -- "$want" && continue
-            message="lost its line $want: the book's other chunks and later chapters put their code there; put it back where the stub had it"
-            echo "$wb:$first: error: exercise $id $message" >&2
-            grep -qx "$wb" "$bad_files" || echo "$wb" >> "$bad_files"
-            printf '%s\t%s\n' "$id" "$message" >> "$lost"
-        done
-    done
+    awk -v chapter="$chapter" -v wb="$wb" -v state="$state" -v lost="$lost" \
+        -v bad_files="$bad_files" -f "$tools_dir/fences.awk" \
+        "$list" "$chapter" "$wb"
 }
 
 good_files() {
     for chapter in "$@"; do
-        wb=$(workbook_of "$chapter")
-        [ -f "$wb" ] && ! grep -qx "$wb" "$bad_files" && echo "$wb"
+        wb=$WB_DIR/${chapter##*/}
+        [ -f "$wb" ] && ! is_bad "$wb" && echo "$wb"
     done
 }
 
@@ -246,6 +205,14 @@ make_programs() {
         ${previous:+"$WB_BUILD/bin/ch$previous"}
 }
 
+# Whether folder $1 holds an object.
+has_objects() {
+    for o in "$1"/*.o; do
+        [ -e "$o" ] && return 0
+    done
+    return 1
+}
+
 build() {
     # an object compiled before its messages were kept: compiled again
     # (and what it was linked into, which make would not remake)
@@ -254,7 +221,7 @@ build() {
             rm -f "$o" "$WB_BUILD"/bin/ch* "$WB_BUILD"/test/ch*
     done
     for d in "$WB_BUILD"/obj/ch*; do # none left, but the programs stand
-        [ -d "$d" ] && ! ls "$d"/*.o > /dev/null 2>&1 &&
+        [ -d "$d" ] && ! has_objects "$d" &&
             rm -f "$WB_BUILD"/bin/ch* "$WB_BUILD"/test/ch*
     done
     for attempt in 1 2 3; do
@@ -268,8 +235,9 @@ build() {
                        "$work/build.log" | sort -u)
         [ -n "$culprits" ] || return 1
         for wb in $culprits; do
+            base=${wb##*/}
             echo "$wb: does not compile: the book's code of chapter" \
-                 "$(basename "$wb" .md) stands in" >&2
+                 "${base%.md} stands in" >&2
             echo "$wb" >> "$bad_files"
         done
     done
@@ -301,9 +269,13 @@ book_results() {
 # cores), every limit times load / cores, and one runner a core instead of
 # four: a test then gets the share of a core that it would get alone.
 cores=$(nproc 2> /dev/null || sysctl -n hw.ncpu 2> /dev/null || echo 1)
-load=$( (cut -d ' ' -f 1 /proc/loadavg || uptime | sed 's/.*: //; s/,.*//') 2> /dev/null)
-busy=$(awk -v l="${load:-0}" -v c="$cores" 'BEGIN { print (l > c ? l / c : 1) }')
-multiplier=$(awk -v g="$GRADE_TIMEOUT" -v b="$busy" 'BEGIN { printf "%.3g", g / 10 * b }')
+load=
+{ read -r load _ < /proc/loadavg; } 2> /dev/null ||
+    load=$(uptime 2> /dev/null | sed 's/.*: //; s/,.*//')
+busy_multiplier=$(awk -v l="${load:-0}" -v c="$cores" -v g="$GRADE_TIMEOUT" '
+    BEGIN { b = l > c ? l / c : 1; printf "%s %.3g\n", b, g / 10 * b }')
+busy=${busy_multiplier% *}
+multiplier=${busy_multiplier#* }
 [ "$busy" = 1 ] || export SHARDS="${SHARDS:-$cores}"
 
 # run_tests RUNNER PROGRAM LOG [NAMES]: the runner's tests (only NAMES,
@@ -322,39 +294,65 @@ run_suites() {
 
 # ---- the tests that start threads, under ThreadSanitizer
 # The files of the tangle in DIR whose code (their own, or a header's they
-# include) holds the reader's lines: the .c files, one a line, no suffix.
+# include) holds the reader's lines: the .c files, no suffix, each
+# followed by a blank.
 readers_files() {
-    grep -l "^#line [0-9]* \"$WB_DIR/" "$1"/*.c "$1"/*.h 2> /dev/null |
-        sed 's|.*/||' > "$work/readers"
-    for c in "$1"/*.c; do
-        awk -v readers="$work/readers" -v dir="$1" '
-            BEGIN { while ((getline l < readers) > 0) mine[l] = 1 }
-            function reads(file,    line, name) {
-                if (file in mine) return 1
-                if (file in done) return 0
-                done[file] = 1
-                while ((getline line < (dir "/" file)) > 0)
-                    if (line ~ /^#include "/) {
-                        name = line
-                        sub(/^#include "/, "", name); sub(/".*/, "", name)
-                        if (reads(name)) { close(dir "/" file); return 1 }
-                    }
-                close(dir "/" file)
-                return 0
-            }
-            END { f = ARGV[1]; sub(/.*\//, "", f); if (reads(f)) { sub(/\.c$/, "", f); print f } }
-        ' "$c" < /dev/null
+    set -- "$1" "$1"/*.c "$1"/*.h
+    dir=$1
+    shift
+    for f in "$@"; do # a glob that matched nothing is no file
+        shift
+        [ -f "$f" ] && set -- "$@" "$f"
     done
+    [ "$#" -gt 0 ] || return 0
+    awk -v dir="$dir" -v wb="$WB_DIR/" '
+        FNR == 1 { file = FILENAME; sub(/.*\//, "", file) }
+        /^#line [0-9]* "/ {
+            rest = $0
+            sub(/^#line [0-9]* /, "", rest)
+            if (index(rest, "\"" wb) == 1) mine[file] = 1
+        }
+        function reads(file,    line, name) {
+            if (file in mine) return 1
+            if (file in done) return 0
+            done[file] = 1
+            while ((getline line < (dir "/" file)) > 0)
+                if (line ~ /^#include "/) {
+                    name = line
+                    sub(/^#include "/, "", name); sub(/".*/, "", name)
+                    if (reads(name)) { close(dir "/" file); return 1 }
+                }
+            close(dir "/" file)
+            return 0
+        }
+        END {
+            for (i = 1; i < ARGC; i++) {
+                f = ARGV[i]
+                if (f !~ /\.c$/) continue
+                sub(/.*\//, "", f)
+                split("", done) # each file followed anew, as alone
+                if (reads(f)) { sub(/\.c$/, "", f); printf "%s ", f }
+            }
+        }' "$@" < /dev/null
 }
 
 # The tests of chapters 01..NN that start threads in their own process.
 threaded_tests() {
-    for f in tests/ch[0-9][0-9]_*.c; do
-        [ "$(basename "$f" | cut -c3-4)" -le "$target" ] || continue
-        tr '\n' ' ' < "$f" |
-            grep -o 'tcase_add_threaded_test([^,]*,[^)]*)' |
-            sed 's/.*,[ ]*//; s/[ )]*$//'
-    done
+    awk -v upto="$target" '
+        FNR == 1 { mine = substr(FILENAME, index(FILENAME, "/ch") + 3, 2) + 0 <= upto + 0 }
+        mine { text[FILENAME] = text[FILENAME] $0 " "; if (!(FILENAME in seen)) order[++n] = FILENAME; seen[FILENAME] = 1 }
+        END {
+            for (i = 1; i <= n; i++) {
+                t = text[order[i]]
+                while (match(t, /tcase_add_threaded_test\([^,]*,[^)]*\)/)) {
+                    name = substr(t, RSTART, RLENGTH)
+                    t = substr(t, RSTART + RLENGTH)
+                    sub(/.*,[ ]*/, "", name)
+                    sub(/[ )]*$/, "", name)
+                    print name
+                }
+            }
+        }' tests/ch[0-9][0-9]_*.c
 }
 
 # Runs the threaded tests with the reader's files built with
@@ -365,7 +363,7 @@ run_threads_sanitized() {
     names=$(threaded_tests)
     [ -z "${GRADE_TESTS:-}" ] || names=$(minus "$names" "$(minus "$names" "$GRADE_TESTS")")
     [ -n "$(echo $names)" ] || return 0
-    files=$(readers_files "$WB_BUILD/tangle/ch$target" | tr '\n' ' ')
+    files=$(readers_files "$WB_BUILD/tangle/ch$target")
     [ -n "$files" ] || return 0
     probe=$work/tsan-probe
     printf 'int main(void) { return 0; }\n' > "$probe.c"
@@ -392,7 +390,7 @@ run_threads_sanitized() {
             timeout 1800 "$WB_BUILD/tsan/test/ch$target" > "$work/tsan/$name.out" 2>&1
         for report in "$work/tsan/$name".*; do
             [ -f "$report" ] || continue
-            awk -v wb="$WB_DIR/" -v test="$name" -v state="$state" '
+            awk -v wb="$WB_DIR/" -v cwd="$PWD/" -v test="$name" -v state="$state" '
                 BEGIN {
                     while ((getline l < state) > 0) {
                         split(l, f, "\t")
@@ -405,7 +403,10 @@ run_threads_sanitized() {
                     what = $0; sub(/.*ThreadSanitizer: /, "", what); sub(/ \(pid.*/, "", what)
                     where = func = variable = id = ""
                 }
+                # (Clang names a file by its absolute path: made relative)
                 /^ *#[0-9]+ / && where == "" {
+                    for (i = 1; i <= NF; i++)
+                        if (index($i, cwd wb) == 1) $i = substr($i, length(cwd) + 1)
                     for (i = 1; i <= NF; i++)
                         if (index($i, wb) == 1) {
                             where = $i; func = $2
@@ -466,7 +467,7 @@ build_only() {
             }
             { print }
             /^```/ { for (o in others) if (index($0, o)) print "// NOT DONE" }
-        ' "$wb" > "$alone/wb/$(basename "$wb")" || return 1
+        ' "$wb" > "$alone/wb/${wb##*/}" || return 1
     done
     (WB_DIR=$alone/wb WB_BUILD=$alone
      tangle_all "$@" && make_programs) > "$work/alone.log" 2>&1
@@ -607,17 +608,18 @@ fi
 : > "$work/tests.log"
 # The tests of the chapters after NN: an exercise may name one (its code
 # is tested again there), and a grade of chapter NN does not run it.
+# With GRADE_TESTS, the tests left out are held against no one either.
 later=$work/later-tests
-for f in tests/ch[0-9][0-9]_*.c; do
-    [ "$(basename "$f" | cut -c3-4)" -gt "$target" ] &&
-        sed -n 's/^START_TEST(\([a-z0-9_]*\)).*/\1/p' "$f"
-done > "$later"
-# with GRADE_TESTS, the tests left out are held against no one either
-if [ -n "${GRADE_TESTS:-}" ]; then
-    for f in tests/ch[0-9][0-9]_*.c; do
-        sed -n 's/^START_TEST(\([a-z0-9_]*\)).*/\1/p' "$f"
-    done | grep -vxF "$(echo $GRADE_TESTS | tr ' ' '\n')" >> "$later"
-fi
+awk -v upto="$target" -v only="${GRADE_TESTS:-}" '
+    BEGIN { n = split(only, w, " "); for (i = 1; i <= n; i++) kept[w[i]] = 1 }
+    match($0, /^START_TEST\([a-z0-9_]*\)/) {
+        name = substr($0, 12, RLENGTH - 12)
+        if (substr(FILENAME, index(FILENAME, "/ch") + 3, 2) + 0 > upto + 0)
+            print name
+        if (only != "" && !(name in kept))
+            left_out[++k] = name
+    }
+    END { for (i = 1; i <= k; i++) print left_out[i] }' tests/ch[0-9][0-9]_*.c > "$later"
 started=$(awk -F '\t' '$2 == "started"' "$state" | wc -l)
 built=no
 if [ "$started" -gt 0 ]; then
