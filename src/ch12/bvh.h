@@ -516,6 +516,9 @@ BVH_INLINE bool bvh_ray8_setup(vec3 origin, vec3 inv, double t_min,
 typedef double bvh_d4 __attribute__((vector_size(32)));
 typedef int64_t bvh_l4 __attribute__((vector_size(32)));
 
+/* Lane a (a constant) of a vector of four in all eight lanes. */
+#define bvh_lane8(v, a) __builtin_shufflevector(v, v, a, a, a, a, a, a, a, a)
+
 /* bvh_ray8_setup in AVX's lanes, the three axes at once (the fourth lane
  * a harmless 1): to be called only where bvh_walks_with_avx2() says yes.
  * An origin that is not a float takes the axis-by-axis way. */
@@ -535,12 +538,12 @@ bvh_ray8_setup_avx2(vec3 origin, vec3 inv, double t_min, double t_max,
         return bvh_ray8_setup(origin, inv, t_min, t_max, v, ray_bound, shift);
     bvh_f4 q_f = __builtin_convertvector(q, bvh_f4);
     unsigned octant = (unsigned)__builtin_ia32_movmskpd256(q); /* signs */
-    v->o_near[0] = v->o_far[0] = __builtin_shufflevector(o_f, o_f, 0, 0, 0, 0, 0, 0, 0, 0);
-    v->o_near[1] = v->o_far[1] = __builtin_shufflevector(o_f, o_f, 1, 1, 1, 1, 1, 1, 1, 1);
-    v->o_near[2] = v->o_far[2] = __builtin_shufflevector(o_f, o_f, 2, 2, 2, 2, 2, 2, 2, 2);
-    v->inv[0] = __builtin_shufflevector(q_f, q_f, 0, 0, 0, 0, 0, 0, 0, 0);
-    v->inv[1] = __builtin_shufflevector(q_f, q_f, 1, 1, 1, 1, 1, 1, 1, 1);
-    v->inv[2] = __builtin_shufflevector(q_f, q_f, 2, 2, 2, 2, 2, 2, 2, 2);
+    v->o_near[0] = v->o_far[0] = bvh_lane8(o_f, 0);
+    v->o_near[1] = v->o_far[1] = bvh_lane8(o_f, 1);
+    v->o_near[2] = v->o_far[2] = bvh_lane8(o_f, 2);
+    v->inv[0] = bvh_lane8(q_f, 0);
+    v->inv[1] = bvh_lane8(q_f, 1);
+    v->inv[2] = bvh_lane8(q_f, 2);
 #pragma GCC unroll 3
     for (int a = 0; a < 3; a++) {
         int down = octant >> a & 1; /* enters by the upper face */
