@@ -21,11 +21,10 @@
 #include <string.h>
 #include <time.h>
 
-#ifdef HAVE_EMBREE
-#include <embree3/rtcore.h>
-#endif
-
 #include "ch09_meshes.h"
+#ifdef HAVE_EMBREE
+#include "embree_scene.h"
+#endif
 #include "timing.h"
 
 enum { ROUNDS_SMALL = 11, ROUNDS_LARGE = 5 };
@@ -106,30 +105,6 @@ static bool count_bytes(void *unused, ssize_t bytes, bool post)
     return true;
 }
 
-static RTCScene embree_scene(RTCDevice device, const mesh *m)
-{
-    RTCScene scene = rtcNewScene(device);
-    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_HIGH);
-    RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
-    float *v = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                       3 * sizeof(float), (size_t)m->vertex_count);
-    for (int k = 0; k < m->vertex_count; k++) {
-        v[3 * k] = (float)m->vertices[k].x;
-        v[3 * k + 1] = (float)m->vertices[k].y;
-        v[3 * k + 2] = (float)m->vertices[k].z;
-    }
-    unsigned *ix = rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                           3 * sizeof(unsigned), (size_t)m->triangle_count);
-    for (int k = 0; k < m->triangle_count; k++)
-        for (int c = 0; c < 3; c++)
-            ix[3 * k + c] = (unsigned)m->triangles[k].v[c];
-    rtcSetGeometryBuildQuality(g, RTC_BUILD_QUALITY_HIGH);
-    rtcCommitGeometry(g);
-    rtcAttachGeometry(scene, g);
-    rtcReleaseGeometry(g);
-    return scene;
-}
-
 typedef struct {
     const mesh *m;
     RTCDevice device;
@@ -140,7 +115,7 @@ typedef struct {
  * vertices and indices, which our structures do not count either). */
 static long long embree_build(const embree_ctx *c)
 {
-    RTCScene scene = embree_scene(c->device, c->m);
+    RTCScene scene = embree_scene(c->device, c->m, RTC_BUILD_QUALITY_HIGH);
     long long before = embree_bytes_now;
     rtcCommitScene(scene);
     long long bytes = embree_bytes_now - before;
