@@ -477,39 +477,16 @@ BVH_INLINE bool bvh_wide_ray_of(vec3 origin, vec3 inv, double t_min,
     return near;
 }
 
-/* bvh_wide_ray_of and bvh_ray8_of at once, with no bvh_ray between them:
- * the walk's ray in vectors, bvh_ray_of's numbers to the bit; the bound
- * of the boxes (bvh_ray_of's t_max) in *ray_bound. */
+/* The walk's ray in vectors and the bound of its boxes (bvh_ray_of's
+ * t_max), by bvh_wide_ray_of and bvh_ray8_of: false where they say so. */
 BVH_INLINE bool bvh_ray8_setup(vec3 origin, vec3 inv, double t_min,
                                double t_max, bvh_ray8 *v, float *ray_bound,
                                unsigned *shift)
 {
-    const double o[3] = {origin.x, origin.y, origin.z};
-    const double q[3] = {inv.x, inv.y, inv.z};
-    unsigned octant = 0;
-    bool near = true, in_float = true;
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; a++) {
-        near &= (fabs(o[a]) <= 0x1p100) & (fabs(q[a]) >= 0x1p-100);
-        in_float &= (double)(float)o[a] == o[a];
-        octant |= (unsigned)(signbit(q[a]) != 0) << a;
-    }
-    if (!near)
+    bvh_ray r;
+    if (!bvh_wide_ray_of(origin, inv, t_min, t_max, &r, shift))
         return false;
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; a++) {
-        int down = octant >> a & 1; /* enters by the upper face */
-        float o_near = (float)o[a], o_far = o_near;
-        if (!in_float) /* rounded outward, as bvh_round_origin does */
-            o_near = down ? bvh_float_down(o[a]) : bvh_float_up(o[a]),
-            o_far = down ? bvh_float_up(o[a]) : bvh_float_down(o[a]);
-        v->o_near[a] = bvh_splat8(o_near), v->o_far[a] = bvh_splat8(o_far);
-        v->inv[a] = bvh_splat8((float)q[a]);
-        v->near[a] = 2 * a + down, v->far[a] = 2 * a + 1 - down;
-    }
-    v->t_min = bvh_float_down(t_min);
-    *ray_bound = bvh_float_up(t_max * (1 + BVH_SLACK));
-    *shift = 3 * octant;
+    *v = bvh_ray8_of(&r), *ray_bound = r.t_max;
     return true;
 }
 
