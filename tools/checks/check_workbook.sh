@@ -467,10 +467,18 @@ check_band_race() {
     plant "a band's job" 's/^    int first = band_of_turn/    static int first;\
     first = band_of_turn/; s/^    int last = first/    static int last;\
     last = first/'
-    grade "$(chapter_of "a band's job")" \
-        GRADE_TESTS="$(tests_of "a band's job") test_a_tall_image_on_four_threads_is_one_renders"
+    # ThreadSanitizer sees the race only when two threads are in the
+    # band's job at once (taking a band orders them otherwise), which a
+    # loaded machine may never do in one run: graded up to three times
+    tries=0
+    while [ "$tries" -lt 3 ]; do
+        grade "$(chapter_of "a band's job")" \
+            GRADE_TESTS="$(tests_of "a band's job") test_a_tall_image_on_four_threads_is_one_renders"
+        [ "$status" = 0 ] || break
+        tries=$((tries + 1))
+    done
     grep -q "^(no ThreadSanitizer" "$t/out" && return 0
-    [ "$status" != 0 ] || fail "a data race should not grade with status 0"
+    [ "$status" != 0 ] || fail "a data race should not grade with status 0 (3 grades)"
     expect "a band's job" "data race (ThreadSanitizer) at $wb/$(file_of "a band's job"):"
     expect "a band's job" "a static variable, which every thread shares"
 }
@@ -481,15 +489,20 @@ check_hash_race() {
     # 12.1 keeps its hash in a static variable, and leaves out the axis
     plant "the sample hash" 's/^    uint64_t h = mix64(/    static uint64_t h;\
     h = mix64(/; s/h = mix64(h ^ ((uint64_t)(uint32_t)k << 1 | (uint64_t)(axis \& 1)));/h = mix64(h ^ (uint64_t)(uint32_t)k);/'
-    grade "$(chapter_of "the sample hash")" \
-        GRADE_TESTS="$(tests_of "the sample hash") test_a_jittered_render_is_the_same_on_any_thread_count"
-    [ "$status" != 0 ] || fail "12.1 planted should not grade with status 0"
-    expect "the sample hash" "the axis must change the number"
-    grep -q "^(no ThreadSanitizer" "$t/out" && return 0
-    # the race, which the verdict does not show behind the failing test
-    grep -q "^$(id_of "the sample hash")	a data race (ThreadSanitizer) at $wb/$(file_of "the sample hash"):.* on h, a static variable" \
-        "$t/build/ch$(chapter_of "the sample hash")/races.tsv" ||
-        fail "ThreadSanitizer should see 12.1's static h"
+    # the race, which the verdict does not show behind the failing test;
+    # graded up to three times, as the band's race above
+    tries=0
+    while [ "$tries" -lt 3 ]; do
+        grade "$(chapter_of "the sample hash")" \
+            GRADE_TESTS="$(tests_of "the sample hash") test_a_jittered_render_is_the_same_on_any_thread_count"
+        [ "$status" != 0 ] || fail "12.1 planted should not grade with status 0"
+        expect "the sample hash" "the axis must change the number"
+        grep -q "^(no ThreadSanitizer" "$t/out" && return 0
+        grep -q "^$(id_of "the sample hash")	a data race (ThreadSanitizer) at $wb/$(file_of "the sample hash"):.* on h, a static variable" \
+            "$t/build/ch$(chapter_of "the sample hash")/races.tsv" && return 0
+        tries=$((tries + 1))
+    done
+    fail "ThreadSanitizer should see 12.1's static h (3 grades)"
 }
 
 # The checks, the longest first (WB_CHECKS: those named only).
