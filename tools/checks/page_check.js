@@ -322,9 +322,21 @@ async function main() {
   const count = await inPage(sessionId, "function () { return document.querySelectorAll('div.playground details').length; }");
   report(count > 0, count + " playgrounds in the page");
 
+  // The renders run side by side, one a core (each playground has a worker
+  // of its own); their lines are printed in the cases' order.
+  const results = new Array(cases.renders.length);
+  let next = 0;
+  async function renderNext() {
+    while (next < cases.renders.length) {
+      const k = next++;
+      results[k] = await run(cases.renders[k]);
+    }
+  }
+  const lanes = Math.max(1, Math.min(os.cpus().length, 4));
+  await Promise.all(Array.from({ length: lanes }, renderNext));
   let pixels = 0, differing = 0, largest = 0;
-  for (const c of cases.renders) {
-    const r = await run(c);
+  for (const [k, c] of cases.renders.entries()) {
+    const r = results[k];
     const what = "chapter " + c.chapter + " " + (c.scene || "(its own scene)") + " at " + c.size;
     if (r.state !== "done" || r.largest === undefined) {
       report(false, what + ": " + (r.error || r.state + ": " + r.status + " " +
