@@ -17,7 +17,7 @@
 #                     draws (left) next to what the program draws (right)
 #   make charts       run bench/ (built with link-time optimization, under
 #                     build/rel-lto) and redraw figures/chNN-*.svg; and
-#                     chart-ch12_page: the page's programs against bin/chNN
+#                     chart-ch13_page: the page's programs against bin/chNN
 #   make diagrams     redraw the explanatory figures/chNN-diagram-*.svg
 #   make book         build/book.html          make clean
 #   make wasm         build/wasm/chNN.wasm: each chapter's program for the
@@ -393,11 +393,11 @@ ifneq ($(HAVE_EMBREE),yes)
 BENCHES  := $(filter-out %_embree,$(BENCHES))
 endif
 $(B)/bench/ch10_embree: BENCH_LIBS := -lembree3
-# Chapter 11's build chart, and chapter 10's count of instructions a ray,
+# Chapter 12's build chart, and chapter 10's count of instructions a ray,
 # show Embree beside ours where they can.
 ifeq ($(HAVE_EMBREE),yes)
-$(B)/bench/ch11_build: BENCH_LIBS := -lembree3
-$(B)/obj/ch11/bench/ch11_build.o: ALL_CFLAGS += -DHAVE_EMBREE
+$(B)/bench/ch12_build: BENCH_LIBS := -lembree3
+$(B)/obj/ch12/bench/ch12_build.o: ALL_CFLAGS += -DHAVE_EMBREE
 $(B)/bench/ch10_instructions: BENCH_LIBS := -lembree3
 $(B)/obj/ch10/bench/ch10_instructions.o: ALL_CFLAGS += -DHAVE_EMBREE
 endif
@@ -450,24 +450,24 @@ deps-valgrind:
 	@sh tools/book/deps.sh valgrind || echo "deps: no valgrind: chapter 10's counts will say so"
 chart-ch10_profile chart-ch10_instructions: | deps-valgrind
 
-# Chapter 12's chart of the programs in the page: each chapter's own scene
+# Chapter 13's chart of the programs in the page: each chapter's own scene
 # rendered in the book's page (headless Chromium) and by bin/chNN, the
 # everyday build, and by the same programs built by clang, the page's
 # compiler, on one thread (tools/checks/page_check.sh --speed). It needs
 # Chromium and the programs for the page; make charts draws it where it can.
-.PHONY: chart-ch12_page chart-ch12_page-plain
+.PHONY: chart-ch13_page chart-ch13_page-plain
 PAGE_SPEED_SIZE := 640x480
 PAGE_SPEED_ROUNDS := 11
-chart-ch12_page: | deps
-	+@$(MAKE) --no-print-directory LTO= chart-ch12_page-plain
-chart-ch12_page-plain: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n)) | deps
+chart-ch13_page: | deps
+	+@$(MAKE) --no-print-directory LTO= chart-ch13_page-plain
+chart-ch13_page-plain: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n)) | deps
 	+$(MAKE) --no-print-directory CC=clang $(foreach n,$(NUMS),build/rel-clang/bin/ch$(n))
 	PAGE_SPEED_CLANG_BIN=build/rel-clang/bin \
-	sh tools/checks/page_check.sh --speed figures/ch12-page.csv.tmp $(PAGE_SPEED_ROUNDS) \
+	sh tools/checks/page_check.sh --speed figures/ch13-page.csv.tmp $(PAGE_SPEED_ROUNDS) \
 	  build/book.html $(BIN) $(PAGE_SPEED_SIZE) $(NUMS)
-	mv figures/ch12-page.csv.tmp figures/ch12-page.csv
-	gnuplot -e "csv='figures/ch12-page.csv'; stem='figures/ch12-page'" bench/ch12_page.gp
-	@echo "wrote figures/ch12-page.svg"
+	mv figures/ch13-page.csv.tmp figures/ch13-page.csv
+	gnuplot -e "csv='figures/ch13-page.csv'; stem='figures/ch13-page'" bench/ch13_page.gp
+	@echo "wrote figures/ch13-page.svg"
 
 ifeq ($(LTO_FLAGS)$(SAN),)
 # The charts measure the program built with link-time optimization.
@@ -486,8 +486,8 @@ charts: deps $(BENCHES)
 	@for b in $(notdir $(BENCHES)); do $(MAKE) --no-print-directory chart-$$b || exit 1; done
 	$(if $(filter 10,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
 	@if [ -n "$(HAVE_WASM)" ] && . tools/editions/find_chromium.sh && [ -n "$$(find_chromium)" ]; then \
-	  $(MAKE) --no-print-directory chart-ch12_page; \
-	else echo "charts: figures/ch12-page.svg not measured: no Chromium or no programs for the page"; fi
+	  $(MAKE) --no-print-directory chart-ch13_page; \
+	else echo "charts: figures/ch13-page.svg not measured: no Chromium or no programs for the page"; fi
 
 # Can the speed axes be trusted? Every bench run twice: the largest ratio
 # between two runs of a method, and whether an ordering a quoted ratio

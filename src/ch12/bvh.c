@@ -6,7 +6,7 @@
 #include "memory.h"
 /* <<bvh.c includes>> ch10 */
 #include <stdatomic.h>
-/* <<bvh.c includes>> += ch11 */
+/* <<bvh.c includes>> += ch12 */
 #include "moment.h"
 #include "pool.h"
 
@@ -116,7 +116,7 @@ typedef struct {
     bvh_params p;
     double pad;        /* every box's, BVH_THICKNESS times the largest
                           coordinate */
-    /* <<more of a builder>> ch11 */
+    /* <<more of a builder>> ch12 */
     int *scratch;             /* as many as items: large nodes' partitions */
     bvh_node *slots;          /* 2 count - 1: each subtree's place */
     struct bvh_slice *slices; /* the top's: one a thread at most */
@@ -199,8 +199,8 @@ static int partition(const bvh_builder *bd, int b, int e, int axis,
     return i;
 }
 
-/* <<a node's passes>> ch11 */
-/* <<a node's items in slices>> ch11 */
+/* <<a node's passes>> ch12 */
+/* <<a node's items in slices>> ch12 */
 typedef struct bvh_slice bvh_slice;
 
 /* A slice of a node's items, one thread's share of a pass over them,
@@ -325,7 +325,7 @@ static int partition_in_order(bvh_slice *sl, int n, int split)
     return first_high;
 }
 
-/* <<a node's passes, shared>> ch11 */
+/* <<a node's passes, shared>> ch12 */
 /* The slices of items[b..e) that bd's threads share: one, this thread,
  * for a node of BVH_SHARED_ITEMS or fewer. */
 static int slices_of(bvh_builder *bd, int b, int e)
@@ -441,7 +441,7 @@ static int split_range(bvh_builder *bd, int b, int e, int depth,
     return pass_partition(bd, b, e, *axis, lo, scale, k);
 }
 
-/* <<building a range>> ch11 */
+/* <<building a range>> ch12 */
 /* Fills slot s with the node of items[b..e), its passes over the items
  * shared by bd's slices when it is large; the first item of its upper
  * child, or -1 for a leaf. */
@@ -469,7 +469,7 @@ static void build_range(bvh_builder *bd, int b, int e, int s, int depth)
     build_range(bd, m, e, s + 2 * (m - b), depth + 1);
 }
 
-/* <<the build's tasks>> ch11 */
+/* <<the build's tasks>> ch12 */
 /* A subtree left for the threads: items[b..e) from slot s. */
 typedef struct bvh_task {
     int b, e, s, depth;
@@ -504,7 +504,7 @@ static void build_task(void *builder, int k)
     build_range(&own, t->b, t->e, t->s, t->depth);
 }
 
-/* <<closing the gaps>> ch11 */
+/* <<closing the gaps>> ch12 */
 /* Copies the subtree at slots[s] into t->nodes from t->node_count on, in
  * the order of a walk, each node's first child right after it; where
  * its root went. */
@@ -699,7 +699,7 @@ static bool builder_made(bvh_builder *bd, size_t count)
 {
     bd->centers = memory_alloc(count, sizeof *bd->centers);
     bool made = bd->centers != NULL;
-    /* <<more arrays of a builder>> ch11 */
+    /* <<more arrays of a builder>> ch12 */
     bd->scratch = memory_alloc(count, sizeof *bd->scratch);
     bd->slots = memory_alloc(2 * count - 1, sizeof *bd->slots);
     bd->slice_count = pool_threads(bd->p.threads);
@@ -712,11 +712,11 @@ static bool builder_made(bvh_builder *bd, size_t count)
 static void builder_free(bvh_builder *bd)
 {
     free(bd->centers);
-    /* <<free more of a builder>> ch11 */
+    /* <<free more of a builder>> ch12 */
     free(bd->scratch), free(bd->slots), free(bd->slices), free(bd->tasks);
 }
 
-/* <<building the binary tree>> ch11 */
+/* <<building the binary tree>> ch12 */
 /* The binary tree of bd's count items in t, on bd->p.threads threads. */
 static void build_binary(bvh_builder *bd, int count, bvh *t)
 {
@@ -762,7 +762,7 @@ bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
     if (ok)
         build_binary(&bd, count, t);
     builder_free(&bd);
-    /* <<the tree made of the binary nodes>> ch11 */
+    /* <<the tree made of the binary nodes>> ch12 */
     double collapse_start = moment_now().wall;
     ok = ok && (q.width == 2 ? shrink_binary(t) : make_wide(t));
     t->collapse_seconds = moment_now().wall - collapse_start;

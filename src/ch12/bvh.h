@@ -30,7 +30,7 @@ typedef struct {
     int min_items;            /* fewer items get no tree; 0: 1 */
     int item_group;           /* items a leaf tests at once: the costs
                                  count groups; 0: 1 */
-    /* <<more bvh parameters>> ch11 */
+    /* <<more bvh parameters>> ch12 */
     int threads; /* of the build; 0: one per core */
 } bvh_params;
 
@@ -56,7 +56,7 @@ bool bvh_walks_with_avx2(void);
 /* false: trees built from now on are walked with the build's own
  * instructions (for the tests, which compare the two). */
 void bvh_allow_avx2(bool allowed);
-/* <<bvh parameters>> += ch11 */
+/* <<bvh parameters>> += ch12 */
 
 /* A node of more items has its passes over them shared by the threads
  * at the top of the tree, and keeps its items' order as it partitions:
@@ -113,7 +113,7 @@ typedef struct bvh {
     /* <<more of a bvh>> ch10 */
     bvh_node8 *nodes8; /* width 4 or 8; node 0 is the root */
     bool avx2; /* walked with AVX2 (bvh_walks_with_avx2 when collapsed) */
-    /* <<more of a bvh>> += ch11 */
+    /* <<more of a bvh>> += ch12 */
     int build_threads; /* its subtrees were shared among */
     double gaps_seconds, collapse_seconds; /* its walks on one thread */
 } bvh;

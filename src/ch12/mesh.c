@@ -9,7 +9,7 @@
 #include "offset.h"
 /* <<mesh.c includes>> += ch10 */
 #include <float.h>
-/* <<mesh.c includes>> += ch11 */
+/* <<mesh.c includes>> += ch12 */
 #include "pool.h"
 
 /* <<mesh storage>> ch04 */
@@ -538,7 +538,7 @@ static int pack_leaves(mesh *m, triangle_packet *packets, int from, int to,
     return next;
 }
 
-/* <<making a mesh's packets>> ch11 */
+/* <<making a mesh's packets>> ch12 */
 /* The work around a mesh's build, in pieces for the pool: pieces of its
  * triangles for their boxes, then of the tree's nodes for their
  * packets. */
@@ -617,7 +617,7 @@ bool mesh_build_bvh(mesh *m, const bvh_params *p)
     q.item_group = q.item_group > 0 ? q.item_group : PACKET_W;
     box *bounds = memory_alloc((size_t)m->triangle_count, sizeof *bounds);
     if (bounds != NULL)
-        /* <<the boxes of a mesh's triangles>> ch11 */
+        /* <<the boxes of a mesh's triangles>> ch12 */
         triangles_boxed(m, bounds, q.threads);
     bool ok = bounds != NULL &&
               bvh_build(&m->bvh, m->triangle_count, bounds, &q);
