@@ -39,8 +39,8 @@
 #   make SAN=1 test   what runs the programs (suites, figures, commands)
 #                     with AddressSanitizer and UBSan
 #   make WERROR=1     warnings are errors (CI)
-#   make SCALAR=1, NATIVE=1   chapter 10's BVH tests in scalar code, or with
-#                     every instruction of this machine
+#   make SCALAR=1, NATIVE=1   chapters 10 and 11's packets and node tests in
+#                     scalar code, or with every instruction of this machine
 #   make ALONE=1 test-chNN   chapter NN's program and suites built without
 #                     the chapters before it (CI's sanitized pass)
 
@@ -68,7 +68,8 @@ LTO_LINK := $(if $(LTO_FLAGS),-Wno-maybe-uninitialized)
 OPT     := $(if $(SAN),$(SANFLAGS),-O2 -g $(LTO_FLAGS))
 CFLAGS  ?=
 LDFLAGS ?=
-# make SCALAR=1: chapter 10's BVH node tests without vector instructions;
+# make SCALAR=1: chapter 10's packets and chapter 11's node tests without
+# vector instructions;
 # make NATIVE=1: the instructions of the machine that builds (not needed
 # for correctness). GCC 12.2 with AVX-512 stores a by-value struct built
 # from a compound literal wrongly (a ray passed to mesh_ray_of, in chapter
@@ -380,7 +381,7 @@ check-failures: $(patsubst figures/%,$(B)/fig/%,$(FAILURE_FIGS)) $(B)/tools/chec
 figures/%.png: $(B)/fig/%.png
 	@cmp -s $< $@ || cp $< $@
 
-# Chapter 10 compares chapter 08's kd-tree with Intel Embree 3 where it is installed
+# Chapter 11 compares chapter 08's kd-tree with Intel Embree 3 where it is installed
 # (Debian: libembree-dev); without it that benchmark is not built, and
 # `make charts` draws its chart from this program's rates alone.
 # Asked once, by the first make: its sub-makes (the grader's) get the answer.
@@ -392,14 +393,14 @@ export HAVE_EMBREE
 ifneq ($(HAVE_EMBREE),yes)
 BENCHES  := $(filter-out %_embree,$(BENCHES))
 endif
-$(B)/bench/ch10_embree: BENCH_LIBS := -lembree3
-# Chapter 12's build chart, and chapter 10's count of instructions a ray,
+$(B)/bench/ch11_embree: BENCH_LIBS := -lembree3
+# Chapter 12's build chart, and chapter 11's count of instructions a ray,
 # show Embree beside ours where they can.
 ifeq ($(HAVE_EMBREE),yes)
 $(B)/bench/ch12_build: BENCH_LIBS := -lembree3
 $(B)/obj/ch12/bench/ch12_build.o: ALL_CFLAGS += -DHAVE_EMBREE
-$(B)/bench/ch10_instructions: BENCH_LIBS := -lembree3
-$(B)/obj/ch10/bench/ch10_instructions.o: ALL_CFLAGS += -DHAVE_EMBREE
+$(B)/bench/ch11_instructions: BENCH_LIBS := -lembree3
+$(B)/obj/ch11/bench/ch11_instructions.o: ALL_CFLAGS += -DHAVE_EMBREE
 endif
 
 src: $(foreach n,$(NUMS),src-ch$(n))
@@ -441,14 +442,14 @@ check-diagrams: $(DIAGRAM_PROGRAMS)
 $(foreach n,$(NUMS),$(B)/obj/ch$(n)/bench/timing.o): \
   ALL_CFLAGS += '-DBENCH_FLAGS="$(strip $(OPT) $(CFLAGS))"'
 
-# Chapter 10's profile and count of instructions run the program under
+# Chapter 11's profile and count of instructions run the program under
 # Valgrind's callgrind (Debian: valgrind, with the valgrind/callgrind.h
 # that the two benchmarks are built with), installed first where it can be;
 # without it, their charts say that it was absent.
 .PHONY: deps-valgrind
 deps-valgrind:
-	@sh tools/book/deps.sh valgrind || echo "deps: no valgrind: chapter 10's counts will say so"
-chart-ch10_profile chart-ch10_instructions: | deps-valgrind
+	@sh tools/book/deps.sh valgrind || echo "deps: no valgrind: chapter 11's counts will say so"
+chart-ch11_profile chart-ch11_instructions: | deps-valgrind
 
 # Chapter 13's chart of the programs in the page: each chapter's own scene
 # rendered in the book's page (headless Chromium) and by bin/chNN, the
@@ -484,7 +485,7 @@ chart-%: $(B)/bench/% | deps
 
 charts: deps $(BENCHES)
 	@for b in $(notdir $(BENCHES)); do $(MAKE) --no-print-directory chart-$$b || exit 1; done
-	$(if $(filter 10,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
+	$(if $(filter 11,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
 	@if [ -n "$(HAVE_WASM)" ] && . tools/editions/find_chromium.sh && [ -n "$$(find_chromium)" ]; then \
 	  $(MAKE) --no-print-directory chart-ch13_page; \
 	else echo "charts: figures/ch13-page.svg not measured: no Chromium or no programs for the page"; fi
@@ -496,15 +497,15 @@ charts-check: deps $(BENCHES)
 	@sh tools/checks/charts_check.sh $(BENCHES)
 endif
 
-# Without Embree, chapter 10's comparison chart shows this program's own
+# Without Embree, chapter 11's comparison chart shows this program's own
 # rates (from chapter 08's kd-tree benchmark) and says that Embree was absent.
 .PHONY: chart-embree-absent
 chart-embree-absent: figures/ch08-kdtree.csv
 	{ grep '^# machine' figures/ch08-kdtree.csv; \
 	  echo 'method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns'; \
 	  grep -E '^kdtree,[^,]*,[^,]*,[^,]*,mrays_per_s(,|$$)|^kdtree-build,' figures/ch08-kdtree.csv; \
-	  echo 'embree,absent,0,0,absent'; } > figures/ch10-embree.csv
-	gnuplot -e "csv='figures/ch10-embree.csv'; stem='figures/ch10-embree'" bench/ch10_embree.gp
+	  echo 'embree,absent,0,0,absent'; } > figures/ch11-embree.csv
+	gnuplot -e "csv='figures/ch11-embree.csv'; stem='figures/ch11-embree'" bench/ch11_embree.gp
 
 .PHONY: charts-check
 
@@ -936,7 +937,7 @@ valgrind: all $(B)/test/tangle $(foreach n,$(NUMS),$(B)/test/ch$(n))
 
 # ---------------------------------------------------------------- the page
 # Each chapter's program compiled for WebAssembly, for the book's page to
-# render its scenes (chapter 10, "The program in the page"): the same
+# render its scenes (chapter 13): the same
 # files as bin/chNN, with the headers of the last chapter's page/ folder
 # in front of the system's. make installs the toolchain as root (Debian:
 # clang lld wasi-libc libclang-rt-dev-wasm32, tools/book/deps.sh --page);

@@ -52,6 +52,7 @@ typedef struct {
     triangle_packet *bvh_packets; /* the BVH's leaves' triangles, leaf by leaf */
     int bvh_packet_count;
     bool bvh_in_float; /* its leaves decided in float alone (bvh-float) */
+    /* <<mesh members>> += ch11 */
     unsigned char bvh_walk; /* its walk: 0 binary, 2 plain, 4 AVX2 */
     /* <<mesh members>> += ch12 */
     int parts; /* of chapter 12's reader; 0: chapter 4's read it */
@@ -175,7 +176,7 @@ typedef enum {
     MESH_ACCELERATORS /* the number of names, and one more */
 } mesh_accelerator;
 
-/* <<the meshes' default tree>> ch10 */
+/* <<the meshes' default tree>> ch11 */
 #define MESH_DEFAULT_ACCELERATOR MESH_ACCELERATOR_BVH
 
 /* The name of an accelerator in the scene ("kdtree", "bvh", ...);

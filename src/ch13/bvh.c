@@ -4,7 +4,7 @@
 #include <assert.h>
 #include <stdlib.h>
 #include "memory.h"
-/* <<bvh.c includes>> ch10 */
+/* <<bvh.c includes>> ch11 */
 #include <stdatomic.h>
 /* <<bvh.c includes>> += ch12 */
 #include "moment.h"
@@ -13,7 +13,7 @@
 /* <<bvh storage>> ch09 */
 bvh_params bvh_default_params(void)
 {
-    /* <<the default width>> ch10 */
+    /* <<the default width>> ch11 */
     int width = 8;
     return (bvh_params){.width = width, .bins = 32, .max_leaf_items = 8,
                         .traversal_cost = 1, .intersection_cost = 1,
@@ -39,7 +39,7 @@ static bvh_params bvh_filled(const bvh_params *p)
 void bvh_free(bvh *t)
 {
     free(t->nodes), free(t->items);
-    /* <<free more of a bvh>> ch10 */
+    /* <<free more of a bvh>> ch11 */
     free(t->nodes8);
     *t = (bvh){0};
 }
@@ -47,7 +47,7 @@ void bvh_free(bvh *t)
 long long bvh_bytes(const bvh *t)
 {
     long long node = (long long)sizeof(bvh_node);
-    /* <<the size of a wider node>> ch10 */
+    /* <<the size of a wider node>> ch11 */
     if (t->width == 4 || t->width == 8)
         node = (long long)sizeof(bvh_node8);
     return t->node_capacity * node + (long long)t->item_count * sizeof(int);
@@ -521,15 +521,15 @@ static int close_gaps(const bvh_node *slots, int s, bvh *t, int depth)
     return k;
 }
 
-/* <<more of a bvh build>> ch10 */
-/* <<collapsing to wide nodes>> ch10 */
+/* <<more of a bvh build>> ch11 */
+/* <<collapsing to wide nodes>> ch11 */
 static double float_box_area(const float b[6])
 {
     double x = b[3] - b[0], y = b[4] - b[1], z = b[5] - b[2];
     return x * y + y * z + z * x;
 }
 
-/* <<opening a node's children>> ch10 */
+/* <<opening a node's children>> ch11 */
 /* The children of binary node k, opened until there are width of them or
  * leaves only: the interior child with the largest box first. */
 static int open_children(const bvh_node *nodes, int k, int width,
@@ -565,6 +565,7 @@ static double along_octant(const bvh_node8 *n, int c, int o)
     return far;
 }
 
+/* <<the octant orders of a node>> ch11 */
 /* n's order for each octant: the lanes farthest first (insertion sort,
  * equal ones in the order of their lanes). */
 static void order_children(bvh_node8 *n)
@@ -644,7 +645,7 @@ static bool make_wide(bvh *t)
     return true;
 }
 
-/* <<choosing AVX2 when the program runs>> ch10 */
+/* <<choosing AVX2 when the program runs>> ch11 */
 /* Set by bvh_allow_avx2 (the tests); read when a tree is built. */
 static atomic_bool avx2_forbidden;
 
@@ -746,7 +747,7 @@ static bool shrink_binary(bvh *t)
 bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
 {
     bvh_params q = bvh_filled(p);
-    /* <<the widths a build makes>> ch10 */
+    /* <<the widths a build makes>> ch11 */
     assert(q.width == 2 || q.width == 4 || q.width == 8);
     assert(q.bins >= 2 && q.bins <= BVH_MAX_BINS);
     assert(q.max_leaf_items >= 1 && q.max_leaf_items <= 15);

@@ -115,7 +115,7 @@ void report_bvhs(const scene *s)
     scene_bvh_summary b = scene_bvhs(s);
     if (b.trees == 0)
         return;
-    /* <<the line of the BVHs>> ch10 */
+    /* <<the line of the BVHs>> ch11 */
     const bvh *first = NULL; /* the instructions of the first one's walk */
     for (int k = 0; k < s->mesh_count && first == NULL; k++)
         if (s->meshes[k].bvh.node_count > 0)

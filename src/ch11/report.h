@@ -1,0 +1,25 @@
+/* report.h: what --stats prints on standard error (chapter 1). */
+#ifndef REPORT_H
+#define REPORT_H
+
+#include "moment.h"
+#include "scene.h"
+
+/* The counts in st and the phases between at[0..3]: the start, and the
+ * ends of loading, rendering and writing. */
+void report_stats(const render_stats *st, const moment at[4]);
+/* <<report declarations>> ch08 */
+
+/* The kd-trees of s (their nodes, leaves and depth), and the time that
+ * building all of s's trees took. */
+void report_trees(const scene *s);
+
+/* A hint for each mesh of s with more triangles than the pixels it covers
+ * can show. */
+void report_mesh_hints(const scene *s);
+/* <<report declarations>> += ch09 */
+
+/* The BVHs of s's meshes: their nodes, leaves and bytes a triangle. */
+void report_bvhs(const scene *s);
+
+#endif
