@@ -102,7 +102,7 @@ static int nearest(const mesh *m, ray r, double *t)
 
 /* What brute force answers on the adversarial rays, which the kd-tree
  * was found to answer alike: the same for any BVH of the mesh, so kept
- * for the next call on the same mesh and count (chapter 10 asks for
+ * for the next call on the same mesh and count (chapter 11 asks for
  * three BVHs of one mesh, and the bunny's costs seconds). */
 typedef struct {
     uint64_t key; /* of the mesh's bytes and the count; 0: none */
