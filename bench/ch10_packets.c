@@ -2,7 +2,8 @@
  * the answers each gives: the same binary tree and chapter 9's walk, one
  * thread, the same rays.
  *
- *   build/rel/bench/ch10_packets [BUNNY.obj TEAPOT.obj] > figures/ch10-packets.csv
+ *   build/rel/bench/ch10_packets [BUNNY.obj TEAPOT.obj] \
+ *       > figures/ch10-packets.csv
  *
  * The meshes (their vertices rounded to float) and the rays are those of
  * ch08_rays.h: 512 x 512 rays from an eye at K = 1 and K = 2.5 times a

@@ -26,7 +26,7 @@
 
 #define SIZE 160   /* pixels a side of each half */
 #define SCALE 2    /* magnification of each half in the figure */
-#define HOT 1000   /* nodes a ray drawn white; the shades on a log scale */
+#define HOT 1000   /* nodes a ray drawn white (shades: a log scale) */
 #define WIDTH 1e-3 /* of a needle */
 
 /* x in [0, 1) from a 64-bit state (xorshift*): the needles' own numbers,
