@@ -599,10 +599,10 @@ static int mesh_search_all(const mesh *m, const mesh_ray *mr, double t_min,
 /* The triangles of a leaf, its packets: the nearest hit by the tie rule
  * (best: the nearest triangle so far, -1: none) into *out, or with out
  * NULL any hit; its index in m, or -1. in_float: decided in float. */
-static inline __attribute__((always_inline)) int bvh_leaf_test(const mesh *m, const packet_ray *r,
-                             bvh_leaf leaf, bool in_float, double t_min,
-                             double t_max, int best, triangle_hit *out,
-                             long long *decided)
+static inline __attribute__((always_inline)) int
+bvh_leaf_test(const mesh *m, const packet_ray *r, bvh_leaf leaf,
+              bool in_float, double t_min, double t_max, int best,
+              triangle_hit *out, long long *decided)
 {
     const triangle_packet *p = m->bvh_packets + leaf.first;
     int n = triangle_packets_needed(leaf.count);
