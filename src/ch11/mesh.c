@@ -778,7 +778,8 @@ typedef int (*bvh_search)(const mesh *m, const mesh_ray *mr, double t_min,
                           double t_max, triangle_hit *out,
                           render_stats *stats);
 
-/* By m->bvh_walk, then 1 more for the float path. */
+/* By m->bvh_walk, then 1 more for the float path (0 and 1: the binary
+ * walk, which mesh_search_bvh calls without the table). */
 static const bvh_search searches[6] = {
     search_bvh2,        search_bvh2,        search_plain_exact,
     search_plain_float, search_avx2_exact,  search_avx2_float};
