@@ -17,7 +17,7 @@
 #                     draws (left) next to what the program draws (right)
 #   make charts       run bench/ (built with link-time optimization, under
 #                     build/rel-lto) and redraw figures/chNN-*.svg; and
-#                     chart-ch12_page: the page's programs against bin/chNN
+#                     chart-ch13_page: the page's programs against bin/chNN
 #   make diagrams     redraw the explanatory figures/chNN-diagram-*.svg
 #   make book         build/book.html          make clean
 #   make wasm         build/wasm/chNN.wasm: each chapter's program for the
@@ -39,8 +39,8 @@
 #   make SAN=1 test   what runs the programs (suites, figures, commands)
 #                     with AddressSanitizer and UBSan
 #   make WERROR=1     warnings are errors (CI)
-#   make SCALAR=1, NATIVE=1   chapter 10's BVH tests in scalar code, or with
-#                     every instruction of this machine
+#   make SCALAR=1, NATIVE=1   chapters 10 and 11's packets and node tests in
+#                     scalar code, or with every instruction of this machine
 #   make ALONE=1 test-chNN   chapter NN's program and suites built without
 #                     the chapters before it (CI's sanitized pass)
 
@@ -68,7 +68,8 @@ LTO_LINK := $(if $(LTO_FLAGS),-Wno-maybe-uninitialized)
 OPT     := $(if $(SAN),$(SANFLAGS),-O2 -g $(LTO_FLAGS))
 CFLAGS  ?=
 LDFLAGS ?=
-# make SCALAR=1: chapter 10's BVH node tests without vector instructions;
+# make SCALAR=1: chapter 10's packets and chapter 11's node tests without
+# vector instructions;
 # make NATIVE=1: the instructions of the machine that builds (not needed
 # for correctness). GCC 12.2 with AVX-512 stores a by-value struct built
 # from a compound literal wrongly (a ray passed to mesh_ray_of, in chapter
@@ -380,7 +381,7 @@ check-failures: $(patsubst figures/%,$(B)/fig/%,$(FAILURE_FIGS)) $(B)/tools/chec
 figures/%.png: $(B)/fig/%.png
 	@cmp -s $< $@ || cp $< $@
 
-# Chapter 10 compares chapter 08's kd-tree with Intel Embree 3 where it is installed
+# Chapter 11 compares chapter 08's kd-tree with Intel Embree 3 where it is installed
 # (Debian: libembree-dev); without it that benchmark is not built, and
 # `make charts` draws its chart from this program's rates alone.
 # Asked once, by the first make: its sub-makes (the grader's) get the answer.
@@ -392,14 +393,14 @@ export HAVE_EMBREE
 ifneq ($(HAVE_EMBREE),yes)
 BENCHES  := $(filter-out %_embree,$(BENCHES))
 endif
-$(B)/bench/ch10_embree: BENCH_LIBS := -lembree3
-# Chapter 11's build chart, and chapter 10's count of instructions a ray,
+$(B)/bench/ch11_embree: BENCH_LIBS := -lembree3
+# Chapter 12's build chart, and chapter 11's count of instructions a ray,
 # show Embree beside ours where they can.
 ifeq ($(HAVE_EMBREE),yes)
-$(B)/bench/ch11_build: BENCH_LIBS := -lembree3
-$(B)/obj/ch11/bench/ch11_build.o: ALL_CFLAGS += -DHAVE_EMBREE
-$(B)/bench/ch10_instructions: BENCH_LIBS := -lembree3
-$(B)/obj/ch10/bench/ch10_instructions.o: ALL_CFLAGS += -DHAVE_EMBREE
+$(B)/bench/ch12_build: BENCH_LIBS := -lembree3
+$(B)/obj/ch12/bench/ch12_build.o: ALL_CFLAGS += -DHAVE_EMBREE
+$(B)/bench/ch11_instructions: BENCH_LIBS := -lembree3
+$(B)/obj/ch11/bench/ch11_instructions.o: ALL_CFLAGS += -DHAVE_EMBREE
 endif
 
 src: $(foreach n,$(NUMS),src-ch$(n))
@@ -441,33 +442,33 @@ check-diagrams: $(DIAGRAM_PROGRAMS)
 $(foreach n,$(NUMS),$(B)/obj/ch$(n)/bench/timing.o): \
   ALL_CFLAGS += '-DBENCH_FLAGS="$(strip $(OPT) $(CFLAGS))"'
 
-# Chapter 10's profile and count of instructions run the program under
+# Chapter 11's profile and count of instructions run the program under
 # Valgrind's callgrind (Debian: valgrind, with the valgrind/callgrind.h
 # that the two benchmarks are built with), installed first where it can be;
 # without it, their charts say that it was absent.
 .PHONY: deps-valgrind
 deps-valgrind:
-	@sh tools/book/deps.sh valgrind || echo "deps: no valgrind: chapter 10's counts will say so"
-chart-ch10_profile chart-ch10_instructions: | deps-valgrind
+	@sh tools/book/deps.sh valgrind || echo "deps: no valgrind: chapter 11's counts will say so"
+chart-ch11_profile chart-ch11_instructions: | deps-valgrind
 
-# Chapter 12's chart of the programs in the page: each chapter's own scene
+# Chapter 13's chart of the programs in the page: each chapter's own scene
 # rendered in the book's page (headless Chromium) and by bin/chNN, the
 # everyday build, and by the same programs built by clang, the page's
 # compiler, on one thread (tools/checks/page_check.sh --speed). It needs
 # Chromium and the programs for the page; make charts draws it where it can.
-.PHONY: chart-ch12_page chart-ch12_page-plain
+.PHONY: chart-ch13_page chart-ch13_page-plain
 PAGE_SPEED_SIZE := 640x480
 PAGE_SPEED_ROUNDS := 11
-chart-ch12_page: | deps
-	+@$(MAKE) --no-print-directory LTO= chart-ch12_page-plain
-chart-ch12_page-plain: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n)) | deps
+chart-ch13_page: | deps
+	+@$(MAKE) --no-print-directory LTO= chart-ch13_page-plain
+chart-ch13_page-plain: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n)) | deps
 	+$(MAKE) --no-print-directory CC=clang $(foreach n,$(NUMS),build/rel-clang/bin/ch$(n))
 	PAGE_SPEED_CLANG_BIN=build/rel-clang/bin \
-	sh tools/checks/page_check.sh --speed figures/ch12-page.csv.tmp $(PAGE_SPEED_ROUNDS) \
+	sh tools/checks/page_check.sh --speed figures/ch13-page.csv.tmp $(PAGE_SPEED_ROUNDS) \
 	  build/book.html $(BIN) $(PAGE_SPEED_SIZE) $(NUMS)
-	mv figures/ch12-page.csv.tmp figures/ch12-page.csv
-	gnuplot -e "csv='figures/ch12-page.csv'; stem='figures/ch12-page'" bench/ch12_page.gp
-	@echo "wrote figures/ch12-page.svg"
+	mv figures/ch13-page.csv.tmp figures/ch13-page.csv
+	gnuplot -e "csv='figures/ch13-page.csv'; stem='figures/ch13-page'" bench/ch13_page.gp
+	@echo "wrote figures/ch13-page.svg"
 
 ifeq ($(LTO_FLAGS)$(SAN),)
 # The charts measure the program built with link-time optimization.
@@ -484,10 +485,10 @@ chart-%: $(B)/bench/% | deps
 
 charts: deps $(BENCHES)
 	@for b in $(notdir $(BENCHES)); do $(MAKE) --no-print-directory chart-$$b || exit 1; done
-	$(if $(filter 10,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
+	$(if $(filter 11,$(NUMS)),$(if $(HAVE_EMBREE),,@$(MAKE) --no-print-directory chart-embree-absent))
 	@if [ -n "$(HAVE_WASM)" ] && . tools/editions/find_chromium.sh && [ -n "$$(find_chromium)" ]; then \
-	  $(MAKE) --no-print-directory chart-ch12_page; \
-	else echo "charts: figures/ch12-page.svg not measured: no Chromium or no programs for the page"; fi
+	  $(MAKE) --no-print-directory chart-ch13_page; \
+	else echo "charts: figures/ch13-page.svg not measured: no Chromium or no programs for the page"; fi
 
 # Can the speed axes be trusted? Every bench run twice: the largest ratio
 # between two runs of a method, and whether an ordering a quoted ratio
@@ -496,15 +497,15 @@ charts-check: deps $(BENCHES)
 	@sh tools/checks/charts_check.sh $(BENCHES)
 endif
 
-# Without Embree, chapter 10's comparison chart shows this program's own
+# Without Embree, chapter 11's comparison chart shows this program's own
 # rates (from chapter 08's kd-tree benchmark) and says that Embree was absent.
 .PHONY: chart-embree-absent
 chart-embree-absent: figures/ch08-kdtree.csv
 	{ grep '^# machine' figures/ch08-kdtree.csv; \
 	  echo 'method,param,ns_per_op,error,error_kind,ns_q1,ns_q3,wall_ns'; \
 	  grep -E '^kdtree,[^,]*,[^,]*,[^,]*,mrays_per_s(,|$$)|^kdtree-build,' figures/ch08-kdtree.csv; \
-	  echo 'embree,absent,0,0,absent'; } > figures/ch10-embree.csv
-	gnuplot -e "csv='figures/ch10-embree.csv'; stem='figures/ch10-embree'" bench/ch10_embree.gp
+	  echo 'embree,absent,0,0,absent'; } > figures/ch11-embree.csv
+	gnuplot -e "csv='figures/ch11-embree.csv'; stem='figures/ch11-embree'" bench/ch11_embree.gp
 
 .PHONY: charts-check
 
@@ -936,7 +937,7 @@ valgrind: all $(B)/test/tangle $(foreach n,$(NUMS),$(B)/test/ch$(n))
 
 # ---------------------------------------------------------------- the page
 # Each chapter's program compiled for WebAssembly, for the book's page to
-# render its scenes (chapter 10, "The program in the page"): the same
+# render its scenes (chapter 13): the same
 # files as bin/chNN, with the headers of the last chapter's page/ folder
 # in front of the system's. make installs the toolchain as root (Debian:
 # clang lld wasi-libc libclang-rt-dev-wasm32, tools/book/deps.sh --page);

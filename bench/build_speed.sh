@@ -9,7 +9,7 @@
 #   make test-ch04     a fresh clone of its own, one chapter's suites
 #   make grade-ch02    after a graded workbook, exercise 2.1's chunk edited
 #   make grade-ch08    the same, exercise 8.1's chunk edited
-#   make grade-ch12    the same, exercise 12.1's chunk edited (each grade
+#   make grade-ch13    the same, exercise 13.1's chunk edited (each grade
 #                      after a grade of its chapter with the edits before,
 #                      so that one chunk is new to it)
 #   .ci/run            a fresh clone of its own, CI=true (with --ci only:
@@ -78,8 +78,8 @@ while [ "$k" -lt "$runs" ]; do
   timed "make test-ch04, fresh clone" "$d" make test-ch04
   # A solved workbook, graded once; then one chunk edited and graded again.
   (cd "$d" && make -s workbook SOLVED=1 && sed -i '/^\/\/ NOT DONE/d' workbook/*.md &&
-     make -s grade-ch02 grade-ch08 grade-ch12) > "$scratch/grade-setup.log" 2>&1
-  for edit in "02 2.1" "08 8.1" "12 12.1"; do
+     make -s grade-ch02 grade-ch08 grade-ch13) > "$scratch/grade-setup.log" 2>&1
+  for edit in "02 2.1" "08 8.1" "13 13.1"; do
     set -- $edit
     # graded again first, untimed: the edits of the chapters before are
     # in its program too, and only this one chunk is new to it
@@ -111,7 +111,7 @@ load=$(cut -d ' ' -f 1 /proc/loadavg 2>/dev/null || echo "?")
       target["make test-ch04, fresh clone"] = "20"
       target["make grade-ch02, one chunk edited"] = "5"
       target["make grade-ch08, one chunk edited"] = "5"
-      target["make grade-ch12, one chunk edited"] = "10"
+      target["make grade-ch13, one chunk edited"] = "10"
       target[".ci/run, fresh clone"] = "420"
       for (i = 1; i <= n; i++) {
         s = order[i]; m = split(substr(step[s], 2), v, " ")

@@ -49,7 +49,7 @@
  *    one size interleaved (SLOW_ROUNDS rounds from 327,680 triangles; the
  *    per-node sort is not run at 1,310,720, where one build takes 10 s):
  *      build-sah|build-sorting|build-median,N,ns_per_triangle,ms,build_ms
- * 6. (Chapter 11's bench/ch11_threads.c times the render on one core and on two.)
+ * 6. (Chapter 12's bench/ch12_threads.c times the render on one core and on two.)
  * 7. Two 16 MiB OBJ files of one fan face, made in memory and read by
  *    mesh_parse_obj (fan_text): "distinct", as many rim vertices as fit
  *    (f 1 2 3 ... N), and "coincident", three vertices and

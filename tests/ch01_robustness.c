@@ -632,7 +632,7 @@ START_TEST(test_command_line_numbers_are_digits_only)
         ck_assert_msg(strstr(errors, "--size expects WIDTHxHEIGHT"), "'%s': %s",
                       sizes[k], errors);
     }
-    /* --threads (chapter 11) and, before it, an unknown option alike */
+    /* --threads (chapter 12) and, before it, an unknown option alike */
     const char *counts[] = {" 2", "+2", "2 ", "0x2", ""};
     for (int k = 0; k < 5; k++) {
         const char *args[] = {"--threads", counts[k], "-o", out, NULL};

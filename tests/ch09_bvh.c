@@ -2,7 +2,7 @@
  * brute force and as chapter 8's kd-tree, bit for bit; the binned
  * surface area heuristic's split; float boxes that hold their items; the
  * walk's order; and its choice in a scene file and on the command line.
- * Its helpers (ch09_...) serve the suites of chapters 10 and 11, which
+ * Its helpers (ch09_...) serve the suites of chapters 10 to 12, which
  * walk wider trees built on more threads. */
 #include <check.h>
 #include <math.h>
@@ -30,7 +30,7 @@ mesh ch08_make_mesh(const vec3 *points, int n_points, const int (*tris)[3],
                     int n_tris);
 void tie_scene_texts(char *obj, size_t obj_size, char *lone, size_t lone_size);
 
-/* Shared with the suites of chapters 10 and 11. */
+/* Shared with the suites of chapters 10 to 12. */
 mesh ch09_load(const char *path);
 mesh ch09_bare(const mesh *m);
 mesh ch09_with_bvh(const mesh *m, const bvh_params *p);
@@ -102,7 +102,7 @@ static int nearest(const mesh *m, ray r, double *t)
 
 /* What brute force answers on the adversarial rays, which the kd-tree
  * was found to answer alike: the same for any BVH of the mesh, so kept
- * for the next call on the same mesh and count (chapter 10 asks for
+ * for the next call on the same mesh and count (chapter 11 asks for
  * three BVHs of one mesh, and the bunny's costs seconds). */
 typedef struct {
     uint64_t key; /* of the mesh's bytes and the count; 0: none */

@@ -60,7 +60,7 @@ static void draw_phase(progress *p, double now)
         draw_line(p, now, "%s, %.0f s", p->phase, taken);
 }
 
-/* One thread at a time: from chapter 11, which has others, a lock. */
+/* One thread at a time: from chapter 12, which has others, a lock. */
 static void hold(progress *p)
 {
     (void)p;
@@ -111,7 +111,7 @@ void progress_show(void *context, int rows_done, int rows,
 {
     progress *p = context;
     double now = moment_now().wall;
-    (void)rays_done; /* chapter 11 gives their rate */
+    (void)rays_done; /* chapter 12 gives their rate */
     if (line_due(p, now) && (rows_done < rows || p->drawn > 0))
         draw_line(p, now, "rendering: row %d of %d, %.0f s", rows_done,
                   rows, now - p->phase_start);

@@ -4,14 +4,12 @@
 #include <assert.h>
 #include <stdlib.h>
 #include "memory.h"
-/* <<bvh.c includes>> ch10 */
-#include <stdatomic.h>
 
 /* <<bvh storage>> ch09 */
 bvh_params bvh_default_params(void)
 {
-    /* <<the default width>> ch10 */
-    int width = 8;
+    /* <<the default width>> ch09 */
+    int width = 2;
     return (bvh_params){.width = width, .bins = 32, .max_leaf_items = 8,
                         .traversal_cost = 1, .intersection_cost = 1,
                         .min_items = 1, .item_group = 1};
@@ -36,17 +34,12 @@ static bvh_params bvh_filled(const bvh_params *p)
 void bvh_free(bvh *t)
 {
     free(t->nodes), free(t->items);
-    /* <<free more of a bvh>> ch10 */
-    free(t->nodes8);
     *t = (bvh){0};
 }
 
 long long bvh_bytes(const bvh *t)
 {
     long long node = (long long)sizeof(bvh_node);
-    /* <<the size of a wider node>> ch10 */
-    if (t->width == 4 || t->width == 8)
-        node = (long long)sizeof(bvh_node8);
     return t->node_capacity * node + (long long)t->item_count * sizeof(int);
 }
 
@@ -302,176 +295,6 @@ static void build_subtree(bvh_builder *bd, bvh *t, int b, int e, int depth)
     build_subtree(bd, t, m, e, depth + 1);
 }
 
-/* <<more of a bvh build>> ch10 */
-/* <<collapsing to wide nodes>> ch10 */
-static double float_box_area(const float b[6])
-{
-    double x = b[3] - b[0], y = b[4] - b[1], z = b[5] - b[2];
-    return x * y + y * z + z * x;
-}
-
-/* <<opening a node's children>> ch10 */
-/* The children of binary node k, opened until there are width of them or
- * leaves only: the interior child with the largest box first. */
-static int open_children(const bvh_node *nodes, int k, int width,
-                         int kids[8])
-{
-    int n = 2;
-    kids[0] = k + 1, kids[1] = (int)nodes[k].index;
-    while (n < width) {
-        int widest = -1;
-        double most = -1;
-        for (int j = 0; j < n; j++)
-            if (nodes[kids[j]].count == 0 &&
-                float_box_area(nodes[kids[j]].box) > most)
-                most = float_box_area(nodes[kids[j]].box), widest = j;
-        if (widest < 0)
-            break;
-        int open = kids[widest];
-        kids[widest] = open + 1, kids[n++] = (int)nodes[open].index;
-    }
-    return n;
-}
-
-/* How far lane c of n lies along octant o's diagonal (empty: -inf). */
-static double along_octant(const bvh_node8 *n, int c, int o)
-{
-    if (n->face[0][c] > n->face[1][c])
-        return -INFINITY; /* an unused lane */
-    double far = 0;
-    for (int a = 0; a < 3; a++) {
-        double centre = (double)n->face[2 * a][c] + n->face[2 * a + 1][c];
-        far += (o >> a & 1) ? -centre : centre;
-    }
-    return far;
-}
-
-/* n's order for each octant: the lanes farthest first (insertion sort,
- * equal ones in the order of their lanes). */
-static void order_children(bvh_node8 *n)
-{
-    for (int k = 0; k < 8; k++)
-        n->order[k] = 0;
-    for (int o = 0; o < 8; o++) {
-        int lane[8];
-        for (int k = 0; k < 8; k++) {
-            int j = k;
-            for (; j > 0 && along_octant(n, lane[j - 1], o) <
-                                along_octant(n, k, o); j--)
-                lane[j] = lane[j - 1];
-            lane[j] = k;
-        }
-        for (int k = 0; k < 8; k++)
-            n->order[k] |= (uint32_t)lane[k] << 3 * o;
-    }
-}
-
-/* Fills wide node w with the children of binary node k, and the wide
- * nodes below it from t->node_count on. */
-static void collapse(bvh *t, const bvh_node *nodes, int k, int w)
-{
-    int kids[8], n = 1;
-    kids[0] = k; /* a root that is a leaf: one child */
-    if (nodes[k].count == 0)
-        n = open_children(nodes, k, t->width, kids);
-    bvh_node8 *node = &t->nodes8[w];
-    for (int c = 0; c < 8; c++) {
-        for (int a = 0; a < 3; a++) /* no box yet: lo +inf, hi -inf */
-            node->face[2 * a][c] = INFINITY, node->face[2 * a + 1][c] =
-                                                 -INFINITY;
-        node->child[c] = 0;
-    }
-    for (int c = 0; c < n; c++) {
-        const bvh_node *kid = &nodes[kids[c]];
-        for (int a = 0; a < 3; a++)
-            node->face[2 * a][c] = kid->box[a],
-            node->face[2 * a + 1][c] = kid->box[a + 3];
-        assert(kid->count < 16);
-        node->child[c] = bvh_leaf_word(kid->index, kid->count);
-        if (kid->count == 0) {
-            node->child[c] = (uint32_t)t->node_count++;
-            collapse(t, nodes, kids[c], (int)node->child[c]);
-        }
-    }
-    order_children(node);
-}
-
-/* t's wide nodes in an array of their number, which the collapse knows
- * only at its end (kept larger when a smaller one cannot be had). */
-static void shrink_wide(bvh *t)
-{
-    size_t size = sizeof(bvh_node8);
-    void *fit = memory_alloc_aligned(64, (size_t)t->node_count, size);
-    if (fit == NULL)
-        return;
-    memcpy(fit, t->nodes8, (size_t)t->node_count * size);
-    free(t->nodes8);
-    t->nodes8 = fit, t->node_capacity = t->node_count;
-}
-
-/* t's binary nodes collapsed into nodes of t->width; false: no memory. */
-static bool make_wide(bvh *t)
-{
-    int most = t->node_count - t->leaf_count + 1; /* wide nodes at most */
-    t->nodes8 = memory_alloc_aligned(64, (size_t)most, sizeof(bvh_node8));
-    if (t->nodes8 == NULL)
-        return false;
-    bvh_node *binary = t->nodes;
-    t->nodes = NULL, t->node_count = 1, t->node_capacity = most;
-    collapse(t, binary, 0, 0);
-    free(binary);
-    shrink_wide(t);
-    t->avx2 = bvh_walks_with_avx2();
-    return true;
-}
-
-/* <<choosing AVX2 when the program runs>> ch10 */
-/* Set by bvh_allow_avx2 (the tests); read when a tree is built. */
-static atomic_bool avx2_forbidden;
-
-bool bvh_walks_with_avx2(void)
-{
-#if BVH_HAS_AVX2_PATH
-    return __builtin_cpu_supports("avx2") && !atomic_load(&avx2_forbidden);
-#else
-    return false;
-#endif
-}
-
-void bvh_allow_avx2(bool allowed)
-{
-    atomic_store(&avx2_forbidden, !allowed);
-}
-
-uint32_t bvh_set_lanes[256];
-
-/* Fills bvh_set_lanes before main runs (GCC's and Clang's constructor),
- * so that no walk finds it half made. */
-__attribute__((constructor)) static void fill_set_lanes(void)
-{
-    for (unsigned mask = 0; mask < 256; mask++) {
-        uint32_t set = 0, count = 0;
-        for (unsigned c = 0; c < 8; c++)
-            if (mask >> c & 1)
-                set |= c << 3 * count++;
-        bvh_set_lanes[mask] = set | count << 24;
-    }
-}
-
-const char *bvh_vector_width_name(const bvh *t)
-{
-    if (t->width != 2 && t->avx2)
-        return "AVX2 chosen at run time";
-#if defined(RT_SCALAR)
-    return "scalar";
-#elif defined(__AVX__)
-    return "AVX";
-#elif defined(__SSE2__)
-    return "SSE2";
-#else
-    return "vector extensions";
-#endif
-}
 
 /* <<starting a bvh build>> ch09 */
 /* The builder's own arrays for count items; false: no memory (what was
@@ -510,8 +333,8 @@ static bool shrink_binary(bvh *t)
 bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
 {
     bvh_params q = bvh_filled(p);
-    /* <<the widths a build makes>> ch10 */
-    assert(q.width == 2 || q.width == 4 || q.width == 8);
+    /* <<the widths a build makes>> ch09 */
+    assert(q.width == 2);
     assert(q.bins >= 2 && q.bins <= BVH_MAX_BINS);
     assert(q.max_leaf_items >= 1 && q.max_leaf_items <= 15);
     *t = (bvh){.width = q.width};
@@ -526,8 +349,8 @@ bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
     if (ok)
         build_binary(&bd, count, t);
     builder_free(&bd);
-    /* <<the tree made of the binary nodes>> ch10 */
-    ok = ok && (q.width == 2 ? shrink_binary(t) : make_wide(t));
+    /* <<the tree made of the binary nodes>> ch09 */
+    ok = ok && shrink_binary(t);
     if (!ok)
         bvh_free(t);
     return ok;

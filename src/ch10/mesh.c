@@ -222,9 +222,6 @@ mesh_ray mesh_ray_of(ray r)
 int mesh_nearest(const mesh *m, const mesh_ray *mr, double t_min,
                  double t_max, triangle_hit *out, render_stats *stats)
 {
-    /* <<a search that tests the mesh's box itself>> ch10 */
-    if (m->bvh.node_count > 0 && m->bvh_walk != 0)
-        return mesh_search_bvh(m, mr, t_min, t_max, out, stats);
     stats->box_tests++;
     double near = t_min, far = t_max;
     if (!box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
@@ -376,7 +373,6 @@ void mesh_free_tree(mesh *m)
     /* <<free the mesh's other trees>> += ch10 */
     free(m->bvh_packets);
     m->bvh_packets = NULL, m->bvh_packet_count = 0, m->bvh_in_float = false;
-    m->bvh_walk = 0;
 }
 
 long long mesh_tree_bytes(const mesh *m)
@@ -445,9 +441,6 @@ int mesh_search_tree(const mesh *m, const mesh_ray *mr, double near,
 bool mesh_occluded(const mesh *m, const mesh_ray *mr, double t_min,
                    double t_max, render_stats *stats)
 {
-    /* <<a shadow ray's search that tests the box itself>> ch10 */
-    if (m->bvh.node_count > 0 && m->bvh_walk != 0)
-        return mesh_search_bvh(m, mr, t_min, t_max, NULL, stats) >= 0;
     double near = t_min, far = t_max;
     stats->box_tests++;
     if (!box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
@@ -492,25 +485,29 @@ static void triangle_boxes(const mesh *m, box *bounds, int first, int end)
 }
 
 /* <<what a mesh's BVH is made with>> ch10 */
-/* The leaf of reference c of node k of t: its item count (0: none)
- * and, in *first, its first item (or packet). */
+/* <<the leaves of a node's references>> ch10 */
+/* The references of a node of t that may be leaves: a binary node is
+ * one itself. */
+static int leaf_refs(const bvh *t)
+{
+    (void)t; /* every tree of this chapter is binary */
+    return 1;
+}
+
+/* The leaf of reference c of node k of t: its item count (0: none, an
+ * interior node) and, in *first, its first item (or packet). */
 static uint32_t leaf_of(const bvh *t, int k, int c, uint32_t *first)
 {
-    if (t->width == 2)
-        return *first = t->nodes[k].index, t->nodes[k].count;
-    uint32_t word = t->nodes8[k].child[c];
-    *first = word & BVH_FIRST_MASK;
-    return word & BVH_LEAF ? word >> BVH_COUNT_SHIFT & 15 : 0;
+    (void)c; /* the node itself */
+    return *first = t->nodes[k].index, t->nodes[k].count;
 }
 
 /* Points that leaf, of count items, at its first packet. */
 static void leaf_packed(bvh *t, int k, int c, uint32_t count,
                         uint32_t packet)
 {
-    if (t->width == 2)
-        t->nodes[k].index = packet;
-    else
-        t->nodes8[k].child[c] = bvh_leaf_word(packet, count);
+    (void)c, (void)count; /* a binary node keeps its count */
+    t->nodes[k].index = packet;
 }
 
 /* Packs each leaf of m's BVH in nodes [from, to) into packets of its
@@ -520,7 +517,7 @@ static int pack_leaves(mesh *m, triangle_packet *packets, int from, int to,
                        int next)
 {
     bvh *t = &m->bvh;
-    int refs = t->width == 2 ? 1 : 8;
+    int refs = leaf_refs(t);
     for (int k = from; k < to; k++)
         for (int c = 0; c < refs; c++) {
             uint32_t first, count = leaf_of(t, k, c, &first);
@@ -569,7 +566,6 @@ bool mesh_build_bvh(mesh *m, const bvh_params *p)
     /* <<the leaves of a mesh's BVH made>> ch10 */
     if (!make_packets(m))
         return bvh_free(&m->bvh), false;
-    m->bvh_walk = m->bvh.width == 2 ? 0 : m->bvh.avx2 ? 4 : 2;
     return true;
 }
 
@@ -589,10 +585,10 @@ static int mesh_search_all(const mesh *m, const mesh_ray *mr, double t_min,
 /* The triangles of a leaf, its packets: the nearest hit by the tie rule
  * (best: the nearest triangle so far, -1: none) into *out, or with out
  * NULL any hit; its index in m, or -1. in_float: decided in float. */
-BVH_INLINE int bvh_leaf_test(const mesh *m, const packet_ray *r,
-                             bvh_leaf leaf, bool in_float, double t_min,
-                             double t_max, int best, triangle_hit *out,
-                             long long *decided)
+static inline __attribute__((always_inline)) int
+bvh_leaf_test(const mesh *m, const packet_ray *r, bvh_leaf leaf,
+              bool in_float, double t_min, double t_max, int best,
+              triangle_hit *out, long long *decided)
 {
     const triangle_packet *p = m->bvh_packets + leaf.first;
     int n = triangle_packets_needed(leaf.count);
@@ -639,149 +635,11 @@ static int search_bvh2(const mesh *m, const mesh_ray *mr, double t_min,
     return found;
 }
 
-/* Chapter 4's box_clip of b, inline, its branches one at the end: does
- * mr miss b in [t_min, t_max]? The same roundings, the same answer. */
-BVH_INLINE bool bvh_misses_box(const box *b, const mesh_ray *mr,
-                               double t_min, double t_max)
-{
-    const double widen = 1 + 2 * (3 * (DBL_EPSILON / 2) /
-                                  (1 - 3 * (DBL_EPSILON / 2)));
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; a++) {
-        double o = vec3_axis(mr->r.origin, a), q = vec3_axis(mr->inv_dir, a);
-        double lo = (vec3_axis(b->lo, a) - o) * q;
-        double hi = (vec3_axis(b->hi, a) - o) * q;
-        bool swap = lo > hi; /* false for a NaN, as box_clip's */
-        double near = swap ? hi : lo, far = (swap ? lo : hi) * widen;
-        t_min = near > t_min ? near : t_min;
-        t_max = far < t_max ? far : t_max;
-    }
-    return t_min > t_max;
-}
-
-/* The walk of m's wide BVH for mr, its nodes tested with AVX2 when avx2
- * (which the caller's instructions must allow), its leaves decided in
- * float when in_float; both constants where it is inlined. */
-BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
-                           double t_max, triangle_hit *out,
-                           render_stats *stats, bool avx2, bool in_float)
-{
-    bvh_ray r;  /* the plain walk's ray */
-    bvh_ray8 v; /* AVX2's, in vectors */
-    unsigned shift;
-    float ray_bound; /* the bound of the boxes that no hit has narrowed */
-    if (avx2 ? !bvh_ray8_setup_avx2(mr->r.origin, mr->inv_dir, t_min, t_max,
-                                    &v, &ray_bound, &shift)
-             : !bvh_wide_ray_of(mr->r.origin, mr->inv_dir, t_min, t_max, &r,
-                                &shift))
-        return mesh_search_all(m, mr, t_min, t_max, out, stats);
-    if (!avx2)
-        ray_bound = r.t_max;
-    const bvh_node8 *tree = m->bvh.nodes8; /* a local: never read again */
-    uint32_t stack[BVH_STACK8], now = 0; /* the root */
-    float entry[BVH_STACK8], bound = ray_bound;
-    int top = 0, found = -1;
-    long long nodes = 0, tests = 0, decided = 0;
-    packet_ray pr;
-    bool made = false; /* pr: made at the first leaf, if any */
-    for (;;) {
-        if (!(now & BVH_LEAF)) {
-            const bvh_node8 *n = &tree[now];
-            float t_near[8];
-            unsigned hit = avx2 ? bvh_node8_lanes_avx2(n, &v, bound, t_near)
-                                : bvh_node8_test(n, &r, bound, t_near);
-            nodes++;
-            if (hit != 0 && (hit & (hit - 1)) == 0) { /* one: descend */
-                now = n->child[__builtin_ctz(hit)];
-                continue;
-            }
-            if (hit != 0) { /* more: push them, take the nearest */
-                top = avx2 ? bvh_push8_avx2(stack, entry, top, n, hit,
-                                            t_near, shift)
-                           : bvh_push8(stack, entry, top, n, hit, t_near,
-                                       shift);
-                now = stack[--top];
-                continue;
-            }
-        } else {
-            /* <<a leaf of the wide walk>> ch10 */
-            bvh_leaf leaf = {(int)(now & BVH_FIRST_MASK),
-                             (int)(now >> BVH_COUNT_SHIFT & 15)};
-            if (!made)
-                pr = packet_ray_of(&mr->shear), made = true;
-            tests += leaf.count;
-            int k = bvh_leaf_test(m, &pr, leaf, in_float, t_min, t_max, found, out,
-                                  &decided);
-            if (k >= 0 && out == NULL) {
-                found = k;
-                break; /* any hit blocks a shadow ray */
-            }
-            if (k >= 0) {
-                found = k, t_max = out->t;
-                float b = float_up_by_bits(t_max * (1 + BVH_SLACK));
-                bound = b < ray_bound ? b : ray_bound;
-            }
-        }
-        while (top > 0 && !(entry[top - 1] <= bound))
-            top--; /* beyond the nearest hit */
-        if (top == 0)
-            break;
-        now = stack[--top];
-    }
-    stats->bvh_nodes += nodes, stats->triangle_tests += tests;
-    return found;
-}
-
-/* The wide walk compiled for AVX2, every call in it inlined (flatten):
- * called only where the processor has it. */
-BVH_AVX2_TARGET __attribute__((flatten)) static int
-search_avx2_exact(const mesh *m, const mesh_ray *mr, double t_min,
-                  double t_max, triangle_hit *out, render_stats *stats)
-{
-    return search_bvh8(m, mr, t_min, t_max, out, stats, true, false);
-}
-
-BVH_AVX2_TARGET __attribute__((flatten)) static int
-search_avx2_float(const mesh *m, const mesh_ray *mr, double t_min,
-                  double t_max, triangle_hit *out, render_stats *stats)
-{
-    return search_bvh8(m, mr, t_min, t_max, out, stats, true, true);
-}
-
-/* The wide walk compiled for the build's own instructions. */
-static int search_plain_exact(const mesh *m, const mesh_ray *mr,
-                              double t_min, double t_max, triangle_hit *out,
-                              render_stats *stats)
-{
-    return search_bvh8(m, mr, t_min, t_max, out, stats, false, false);
-}
-
-static int search_plain_float(const mesh *m, const mesh_ray *mr,
-                              double t_min, double t_max, triangle_hit *out,
-                              render_stats *stats)
-{
-    return search_bvh8(m, mr, t_min, t_max, out, stats, false, true);
-}
-
-typedef int (*bvh_search)(const mesh *m, const mesh_ray *mr, double t_min,
-                          double t_max, triangle_hit *out,
-                          render_stats *stats);
-
-/* By m->bvh_walk, then 1 more for the float path. */
-static const bvh_search searches[6] = {
-    search_bvh2,        search_bvh2,        search_plain_exact,
-    search_plain_float, search_avx2_exact,  search_avx2_float};
 
 int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
                     double t_max, triangle_hit *out, render_stats *stats)
 {
-    if (m->bvh_walk != 0) { /* the wide walk: its box tested here */
-        stats->box_tests++;
-        if (bvh_misses_box(&m->bounds, mr, t_min, t_max))
-            return -1; /* missing the box, the ray misses every triangle */
-    }
-    return searches[m->bvh_walk + m->bvh_in_float](m, mr, t_min, t_max,
-                                                    out, stats);
+    return search_bvh2(m, mr, t_min, t_max, out, stats);
 }
 
 /* <<the triangle's hit-point bound>> ch06 */

@@ -52,7 +52,6 @@ typedef struct {
     triangle_packet *bvh_packets; /* the BVH's leaves' triangles, leaf by leaf */
     int bvh_packet_count;
     bool bvh_in_float; /* its leaves decided in float alone (bvh-float) */
-    unsigned char bvh_walk; /* its walk: 0 binary, 2 plain, 4 AVX2 */
 } mesh;
 
 void mesh_free(mesh *m);
@@ -172,8 +171,8 @@ typedef enum {
     MESH_ACCELERATORS /* the number of names, and one more */
 } mesh_accelerator;
 
-/* <<the meshes' default tree>> ch10 */
-#define MESH_DEFAULT_ACCELERATOR MESH_ACCELERATOR_BVH
+/* <<the meshes' default tree>> ch09 */
+#define MESH_DEFAULT_ACCELERATOR MESH_ACCELERATOR_KDTREE
 
 /* The name of an accelerator in the scene ("kdtree", "bvh", ...);
  * "default" for MESH_ACCELERATOR_DEFAULT. */

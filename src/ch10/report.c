@@ -106,13 +106,9 @@ void report_bvhs(const scene *s)
     scene_bvh_summary b = scene_bvhs(s);
     if (b.trees == 0)
         return;
-    /* <<the line of the BVHs>> ch10 */
-    const bvh *first = NULL; /* the instructions of the first one's walk */
-    for (int k = 0; k < s->mesh_count && first == NULL; k++)
-        if (s->meshes[k].bvh.node_count > 0)
-            first = &s->meshes[k].bvh;
-    fprintf(stderr, "bvhs               %d, %d wide (%s): %lld nodes, %lld "
-                    "leaves, %.1f bytes a triangle\n",
-            b.trees, b.width, bvh_vector_width_name(first), b.nodes, b.leaves,
+    /* <<the line of the BVHs>> ch09 */
+    fprintf(stderr, "bvhs               %d, %d wide: %lld nodes, %lld leaves, "
+                    "%.1f bytes a triangle\n",
+            b.trees, b.width, b.nodes, b.leaves,
             (double)b.bytes / (double)b.triangles);
 }

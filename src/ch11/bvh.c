@@ -4,16 +4,13 @@
 #include <assert.h>
 #include <stdlib.h>
 #include "memory.h"
-/* <<bvh.c includes>> ch10 */
+/* <<bvh.c includes>> ch11 */
 #include <stdatomic.h>
-/* <<bvh.c includes>> += ch11 */
-#include "moment.h"
-#include "pool.h"
 
 /* <<bvh storage>> ch09 */
 bvh_params bvh_default_params(void)
 {
-    /* <<the default width>> ch10 */
+    /* <<the default width>> ch11 */
     int width = 8;
     return (bvh_params){.width = width, .bins = 32, .max_leaf_items = 8,
                         .traversal_cost = 1, .intersection_cost = 1,
@@ -39,7 +36,7 @@ static bvh_params bvh_filled(const bvh_params *p)
 void bvh_free(bvh *t)
 {
     free(t->nodes), free(t->items);
-    /* <<free more of a bvh>> ch10 */
+    /* <<free more of a bvh>> ch11 */
     free(t->nodes8);
     *t = (bvh){0};
 }
@@ -47,7 +44,7 @@ void bvh_free(bvh *t)
 long long bvh_bytes(const bvh *t)
 {
     long long node = (long long)sizeof(bvh_node);
-    /* <<the size of a wider node>> ch10 */
+    /* <<the size of a wider node>> ch11 */
     if (t->width == 4 || t->width == 8)
         node = (long long)sizeof(bvh_node8);
     return t->node_capacity * node + (long long)t->item_count * sizeof(int);
@@ -116,12 +113,6 @@ typedef struct {
     bvh_params p;
     double pad;        /* every box's, BVH_THICKNESS times the largest
                           coordinate */
-    /* <<more of a builder>> ch11 */
-    int *scratch;             /* as many as items: large nodes' partitions */
-    bvh_node *slots;          /* 2 count - 1: each subtree's place */
-    struct bvh_slice *slices; /* the top's: one a thread at most */
-    int slice_count;
-    struct bvh_task *tasks;   /* the subtrees left to the threads */
 } bvh_builder;
 
 typedef struct {
@@ -199,185 +190,31 @@ static int partition(const bvh_builder *bd, int b, int e, int axis,
     return i;
 }
 
-/* <<a node's passes>> ch11 */
-/* <<a node's items in slices>> ch11 */
-typedef struct bvh_slice bvh_slice;
-
-/* A slice of a node's items, one thread's share of a pass over them,
- * and what the pass found there. */
-struct bvh_slice {
-    const bvh_builder *bd;
-    int b, e; /* items[b..e) */
-    void (*pass)(bvh_slice *);
-    box bounds, centers; /* around its items' boxes, and their centers */
-    int axis, split;     /* its bins, and the first bin of the upper side */
-    double lo, scale;
-    bvh_bin bins[BVH_MAX_BINS];
-    int low, high; /* how many go low; then where they go, either side */
-    double largest; /* coordinate of its boxes, in magnitude */
-};
-
-/* Cuts items[b..e) into n slices of nearly equal size; n. */
-static int cut_slices(const bvh_builder *bd, bvh_slice *sl, int n, int b,
-                      int e)
-{
-    for (int k = 0; k < n; k++) { /* not a compound literal: no bins */
-        sl[k].bd = bd;
-        sl[k].b = b + (int)((long long)(e - b) * k / n);
-        sl[k].e = b + (int)((long long)(e - b) * (k + 1) / n);
-    }
-    return n;
-}
-
-static void run_slice(void *slices, int k)
-{
-    bvh_slice *s = (bvh_slice *)slices + k;
-    s->pass(s);
-}
-
-/* pass over each of the n slices, one thread each (one slice: this
- * thread, at once, as for almost every node). */
-static void run_slices(bvh_slice *sl, int n, void (*pass)(bvh_slice *))
-{
-    for (int k = 0; k < n; k++)
-        sl[k].pass = pass;
-    pool_for(n, n, run_slice, sl);
-}
-
-static void slice_centers(bvh_slice *s)
-{
-    s->largest = items_prepared(s->bd, s->b, s->e);
-}
-
-static void slice_boxes(bvh_slice *s)
-{
-    items_boxed(s->bd, s->b, s->e, &s->bounds, &s->centers);
-}
-
-static void slice_bins(bvh_slice *s)
-{
-    fill_bins(s->bd, s->b, s->e, s->axis, s->lo, s->scale, s->bins);
-}
-
-static bool goes_low(const bvh_slice *s, int item)
-{
-    return bin_of(s->bd->centers[item], s->axis, s->lo, s->scale,
-                  s->bd->p.bins) < s->split;
-}
-
-static void slice_count_low(bvh_slice *s)
-{
-    int low = 0;
-    for (int i = s->b; i < s->e; i++)
-        low += goes_low(s, s->bd->items[i]);
-    s->low = low;
-}
-
-static void slice_scatter(bvh_slice *s)
-{
-    const bvh_builder *bd = s->bd;
-    for (int i = s->b; i < s->e; i++) {
-        int item = bd->items[i];
-        bd->scratch[goes_low(s, item) ? s->low++ : s->high++] = item;
-    }
-}
-
-static void slice_copy_back(bvh_slice *s)
-{
-    memcpy(s->bd->items + s->b, s->bd->scratch + s->b,
-           (size_t)(s->e - s->b) * sizeof(int));
-}
-
-/* The slices' items in bins on axis, from lo, scale bins a unit: the
- * bins of the first slice, the others' added in. */
-static const bvh_bin *slices_binned(bvh_slice *sl, int n, int axis,
-                                    double lo, double scale)
-{
-    for (int k = 0; k < n; k++)
-        sl[k].axis = axis, sl[k].lo = lo, sl[k].scale = scale;
-    run_slices(sl, n, slice_bins);
-    for (int k = 1; k < n; k++)
-        for (int j = 0; j < sl[0].bd->p.bins; j++) {
-            sl[0].bins[j].count += sl[k].bins[j].count;
-            sl[0].bins[j].b = box_union(sl[0].bins[j].b, sl[k].bins[j].b);
-        }
-    return sl[0].bins;
-}
-
-/* Puts the items of bins below split first, each side in the order it
- * had; the first of the others. */
-static int partition_in_order(bvh_slice *sl, int n, int split)
-{
-    for (int k = 0; k < n; k++)
-        sl[k].split = split;
-    run_slices(sl, n, slice_count_low);
-    int low = sl[0].b, high = sl[0].b;
-    for (int k = 0; k < n; k++)
-        high += sl[k].low;
-    int first_high = high;
-    for (int k = 0; k < n; k++) {
-        int lows = sl[k].low;
-        sl[k].low = low, low += lows;
-        sl[k].high = high, high += sl[k].e - sl[k].b - lows;
-    }
-    run_slices(sl, n, slice_scatter);
-    run_slices(sl, n, slice_copy_back);
-    return first_high;
-}
-
-/* <<a node's passes, shared>> ch11 */
-/* The slices of items[b..e) that bd's threads share: one, this thread,
- * for a node of BVH_SHARED_ITEMS or fewer. */
-static int slices_of(bvh_builder *bd, int b, int e)
-{
-    int n = (e - b + BVH_SHARED_ITEMS - 1) / BVH_SHARED_ITEMS;
-    n = n < bd->slice_count ? n : bd->slice_count;
-    return cut_slices(bd, bd->slices, n > 1 ? n : 1, b, e);
-}
-
+/* <<a node's passes>> ch09 */
+/* The passes over a node's items, each over items[b..e): the centers of
+ * all count items first, then a node's boxes, bins and partition. */
 static double pass_prepare(bvh_builder *bd, int count)
 {
-    int n = slices_of(bd, 0, count);
-    run_slices(bd->slices, n, slice_centers);
-    double most = 0;
-    for (int k = 0; k < n; k++) /* a maximum: the same in any order */
-        most = bd->slices[k].largest > most ? bd->slices[k].largest : most;
-    return most;
+    return items_prepared(bd, 0, count);
 }
 
 static void pass_boxes(bvh_builder *bd, int b, int e, box *bounds,
                        box *centers)
 {
-    int n = slices_of(bd, b, e);
-    run_slices(bd->slices, n, slice_boxes);
-    box bb = bd->slices[0].bounds, cb = bd->slices[0].centers;
-    for (int k = 1; k < n; k++) /* in order: the same bits as one pass */
-        bb = box_union(bb, bd->slices[k].bounds),
-        cb = box_union(cb, bd->slices[k].centers);
-    *bounds = bb, *centers = cb;
+    items_boxed(bd, b, e, bounds, centers);
 }
 
 static const bvh_bin *pass_bins(bvh_builder *bd, int b, int e, int axis,
                                 double lo, double scale, bvh_bin *bins)
 {
-    int n = slices_of(bd, b, e);
-    if (n == 1) { /* on this thread, into the caller's bins */
-        fill_bins(bd, b, e, axis, lo, scale, bins);
-        return bins;
-    }
-    return slices_binned(bd->slices, n, axis, lo, scale);
+    fill_bins(bd, b, e, axis, lo, scale, bins);
+    return bins;
 }
 
 static int pass_partition(bvh_builder *bd, int b, int e, int axis,
                           double lo, double scale, int k)
 {
-    if (e - b <= BVH_SHARED_ITEMS)
-        return partition(bd, b, e, axis, lo, scale, k);
-    int n = slices_of(bd, b, e);
-    for (int j = 0; j < n; j++)
-        bd->slices[j].axis = axis, bd->slices[j].lo = lo,
-        bd->slices[j].scale = scale;
-    return partition_in_order(bd->slices, n, k);
+    return partition(bd, b, e, axis, lo, scale, k);
 }
 
 /* <<the binned split>> ch09 */
@@ -441,95 +278,39 @@ static int split_range(bvh_builder *bd, int b, int e, int depth,
     return pass_partition(bd, b, e, *axis, lo, scale, k);
 }
 
-/* <<building a range>> ch11 */
-/* Fills slot s with the node of items[b..e), its passes over the items
- * shared by bd's slices when it is large; the first item of its upper
- * child, or -1 for a leaf. */
-static int build_node(bvh_builder *bd, int b, int e, int s, int depth)
-{
-    box bb, cb;
-    pass_boxes(bd, b, e, &bb, &cb);
-    bvh_node *node = &bd->slots[s];
-    bvh_set_box(node->box, &bb, bd->pad);
-    int axis = 0, m = split_range(bd, b, e, depth, &bb, &cb, &axis);
-    node->index = (uint32_t)(m < 0 ? b : s + 2 * (m - b));
-    node->count = (uint16_t)(m < 0 ? e - b : 0), node->axis = (uint16_t)axis;
-    return m;
-}
-
-/* Builds the subtree of items[b..e) into slots[s .. s + 2 (e - b) - 1):
- * its root at s, its first child's subtree from s + 1, its second's
- * after that. A pure function of the range, whichever thread runs it. */
-static void build_range(bvh_builder *bd, int b, int e, int s, int depth)
-{
-    int m = build_node(bd, b, e, s, depth);
-    if (m < 0)
-        return;
-    build_range(bd, b, m, s + 1, depth + 1);
-    build_range(bd, m, e, s + 2 * (m - b), depth + 1);
-}
-
-/* <<the build's tasks>> ch11 */
-/* A subtree left for the threads: items[b..e) from slot s. */
-typedef struct bvh_task {
-    int b, e, s, depth;
-} bvh_task;
-
-/* Builds the top of the subtree of items[b..e) at slot s, its large
- * nodes' passes shared by the threads, and leaves its subtrees of at
- * most small items to tasks. */
-static void build_top(bvh_builder *bd, int b, int e, int s, int depth,
-                      int small, bvh_task *tasks, int *count)
-{
-    if (e - b <= small) {
-        tasks[(*count)++] = (bvh_task){b, e, s, depth};
-        return;
-    }
-    int m = build_node(bd, b, e, s, depth);
-    if (m < 0)
-        return;
-    build_top(bd, b, m, s + 1, depth + 1, small, tasks, count);
-    build_top(bd, m, e, s + 2 * (m - b), depth + 1, small, tasks, count);
-}
-
-/* The pool's job k: task k's subtree, through a builder of its own whose
- * one slice keeps its passes on this thread. */
-static void build_task(void *builder, int k)
-{
-    const bvh_builder *bd = builder;
-    bvh_slice mine;
-    bvh_builder own = *bd;
-    own.slices = &mine, own.slice_count = 1;
-    const bvh_task *t = &bd->tasks[k];
-    build_range(&own, t->b, t->e, t->s, t->depth);
-}
-
-/* <<closing the gaps>> ch11 */
-/* Copies the subtree at slots[s] into t->nodes from t->node_count on, in
- * the order of a walk, each node's first child right after it; where
- * its root went. */
-static int close_gaps(const bvh_node *slots, int s, bvh *t, int depth)
+/* <<building a range>> ch09 */
+/* Builds the node of items[b..e) at t->nodes[t->node_count], and its
+ * subtree after it: its first child's subtree first, then its second's. */
+static void build_subtree(bvh_builder *bd, bvh *t, int b, int e, int depth)
 {
     int k = t->node_count++;
-    t->nodes[k] = slots[s];
+    box bb, cb;
+    pass_boxes(bd, b, e, &bb, &cb);
+    bvh_set_box(t->nodes[k].box, &bb, bd->pad);
+    int axis = 0, m = split_range(bd, b, e, depth, &bb, &cb, &axis);
+    t->nodes[k].axis = (uint16_t)axis;
     t->depth = depth > t->depth ? depth : t->depth;
-    if (slots[s].count > 0)
-        return t->leaf_count++, k;
-    close_gaps(slots, s + 1, t, depth + 1);
-    t->nodes[k].index =
-        (uint32_t)close_gaps(slots, (int)slots[s].index, t, depth + 1);
-    return k;
+    if (m < 0) { /* a leaf: its items */
+        t->nodes[k].index = (uint32_t)b;
+        t->nodes[k].count = (uint16_t)(e - b);
+        t->leaf_count++;
+        return;
+    }
+    t->nodes[k].count = 0;
+    build_subtree(bd, t, b, m, depth + 1);
+    t->nodes[k].index = (uint32_t)t->node_count; /* the second child */
+    build_subtree(bd, t, m, e, depth + 1);
 }
 
-/* <<more of a bvh build>> ch10 */
-/* <<collapsing to wide nodes>> ch10 */
+/* <<more of a bvh build>> ch11 */
+/* <<collapsing to wide nodes>> ch11 */
 static double float_box_area(const float b[6])
 {
     double x = b[3] - b[0], y = b[4] - b[1], z = b[5] - b[2];
     return x * y + y * z + z * x;
 }
 
-/* <<opening a node's children>> ch10 */
+/* <<opening a node's children>> ch11 */
 /* The children of binary node k, opened until there are width of them or
  * leaves only: the interior child with the largest box first. */
 static int open_children(const bvh_node *nodes, int k, int width,
@@ -565,6 +346,7 @@ static double along_octant(const bvh_node8 *n, int c, int o)
     return far;
 }
 
+/* <<the octant orders of a node>> ch11 */
 /* n's order for each octant: the lanes farthest first (insertion sort,
  * equal ones in the order of their lanes). */
 static void order_children(bvh_node8 *n)
@@ -644,7 +426,7 @@ static bool make_wide(bvh *t)
     return true;
 }
 
-/* <<choosing AVX2 when the program runs>> ch10 */
+/* <<choosing AVX2 when the program runs>> ch11 */
 /* Set by bvh_allow_avx2 (the tests); read when a tree is built. */
 static atomic_bool avx2_forbidden;
 
@@ -699,37 +481,20 @@ static bool builder_made(bvh_builder *bd, size_t count)
 {
     bd->centers = memory_alloc(count, sizeof *bd->centers);
     bool made = bd->centers != NULL;
-    /* <<more arrays of a builder>> ch11 */
-    bd->scratch = memory_alloc(count, sizeof *bd->scratch);
-    bd->slots = memory_alloc(2 * count - 1, sizeof *bd->slots);
-    bd->slice_count = pool_threads(bd->p.threads);
-    bd->slices = memory_alloc((size_t)bd->slice_count, sizeof *bd->slices);
-    bd->tasks = memory_alloc(count, sizeof *bd->tasks);
-    made = made && bd->scratch && bd->slots && bd->slices && bd->tasks;
     return made;
 }
 
 static void builder_free(bvh_builder *bd)
 {
     free(bd->centers);
-    /* <<free more of a builder>> ch11 */
-    free(bd->scratch), free(bd->slots), free(bd->slices), free(bd->tasks);
 }
 
-/* <<building the binary tree>> ch11 */
-/* The binary tree of bd's count items in t, on bd->p.threads threads. */
+/* <<building the binary tree>> ch09 */
+/* The binary tree of bd's count items in t. */
 static void build_binary(bvh_builder *bd, int count, bvh *t)
 {
     bd->pad = BVH_THICKNESS * pass_prepare(bd, count);
-    /* a task's size: eight tasks a thread, enough to share them out */
-    int tasks_wanted = 8 * bd->slice_count;
-    int small = count / tasks_wanted > 1024 ? count / tasks_wanted : 1024;
-    int tasks = 0;
-    build_top(bd, 0, count, 0, 0, small, bd->tasks, &tasks);
-    t->build_threads = pool_for(tasks, bd->p.threads, build_task, bd);
-    double start = moment_now().wall;
-    close_gaps(bd->slots, 0, t, 0);
-    t->gaps_seconds = moment_now().wall - start;
+    build_subtree(bd, t, 0, count, 0);
 }
 
 /* t's binary nodes in an array of their number (kept larger when even a
@@ -746,7 +511,7 @@ static bool shrink_binary(bvh *t)
 bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
 {
     bvh_params q = bvh_filled(p);
-    /* <<the widths a build makes>> ch10 */
+    /* <<the widths a build makes>> ch11 */
     assert(q.width == 2 || q.width == 4 || q.width == 8);
     assert(q.bins >= 2 && q.bins <= BVH_MAX_BINS);
     assert(q.max_leaf_items >= 1 && q.max_leaf_items <= 15);
@@ -763,9 +528,7 @@ bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
         build_binary(&bd, count, t);
     builder_free(&bd);
     /* <<the tree made of the binary nodes>> ch11 */
-    double collapse_start = moment_now().wall;
     ok = ok && (q.width == 2 ? shrink_binary(t) : make_wide(t));
-    t->collapse_seconds = moment_now().wall - collapse_start;
     if (!ok)
         bvh_free(t);
     return ok;

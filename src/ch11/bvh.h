@@ -30,8 +30,6 @@ typedef struct {
     int min_items;            /* fewer items get no tree; 0: 1 */
     int item_group;           /* items a leaf tests at once: the costs
                                  count groups; 0: 1 */
-    /* <<more bvh parameters>> ch11 */
-    int threads; /* of the build; 0: one per core */
 } bvh_params;
 
 #define BVH_MAX_BINS 64
@@ -46,7 +44,7 @@ typedef struct {
 
 /* The defaults, every member filled. */
 bvh_params bvh_default_params(void);
-/* <<bvh parameters>> += ch10 */
+/* <<bvh parameters>> += ch11 */
 
 /* Does the walk test nodes with AVX2's eight lanes? Where the processor
  * has AVX2 and bvh_allow_avx2 has not forbidden it; the build's flags
@@ -56,13 +54,6 @@ bool bvh_walks_with_avx2(void);
 /* false: trees built from now on are walked with the build's own
  * instructions (for the tests, which compare the two). */
 void bvh_allow_avx2(bool allowed);
-/* <<bvh parameters>> += ch11 */
-
-/* A node of more items has its passes over them shared by the threads
- * at the top of the tree, and keeps its items' order as it partitions:
- * a pass over fewer is not worth a thread's waking. A pass is cut into
- * slices of at most this many items, one a thread at most. */
-#define BVH_SHARED_ITEMS (1 << 16)
 
 /* <<bvh nodes>> ch09 */
 /* A node of the binary tree, and its box: lo x, y, z, then hi x, y, z,
@@ -77,7 +68,7 @@ typedef struct {
 
 _Static_assert(sizeof(bvh_node) == 32, "a node is 32 bytes");
 
-/* <<more kinds of bvh node>> ch10 */
+/* <<more kinds of bvh node>> ch11 */
 /* A node of up to eight children, laid out for the walk: face[2 a] the
  * lower and face[2 a + 1] the upper faces of axis a of the eight
  * children, a lane each; an unused lane has an empty box (lo +inf, hi
@@ -110,12 +101,9 @@ typedef struct bvh {
     int node_capacity; /* allocated */
     int *items;        /* leaf after leaf */
     int item_count, leaf_count, depth;
-    /* <<more of a bvh>> ch10 */
+    /* <<more of a bvh>> ch11 */
     bvh_node8 *nodes8; /* width 4 or 8; node 0 is the root */
     bool avx2; /* walked with AVX2 (bvh_walks_with_avx2 when collapsed) */
-    /* <<more of a bvh>> += ch11 */
-    int build_threads; /* its subtrees were shared among */
-    double gaps_seconds, collapse_seconds; /* its walks on one thread */
 } bvh;
 
 /* <<bvh building>> ch09 */
@@ -128,7 +116,7 @@ void bvh_free(bvh *t);
 
 /* The bytes t holds: its nodes and its items. */
 long long bvh_bytes(const bvh *t);
-/* <<bvh building>> += ch10 */
+/* <<bvh building>> += ch11 */
 
 /* The instructions of t's walk: "scalar", the build's own ("SSE2", ...),
  * or AVX2 chosen when the program runs. */
@@ -199,8 +187,8 @@ static inline unsigned bvh_lanes_test_scalar(const float *box, int stride,
     return mask;
 }
 
-/* <<more node tests>> ch10 */
-/* <<the vector node tests>> ch10 */
+/* <<more node tests>> ch11 */
+/* <<the vector node tests>> ch11 */
 /* GCC warns that a vector of eight floats is passed otherwise with AVX
  * than without: these functions are always inlined, never called. */
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -330,7 +318,7 @@ typedef float bvh_f8_row
 static inline unsigned bvh_node8_lanes(const bvh_node8 *n, const bvh_ray8 *r,
                                        float bound, float t_near[8])
 {
-    /* <<the slab test of a node>> ch10 */
+    /* <<the slab test of a node>> ch11 */
     bvh_f8 t0 = max8(bvh_enter8(n, r, 0), bvh_splat8(r->t_min));
     t0 = max8(bvh_enter8(n, r, 1), t0); /* a NaN keeps t0 */
     t0 = max8(bvh_enter8(n, r, 2), t0);
@@ -380,7 +368,7 @@ bvh_node8_lanes_avx2(const bvh_node8 *n, const bvh_ray8 *r, float bound,
                      float t_near[8])
 {
 #if BVH_HAS_AVX2_PATH
-    /* <<the slab test of a node>> ch10 */
+    /* <<the slab test of a node>> ch11 */
     bvh_f8 t0 = max8(bvh_enter8(n, r, 0), bvh_splat8(r->t_min));
     t0 = max8(bvh_enter8(n, r, 1), t0); /* a NaN keeps t0 */
     t0 = max8(bvh_enter8(n, r, 2), t0);
@@ -425,6 +413,7 @@ static inline unsigned bvh_walk_rows(bvh_ray *r)
     return 3 * octant;
 }
 
+/* <<pushing the children hit>> ch11 */
 /* The children of n in mask (more than one), onto the stack at top in
  * the order of the ray's octant (shift), farthest first: the new top. */
 static inline int bvh_push8(uint32_t *stack, float *entry, int top,

@@ -59,8 +59,6 @@ static bool load_scene(const options *opt, scene *s, progress *shown)
     s->on_phase = progress_phase, s->phase_context = shown;
     /* <<what the command line tells the scene>> ch09 */
     s->accelerator_option = (mesh_accelerator)opt->accelerator;
-    /* <<what the command line tells the scene>> += ch11 */
-    s->bvh_settings.threads = opt->threads; /* its reading and build too */
     bool ok = opt->scene_path != NULL
                   ? scene_load(s, opt->scene_path, &err)
                   : scene_parse(s, DEFAULT_SCENE, sizeof DEFAULT_SCENE - 1,
@@ -143,11 +141,6 @@ int main(int argc, char **argv)
     /* <<once the scene is loaded>> += ch09 */
     if (opt.stats)
         report_bvhs(&s);
-    /* <<once the scene is loaded>> += ch11 */
-    how.threads = opt.threads;
-    how.progress_redrawn = shown.watching; /* below */
-    if (opt.stats)
-        report_loading(&s);
     const char *input =
         output_is(opt.output, opt.scene_path) ? opt.scene_path : NULL;
     /* <<other files the scene read>> ch04 */

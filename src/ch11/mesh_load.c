@@ -47,12 +47,11 @@ static bool mesh_file_error(parser *p, const scene *s, const char *at,
                            line);
 }
 
-/* <<loading a mesh's OBJ file>> ch11 */
+/* <<loading a mesh's OBJ file>> ch04 */
 static bool load_mesh_file(parser *p, const scene *s, const char *at,
                            const char *path, mesh *m)
 {
-    if (mesh_load_obj_on(m, path, budget_left(s), s->bvh_settings.threads,
-                         p->err))
+    if (mesh_load_obj_within(m, path, budget_left(s), p->err))
         return true;
     if (p->err->kind == PARSE_BAD_INPUT)
         return false; /* the OBJ file's own line and column */

@@ -4,9 +4,6 @@
 #define MOMENT_H
 
 #include <time.h>
-/* <<moment includes>> ch11 */
-#include <pthread.h>
-#include <unistd.h> /* _POSIX_CLOCK_SELECTION */
 
 typedef struct {
     double wall; /* seconds on the monotonic clock */
@@ -26,40 +23,5 @@ static inline moment moment_now(void)
                     moment_seconds_of(CLOCK_PROCESS_CPUTIME_ID)};
 }
 
-/* <<waiting on the monotonic clock>> ch11 */
-#if defined(_POSIX_CLOCK_SELECTION) && _POSIX_CLOCK_SELECTION >= 0
-#define MOMENT_WAIT_CLOCK CLOCK_MONOTONIC
-static inline void moment_choose_clock(pthread_condattr_t *a)
-{
-    pthread_condattr_setclock(a, MOMENT_WAIT_CLOCK);
-}
-#else /* a condition waits on the calendar's clock */
-#define MOMENT_WAIT_CLOCK CLOCK_REALTIME
-static inline void moment_choose_clock(pthread_condattr_t *a) { (void)a; }
-#endif
-
-/* pthread_cond_init for a condition whose timed waits end at moments on
- * MOMENT_WAIT_CLOCK: the monotonic clock wherever a system can choose. */
-static inline int moment_condition_init(pthread_cond_t *c)
-{
-    pthread_condattr_t a;
-    int error = pthread_condattr_init(&a);
-    if (error != 0)
-        return error;
-    moment_choose_clock(&a);
-    error = pthread_cond_init(c, &a);
-    pthread_condattr_destroy(&a);
-    return error;
-}
-
-/* seconds from now on MOMENT_WAIT_CLOCK, for pthread_cond_timedwait. */
-static inline struct timespec moment_deadline(double seconds)
-{
-    struct timespec t;
-    clock_gettime(MOMENT_WAIT_CLOCK, &t);
-    long long ns = t.tv_nsec + (long long)(seconds * 1e9);
-    t.tv_sec += (time_t)(ns / 1000000000), t.tv_nsec = ns % 1000000000;
-    return t;
-}
 
 #endif

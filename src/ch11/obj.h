@@ -29,32 +29,4 @@ bool mesh_load_obj_within(mesh *m, const char *path, mesh_budget budget,
 bool mesh_parse_obj(mesh *m, const char *text, size_t length,
                     const char *name, parse_error *err);
 
-/* <<more OBJ readers>> ch11 */
-/* mesh_load_obj_within on threads threads (0: one per core), for files
- * large enough to share: the same mesh, bit for bit, and the same
- * errors; and an error when the file changes while it is read. */
-bool mesh_load_obj_on(mesh *m, const char *path, mesh_budget budget,
-                      int threads, parse_error *err);
-
-/* mesh_parse_obj within budget, the text cut into parts (1 to
- * OBJ_MAX_PARTS) that threads threads (0: one per core) take in turn:
- * the same mesh and errors. m->parts says how many parts it was read
- * in, or 0 when chapter 4's reader read it after all. */
-bool mesh_parse_obj_in_parts(mesh *m, const char *text, size_t length,
-                             const char *name, mesh_budget budget,
-                             int parts, int threads, parse_error *err);
-
-/* For tests: called, when set, with a file's path once the file is read
- * into memory and before its size is looked at again, where a writer
- * could change it. */
-extern void (*obj_test_after_reading)(const char *path);
-
-#define OBJ_MAX_PARTS 1024
-/* Parts a thread: its lines cost more where its numbers are longer. */
-#define OBJ_PARTS_A_THREAD 8
-/* A part is at least this much text: a job costs a thread's waking. */
-#define OBJ_MIN_PART_BYTES (1 << 16)
-/* parse.c reads a number this long from a copy in memory of its own */
-#define OBJ_LONG_NUMBER 64
-
 #endif

@@ -21,8 +21,6 @@ void options_usage(FILE *out, const char *program)
         /* <<the usage of --accelerator>> ch10 */
         "  --accelerator kdtree|bvh|bvh-float\n"
         "                        the meshes' trees, overriding the scene's\n"
-        /* <<usage of more options>> += ch11 */
-        "  --threads N  render on N threads, 1 to 256 (default: one per core)\n"
         "  --help       this text\n",
         program);
     /* <<more help>> ch05 */
@@ -107,19 +105,6 @@ bool options_parse(int argc, char **argv, options *opt)
             const char *expects = "--accelerator expects kdtree, bvh or bvh-float";
             if (opt->accelerator == 0)
                 return option_error(argv[0], expects, value);
-        }
-        /* <<more options>> += ch11 */
-        else if (strcmp(arg, "--threads") == 0) {
-            if (k + 1 == argc)
-                return option_error(argv[0], "this option needs a value", arg);
-            char *end;
-            const char *value = argv[++k];
-            long n = strtol(value, &end, 10);
-            bool digits = value[0] >= '0' && value[0] <= '9'; /* no blank, sign */
-            if (!digits || *end != '\0' || n < 1 || n > 256)
-                return option_error(argv[0], "--threads expects a whole number "
-                                             "from 1 to 256", value);
-            opt->threads = (int)n;
         }
         else if (arg[0] == '-' && arg[1] != '\0') {
             return option_error(argv[0], "unknown option", arg);

@@ -4,9 +4,6 @@
 #define PROGRESS_H
 
 #include <stdbool.h>
-/* <<progress includes>> ch11 */
-#include <pthread.h>
-#include <signal.h>
 
 typedef struct {
     double start;       /* when the program began, on the monotonic clock */
@@ -16,14 +13,6 @@ typedef struct {
                            none, or the render, which has lines of its own */
     int drawn;          /* on a terminal: the width of the line drawn */
     bool closed;        /* standard error refused a line: no more lines */
-    /* <<progress members>> ch11 */
-    pthread_t watcher;    /* redraws the phase in hand while it lasts */
-    pthread_mutex_t lock; /* one line at a time; guards all the rest */
-    pthread_cond_t wake;  /* the watcher's, when the program ends */
-    bool watching, ending;
-    int rows_done, rows;  /* the render's, as last shown (rows 0: none yet) */
-    long long rays_done;
-    double shown_at;      /* when they were shown */
 } progress;
 
 /* The program begins now. progress_end must follow. */

@@ -20,10 +20,6 @@ typedef struct {
     void (*progress)(void *context, int rows_done, int rows,
                      long long rays_done);
     void *progress_context;
-    /* <<render settings members>> ch11 */
-    int threads; /* 0: one per core */
-    bool progress_redrawn; /* a thread of the progress's own redraws it:
-                              the render starts no reporter */
 } render_settings;
 
 /* Renders the whole image in bands of BAND_ROWS rows, as how says. */

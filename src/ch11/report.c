@@ -4,8 +4,6 @@
 #include <stdio.h>
 /* <<report includes>> ch08 */
 #include "trees.h"
-/* <<report includes>> += ch11 */
-#include "pool.h"
 
 /* <<the statistics report>> ch01 */
 void report_stats(const render_stats *st, const moment at[4])
@@ -55,9 +53,6 @@ void report_stats(const render_stats *st, const moment at[4])
     fprintf(stderr, "bvh nodes          %lld (%.1f a primary ray)\n",
             st->bvh_nodes,
             (double)st->bvh_nodes / (st->primary_rays ? st->primary_rays : 1));
-    /* <<print statistics>> += ch11 */
-    fprintf(stderr, "pool threads       %d started for the run\n",
-            pool_started());
     double render_s = at[2].wall - at[1].wall;
     if (render_s > 0)
         fprintf(stderr, "primary rays/s     %.3g\n",
@@ -111,7 +106,7 @@ void report_bvhs(const scene *s)
     scene_bvh_summary b = scene_bvhs(s);
     if (b.trees == 0)
         return;
-    /* <<the line of the BVHs>> ch10 */
+    /* <<the line of the BVHs>> ch11 */
     const bvh *first = NULL; /* the instructions of the first one's walk */
     for (int k = 0; k < s->mesh_count && first == NULL; k++)
         if (s->meshes[k].bvh.node_count > 0)
@@ -120,26 +115,4 @@ void report_bvhs(const scene *s)
                     "leaves, %.1f bytes a triangle\n",
             b.trees, b.width, bvh_vector_width_name(first), b.nodes, b.leaves,
             (double)b.bytes / (double)b.triangles);
-}
-/* <<other reports>> += ch11 */
-
-void report_loading(const scene *s)
-{
-    int in_parts = 0, parts = 0, whole = 0;
-    double file = 0, arrays = 0, gaps = 0, collapse = 0;
-    for (int k = 0; k < s->mesh_count; k++) {
-        const mesh *m = &s->meshes[k];
-        if (m->source.path == NULL)
-            continue; /* made in code, not read */
-        in_parts += m->parts > 0, parts += m->parts, whole += !m->parts;
-        file += m->file_seconds, arrays += m->arrays_seconds;
-        gaps += m->bvh.gaps_seconds, collapse += m->bvh.collapse_seconds;
-    }
-    if (in_parts + whole == 0)
-        return;
-    fprintf(stderr, "meshes read        %d in parts (%d parts), %d by one "
-                    "thread\n", in_parts, parts, whole);
-    fprintf(stderr, "one-thread time    file read %.1f ms, arrays %.1f ms, "
-                    "gaps %.1f ms, collapse %.1f ms\n", 1e3 * file,
-            1e3 * arrays, 1e3 * gaps, 1e3 * collapse);
 }

@@ -21,10 +21,5 @@ void report_mesh_hints(const scene *s);
 
 /* The BVHs of s's meshes: their nodes, leaves and bytes a triangle. */
 void report_bvhs(const scene *s);
-/* <<report declarations>> += ch11 */
-
-/* "meshes read": how the scene's OBJ files were read, and the loading's
- * steps on one thread. */
-void report_loading(const scene *s);
 
 #endif

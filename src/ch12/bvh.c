@@ -4,16 +4,16 @@
 #include <assert.h>
 #include <stdlib.h>
 #include "memory.h"
-/* <<bvh.c includes>> ch10 */
+/* <<bvh.c includes>> ch11 */
 #include <stdatomic.h>
-/* <<bvh.c includes>> += ch11 */
+/* <<bvh.c includes>> += ch12 */
 #include "moment.h"
 #include "pool.h"
 
 /* <<bvh storage>> ch09 */
 bvh_params bvh_default_params(void)
 {
-    /* <<the default width>> ch10 */
+    /* <<the default width>> ch11 */
     int width = 8;
     return (bvh_params){.width = width, .bins = 32, .max_leaf_items = 8,
                         .traversal_cost = 1, .intersection_cost = 1,
@@ -39,7 +39,7 @@ static bvh_params bvh_filled(const bvh_params *p)
 void bvh_free(bvh *t)
 {
     free(t->nodes), free(t->items);
-    /* <<free more of a bvh>> ch10 */
+    /* <<free more of a bvh>> ch11 */
     free(t->nodes8);
     *t = (bvh){0};
 }
@@ -47,7 +47,7 @@ void bvh_free(bvh *t)
 long long bvh_bytes(const bvh *t)
 {
     long long node = (long long)sizeof(bvh_node);
-    /* <<the size of a wider node>> ch10 */
+    /* <<the size of a wider node>> ch11 */
     if (t->width == 4 || t->width == 8)
         node = (long long)sizeof(bvh_node8);
     return t->node_capacity * node + (long long)t->item_count * sizeof(int);
@@ -116,7 +116,7 @@ typedef struct {
     bvh_params p;
     double pad;        /* every box's, BVH_THICKNESS times the largest
                           coordinate */
-    /* <<more of a builder>> ch11 */
+    /* <<more of a builder>> ch12 */
     int *scratch;             /* as many as items: large nodes' partitions */
     bvh_node *slots;          /* 2 count - 1: each subtree's place */
     struct bvh_slice *slices; /* the top's: one a thread at most */
@@ -199,8 +199,8 @@ static int partition(const bvh_builder *bd, int b, int e, int axis,
     return i;
 }
 
-/* <<a node's passes>> ch11 */
-/* <<a node's items in slices>> ch11 */
+/* <<a node's passes>> ch12 */
+/* <<a node's items in slices>> ch12 */
 typedef struct bvh_slice bvh_slice;
 
 /* A slice of a node's items, one thread's share of a pass over them,
@@ -325,7 +325,7 @@ static int partition_in_order(bvh_slice *sl, int n, int split)
     return first_high;
 }
 
-/* <<a node's passes, shared>> ch11 */
+/* <<a node's passes, shared>> ch12 */
 /* The slices of items[b..e) that bd's threads share: one, this thread,
  * for a node of BVH_SHARED_ITEMS or fewer. */
 static int slices_of(bvh_builder *bd, int b, int e)
@@ -441,7 +441,7 @@ static int split_range(bvh_builder *bd, int b, int e, int depth,
     return pass_partition(bd, b, e, *axis, lo, scale, k);
 }
 
-/* <<building a range>> ch11 */
+/* <<building a range>> ch12 */
 /* Fills slot s with the node of items[b..e), its passes over the items
  * shared by bd's slices when it is large; the first item of its upper
  * child, or -1 for a leaf. */
@@ -469,7 +469,7 @@ static void build_range(bvh_builder *bd, int b, int e, int s, int depth)
     build_range(bd, m, e, s + 2 * (m - b), depth + 1);
 }
 
-/* <<the build's tasks>> ch11 */
+/* <<the build's tasks>> ch12 */
 /* A subtree left for the threads: items[b..e) from slot s. */
 typedef struct bvh_task {
     int b, e, s, depth;
@@ -504,7 +504,7 @@ static void build_task(void *builder, int k)
     build_range(&own, t->b, t->e, t->s, t->depth);
 }
 
-/* <<closing the gaps>> ch11 */
+/* <<closing the gaps>> ch12 */
 /* Copies the subtree at slots[s] into t->nodes from t->node_count on, in
  * the order of a walk, each node's first child right after it; where
  * its root went. */
@@ -521,15 +521,15 @@ static int close_gaps(const bvh_node *slots, int s, bvh *t, int depth)
     return k;
 }
 
-/* <<more of a bvh build>> ch10 */
-/* <<collapsing to wide nodes>> ch10 */
+/* <<more of a bvh build>> ch11 */
+/* <<collapsing to wide nodes>> ch11 */
 static double float_box_area(const float b[6])
 {
     double x = b[3] - b[0], y = b[4] - b[1], z = b[5] - b[2];
     return x * y + y * z + z * x;
 }
 
-/* <<opening a node's children>> ch10 */
+/* <<opening a node's children>> ch11 */
 /* The children of binary node k, opened until there are width of them or
  * leaves only: the interior child with the largest box first. */
 static int open_children(const bvh_node *nodes, int k, int width,
@@ -565,6 +565,7 @@ static double along_octant(const bvh_node8 *n, int c, int o)
     return far;
 }
 
+/* <<the octant orders of a node>> ch11 */
 /* n's order for each octant: the lanes farthest first (insertion sort,
  * equal ones in the order of their lanes). */
 static void order_children(bvh_node8 *n)
@@ -644,7 +645,7 @@ static bool make_wide(bvh *t)
     return true;
 }
 
-/* <<choosing AVX2 when the program runs>> ch10 */
+/* <<choosing AVX2 when the program runs>> ch11 */
 /* Set by bvh_allow_avx2 (the tests); read when a tree is built. */
 static atomic_bool avx2_forbidden;
 
@@ -699,7 +700,7 @@ static bool builder_made(bvh_builder *bd, size_t count)
 {
     bd->centers = memory_alloc(count, sizeof *bd->centers);
     bool made = bd->centers != NULL;
-    /* <<more arrays of a builder>> ch11 */
+    /* <<more arrays of a builder>> ch12 */
     bd->scratch = memory_alloc(count, sizeof *bd->scratch);
     bd->slots = memory_alloc(2 * count - 1, sizeof *bd->slots);
     bd->slice_count = pool_threads(bd->p.threads);
@@ -712,11 +713,11 @@ static bool builder_made(bvh_builder *bd, size_t count)
 static void builder_free(bvh_builder *bd)
 {
     free(bd->centers);
-    /* <<free more of a builder>> ch11 */
+    /* <<free more of a builder>> ch12 */
     free(bd->scratch), free(bd->slots), free(bd->slices), free(bd->tasks);
 }
 
-/* <<building the binary tree>> ch11 */
+/* <<building the binary tree>> ch12 */
 /* The binary tree of bd's count items in t, on bd->p.threads threads. */
 static void build_binary(bvh_builder *bd, int count, bvh *t)
 {
@@ -746,7 +747,7 @@ static bool shrink_binary(bvh *t)
 bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
 {
     bvh_params q = bvh_filled(p);
-    /* <<the widths a build makes>> ch10 */
+    /* <<the widths a build makes>> ch11 */
     assert(q.width == 2 || q.width == 4 || q.width == 8);
     assert(q.bins >= 2 && q.bins <= BVH_MAX_BINS);
     assert(q.max_leaf_items >= 1 && q.max_leaf_items <= 15);
@@ -762,7 +763,7 @@ bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
     if (ok)
         build_binary(&bd, count, t);
     builder_free(&bd);
-    /* <<the tree made of the binary nodes>> ch11 */
+    /* <<the tree made of the binary nodes>> ch12 */
     double collapse_start = moment_now().wall;
     ok = ok && (q.width == 2 ? shrink_binary(t) : make_wide(t));
     t->collapse_seconds = moment_now().wall - collapse_start;

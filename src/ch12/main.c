@@ -46,8 +46,6 @@ static const char DEFAULT_SCENE[] =
         "sphere center -0.08 -0.80 4.67 radius 0.20 color 0.55 0.25 0.90\n"
         "light directional direction 1 -1.5 1.2 intensity 0.5 0.5 0.5\n"
         "light point position -3 3 2 intensity 0.8 0.8 0.8\n"
-    /* <<default scene>> += ch12 */
-    "pixel pattern adaptive\n"
     ;
 
 /* <<loading the scene>> ch01 */
@@ -61,11 +59,8 @@ static bool load_scene(const options *opt, scene *s, progress *shown)
     s->on_phase = progress_phase, s->phase_context = shown;
     /* <<what the command line tells the scene>> ch09 */
     s->accelerator_option = (mesh_accelerator)opt->accelerator;
-    /* <<what the command line tells the scene>> += ch11 */
-    s->bvh_settings.threads = opt->threads; /* its reading and build too */
     /* <<what the command line tells the scene>> += ch12 */
-    s->pixel_option = opt->pixel;
-    s->width_option = opt->width, s->height_option = opt->height;
+    s->bvh_settings.threads = opt->threads; /* its reading and build too */
     bool ok = opt->scene_path != NULL
                   ? scene_load(s, opt->scene_path, &err)
                   : scene_parse(s, DEFAULT_SCENE, sizeof DEFAULT_SCENE - 1,
@@ -148,7 +143,7 @@ int main(int argc, char **argv)
     /* <<once the scene is loaded>> += ch09 */
     if (opt.stats)
         report_bvhs(&s);
-    /* <<once the scene is loaded>> += ch11 */
+    /* <<once the scene is loaded>> += ch12 */
     how.threads = opt.threads;
     how.progress_redrawn = shown.watching; /* below */
     if (opt.stats)

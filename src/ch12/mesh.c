@@ -9,7 +9,7 @@
 #include "offset.h"
 /* <<mesh.c includes>> += ch10 */
 #include <float.h>
-/* <<mesh.c includes>> += ch11 */
+/* <<mesh.c includes>> += ch12 */
 #include "pool.h"
 
 /* <<mesh storage>> ch04 */
@@ -224,7 +224,7 @@ mesh_ray mesh_ray_of(ray r)
 int mesh_nearest(const mesh *m, const mesh_ray *mr, double t_min,
                  double t_max, triangle_hit *out, render_stats *stats)
 {
-    /* <<a search that tests the mesh's box itself>> ch10 */
+    /* <<a search that tests the mesh's box itself>> ch11 */
     if (m->bvh.node_count > 0 && m->bvh_walk != 0)
         return mesh_search_bvh(m, mr, t_min, t_max, out, stats);
     stats->box_tests++;
@@ -378,6 +378,7 @@ void mesh_free_tree(mesh *m)
     /* <<free the mesh's other trees>> += ch10 */
     free(m->bvh_packets);
     m->bvh_packets = NULL, m->bvh_packet_count = 0, m->bvh_in_float = false;
+    /* <<free the mesh's other trees>> += ch11 */
     m->bvh_walk = 0;
 }
 
@@ -447,7 +448,7 @@ int mesh_search_tree(const mesh *m, const mesh_ray *mr, double near,
 bool mesh_occluded(const mesh *m, const mesh_ray *mr, double t_min,
                    double t_max, render_stats *stats)
 {
-    /* <<a shadow ray's search that tests the box itself>> ch10 */
+    /* <<a shadow ray's search that tests the box itself>> ch11 */
     if (m->bvh.node_count > 0 && m->bvh_walk != 0)
         return mesh_search_bvh(m, mr, t_min, t_max, NULL, stats) >= 0;
     double near = t_min, far = t_max;
@@ -494,6 +495,14 @@ static void triangle_boxes(const mesh *m, box *bounds, int first, int end)
 }
 
 /* <<what a mesh's BVH is made with>> ch10 */
+/* <<the leaves of a node's references>> ch11 */
+/* The references of a node of t that may be leaves: a binary node is
+ * one itself, a wide node holds eight. */
+static int leaf_refs(const bvh *t)
+{
+    return t->width == 2 ? 1 : 8;
+}
+
 /* The leaf of reference c of node k of t: its item count (0: none)
  * and, in *first, its first item (or packet). */
 static uint32_t leaf_of(const bvh *t, int k, int c, uint32_t *first)
@@ -522,7 +531,7 @@ static int pack_leaves(mesh *m, triangle_packet *packets, int from, int to,
                        int next)
 {
     bvh *t = &m->bvh;
-    int refs = t->width == 2 ? 1 : 8;
+    int refs = leaf_refs(t);
     for (int k = from; k < to; k++)
         for (int c = 0; c < refs; c++) {
             uint32_t first, count = leaf_of(t, k, c, &first);
@@ -538,7 +547,7 @@ static int pack_leaves(mesh *m, triangle_packet *packets, int from, int to,
     return next;
 }
 
-/* <<making a mesh's packets>> ch11 */
+/* <<making a mesh's packets>> ch12 */
 /* The work around a mesh's build, in pieces for the pool: pieces of its
  * triangles for their boxes, then of the tree's nodes for their
  * packets. */
@@ -617,7 +626,7 @@ bool mesh_build_bvh(mesh *m, const bvh_params *p)
     q.item_group = q.item_group > 0 ? q.item_group : PACKET_W;
     box *bounds = memory_alloc((size_t)m->triangle_count, sizeof *bounds);
     if (bounds != NULL)
-        /* <<the boxes of a mesh's triangles>> ch11 */
+        /* <<the boxes of a mesh's triangles>> ch12 */
         triangles_boxed(m, bounds, q.threads);
     bool ok = bounds != NULL &&
               bvh_build(&m->bvh, m->triangle_count, bounds, &q);
@@ -627,6 +636,7 @@ bool mesh_build_bvh(mesh *m, const bvh_params *p)
     /* <<the leaves of a mesh's BVH made>> ch10 */
     if (!make_packets(m))
         return bvh_free(&m->bvh), false;
+    /* <<the leaves of a mesh's BVH made>> += ch11 */
     m->bvh_walk = m->bvh.width == 2 ? 0 : m->bvh.avx2 ? 4 : 2;
     return true;
 }
@@ -647,10 +657,10 @@ static int mesh_search_all(const mesh *m, const mesh_ray *mr, double t_min,
 /* The triangles of a leaf, its packets: the nearest hit by the tie rule
  * (best: the nearest triangle so far, -1: none) into *out, or with out
  * NULL any hit; its index in m, or -1. in_float: decided in float. */
-BVH_INLINE int bvh_leaf_test(const mesh *m, const packet_ray *r,
-                             bvh_leaf leaf, bool in_float, double t_min,
-                             double t_max, int best, triangle_hit *out,
-                             long long *decided)
+static inline __attribute__((always_inline)) int
+bvh_leaf_test(const mesh *m, const packet_ray *r, bvh_leaf leaf,
+              bool in_float, double t_min, double t_max, int best,
+              triangle_hit *out, long long *decided)
 {
     const triangle_packet *p = m->bvh_packets + leaf.first;
     int n = triangle_packets_needed(leaf.count);
@@ -697,6 +707,7 @@ static int search_bvh2(const mesh *m, const mesh_ray *mr, double t_min,
     return found;
 }
 
+/* <<the walks of other trees>> ch11 */
 /* Chapter 4's box_clip of b, inline, its branches one at the end: does
  * mr miss b in [t_min, t_max]? The same roundings, the same answer. */
 BVH_INLINE bool bvh_misses_box(const box *b, const mesh_ray *mr,
@@ -762,7 +773,7 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
                 continue;
             }
         } else {
-            /* <<a leaf of the wide walk>> ch10 */
+            /* <<a leaf of the wide walk>> ch11 */
             bvh_leaf leaf = {(int)(now & BVH_FIRST_MASK),
                              (int)(now >> BVH_COUNT_SHIFT & 15)};
             if (!made)
@@ -825,7 +836,8 @@ typedef int (*bvh_search)(const mesh *m, const mesh_ray *mr, double t_min,
                           double t_max, triangle_hit *out,
                           render_stats *stats);
 
-/* By m->bvh_walk, then 1 more for the float path. */
+/* By m->bvh_walk, then 1 more for the float path (0 and 1: the binary
+ * walk, which mesh_search_bvh calls without the table). */
 static const bvh_search searches[6] = {
     search_bvh2,        search_bvh2,        search_plain_exact,
     search_plain_float, search_avx2_exact,  search_avx2_float};
@@ -833,13 +845,15 @@ static const bvh_search searches[6] = {
 int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
                     double t_max, triangle_hit *out, render_stats *stats)
 {
+    /* <<the walk of another tree chosen>> ch11 */
     if (m->bvh_walk != 0) { /* the wide walk: its box tested here */
         stats->box_tests++;
         if (bvh_misses_box(&m->bounds, mr, t_min, t_max))
             return -1; /* missing the box, the ray misses every triangle */
+        return searches[m->bvh_walk + m->bvh_in_float](m, mr, t_min, t_max,
+                                                        out, stats);
     }
-    return searches[m->bvh_walk + m->bvh_in_float](m, mr, t_min, t_max,
-                                                    out, stats);
+    return search_bvh2(m, mr, t_min, t_max, out, stats);
 }
 
 /* <<the triangle's hit-point bound>> ch06 */

@@ -52,9 +52,10 @@ typedef struct {
     triangle_packet *bvh_packets; /* the BVH's leaves' triangles, leaf by leaf */
     int bvh_packet_count;
     bool bvh_in_float; /* its leaves decided in float alone (bvh-float) */
-    unsigned char bvh_walk; /* its walk: 0 binary, 2 plain, 4 AVX2 */
     /* <<mesh members>> += ch11 */
-    int parts; /* of chapter 11's reader; 0: chapter 4's read it */
+    unsigned char bvh_walk; /* its walk: 0 binary, 2 plain, 4 AVX2 */
+    /* <<mesh members>> += ch12 */
+    int parts; /* of chapter 12's reader; 0: chapter 4's read it */
     double file_seconds, arrays_seconds; /* its reading on one thread */
 } mesh;
 
@@ -175,7 +176,7 @@ typedef enum {
     MESH_ACCELERATORS /* the number of names, and one more */
 } mesh_accelerator;
 
-/* <<the meshes' default tree>> ch10 */
+/* <<the meshes' default tree>> ch11 */
 #define MESH_DEFAULT_ACCELERATOR MESH_ACCELERATOR_BVH
 
 /* The name of an accelerator in the scene ("kdtree", "bvh", ...);
@@ -205,7 +206,7 @@ int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
  * meets the triangle again. */
 void triangle_refine_float_hit(vec3 a, vec3 b, vec3 c, const double w[3],
                                hit *h);
-/* <<mesh intersection declarations>> += ch11 */
+/* <<mesh intersection declarations>> += ch12 */
 
 /* A large mesh's boxes and packets are made in up to this many pieces,
  * of about BVH_SHARED_ITEMS triangles. */

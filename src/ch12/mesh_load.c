@@ -47,7 +47,7 @@ static bool mesh_file_error(parser *p, const scene *s, const char *at,
                            line);
 }
 
-/* <<loading a mesh's OBJ file>> ch11 */
+/* <<loading a mesh's OBJ file>> ch12 */
 static bool load_mesh_file(parser *p, const scene *s, const char *at,
                            const char *path, mesh *m)
 {

@@ -4,7 +4,7 @@
 #define MOMENT_H
 
 #include <time.h>
-/* <<moment includes>> ch11 */
+/* <<moment includes>> ch12 */
 #include <pthread.h>
 #include <unistd.h> /* _POSIX_CLOCK_SELECTION */
 
@@ -26,7 +26,7 @@ static inline moment moment_now(void)
                     moment_seconds_of(CLOCK_PROCESS_CPUTIME_ID)};
 }
 
-/* <<waiting on the monotonic clock>> ch11 */
+/* <<waiting on the monotonic clock>> ch12 */
 #if defined(_POSIX_CLOCK_SELECTION) && _POSIX_CLOCK_SELECTION >= 0
 #define MOMENT_WAIT_CLOCK CLOCK_MONOTONIC
 static inline void moment_choose_clock(pthread_condattr_t *a)

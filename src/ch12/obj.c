@@ -4,7 +4,7 @@
 #include <limits.h>
 #include <stdlib.h>
 #include "array.h"
-/* <<OBJ reader includes>> ch11 */
+/* <<OBJ reader includes>> ch12 */
 #include <string.h>
 #include <sys/stat.h>
 #include "moment.h"
@@ -237,9 +237,9 @@ bool mesh_load_obj(mesh *m, const char *path, parse_error *err)
 {
     return mesh_load_obj_within(m, path, no_budget, err);
 }
-/* <<reading an OBJ file>> += ch11 */
+/* <<reading an OBJ file>> += ch12 */
 
-/* <<a part of the text>> ch11 */
+/* <<a part of the text>> ch12 */
 /* One part of the text, whole lines, and what its job found. */
 typedef struct {
     const char *text, *name;
@@ -270,7 +270,7 @@ static void run_parts(obj_part *parts, int n, int threads,
     pool_for(n, threads, part_job, &w);
 }
 
-/* <<counting a part>> ch11 */
+/* <<counting a part>> ch12 */
 static bool count_obj_statement(parser *p, void *target)
 {
     obj_part *part = target;
@@ -310,7 +310,7 @@ static void read_part(obj_part *t)
                         parse_obj_statement, &r);
 }
 
-/* <<the arrays made to measure>> ch11 */
+/* <<the arrays made to measure>> ch12 */
 /* The capacity that growing an array one item at a time, to at most
  * max, gives count items; its bytes added to *bytes. */
 static int grown_capacity(long long count, int max, size_t size,
@@ -359,7 +359,7 @@ static bool make_arrays(mesh *m, const obj_part *parts, int n,
            (m->triangles || !ts) && (m->triangle_normals || !ts);
 }
 
-/* <<each part's view of the arrays>> ch11 */
+/* <<each part's view of the arrays>> ch12 */
 /* Each part's view of m: the counts before it, its items' end; m's
  * counts those of the whole text. */
 static void share_arrays(mesh *m, obj_part *parts, int n)
@@ -383,7 +383,7 @@ static void share_arrays(mesh *m, obj_part *parts, int n)
     m->texcoord_count = at.texcoord_count;
 }
 
-/* <<where a part begins>> ch11 */
+/* <<where a part begins>> ch12 */
 static bool starts_with_mark(const char *text, size_t length)
 {
     return length >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0;
@@ -404,7 +404,7 @@ static size_t part_start(const char *text, size_t length, int k, int n)
     return at < length ? at : length; /* no line starts there: the end */
 }
 
-/* <<the parts read and checked>> ch11 */
+/* <<the parts read and checked>> ch12 */
 /* Did each part fill what it counted, and end where the parts before it
  * and its own counts say? */
 static bool parts_filled(const obj_part *parts, int n)
@@ -461,7 +461,7 @@ bool mesh_parse_obj_in_parts(mesh *m, const char *text, size_t length,
     return parse_obj_within(m, text, length, name, budget, err);
 }
 
-/* <<a file read in parts>> ch11 */
+/* <<a file read in parts>> ch12 */
 void (*obj_test_after_reading)(const char *path);
 
 /* The file at path read into memory, refused when its size or its time

@@ -29,7 +29,7 @@ bool mesh_load_obj_within(mesh *m, const char *path, mesh_budget budget,
 bool mesh_parse_obj(mesh *m, const char *text, size_t length,
                     const char *name, parse_error *err);
 
-/* <<more OBJ readers>> ch11 */
+/* <<more OBJ readers>> ch12 */
 /* mesh_load_obj_within on threads threads (0: one per core), for files
  * large enough to share: the same mesh, bit for bit, and the same
  * errors; and an error when the file changes while it is read. */

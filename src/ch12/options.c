@@ -21,11 +21,8 @@ void options_usage(FILE *out, const char *program)
         /* <<the usage of --accelerator>> ch10 */
         "  --accelerator kdtree|bvh|bvh-float\n"
         "                        the meshes' trees, overriding the scene's\n"
-        /* <<usage of more options>> += ch11 */
-        "  --threads N  render on N threads, 1 to 256 (default: one per core)\n"
         /* <<usage of more options>> += ch12 */
-        "  --pixel S    pixel settings S in place of the scene's: 'samples 16\n"
-        "               pattern jittered', 'pattern adaptive threshold 0.05'\n"
+        "  --threads N  render on N threads, 1 to 256 (default: one per core)\n"
         "  --help       this text\n",
         program);
     /* <<more help>> ch05 */
@@ -111,7 +108,7 @@ bool options_parse(int argc, char **argv, options *opt)
             if (opt->accelerator == 0)
                 return option_error(argv[0], expects, value);
         }
-        /* <<more options>> += ch11 */
+        /* <<more options>> += ch12 */
         else if (strcmp(arg, "--threads") == 0) {
             if (k + 1 == argc)
                 return option_error(argv[0], "this option needs a value", arg);
@@ -123,12 +120,6 @@ bool options_parse(int argc, char **argv, options *opt)
                 return option_error(argv[0], "--threads expects a whole number "
                                              "from 1 to 256", value);
             opt->threads = (int)n;
-        }
-        /* <<more options>> += ch12 */
-        else if (strcmp(arg, "--pixel") == 0) {
-            if (k + 1 == argc)
-                return option_error(argv[0], "this option needs a value", arg);
-            opt->pixel = argv[++k]; /* read with the scene, which it changes */
         }
         else if (arg[0] == '-' && arg[1] != '\0') {
             return option_error(argv[0], "unknown option", arg);

@@ -13,10 +13,8 @@ typedef struct {
     bool stats, help;
     /* <<option members>> ch09 */
     int accelerator; /* 0: the scene's; else a mesh_accelerator */
-    /* <<option members>> += ch11 */
-    int threads; /* 0: one per core */
     /* <<option members>> += ch12 */
-    const char *pixel; /* --pixel's settings; NULL: the scene's */
+    int threads; /* 0: one per core */
 } options;
 
 /* The help text, on out. */

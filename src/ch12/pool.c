@@ -1,4 +1,4 @@
-/* pool.c: one pool of threads (chapter 11). See pool.h. */
+/* pool.c: one pool of threads (chapter 12). See pool.h. */
 #include "pool.h"
 
 #include <pthread.h>
@@ -7,7 +7,7 @@
 #include <stdbool.h>
 #include <unistd.h>
 
-/* <<the pool's state>> ch11 */
+/* <<the pool's state>> ch12 */
 /* The helpers, and the loop they are called to. Every member but next
  * is read and written with lock held. */
 static struct {
@@ -43,7 +43,7 @@ int pool_started(void)
     return n;
 }
 
-/* <<a helper's life>> ch11 */
+/* <<a helper's life>> ch12 */
 /* Calls job(context, k) for each k that no other thread has taken, until
  * none is left. */
 static void take_jobs(void (*job)(void *, int), void *context, int count)
@@ -74,7 +74,7 @@ static void *helper(void *unused)
     return NULL;
 }
 
-/* <<starting a helper>> ch11 */
+/* <<starting a helper>> ch12 */
 /* Starts one more helper, holding back every signal but a fault's, so
  * that the signals which stop the program reach the main thread. A
  * helper that cannot start is not tried again. */
@@ -94,7 +94,7 @@ static void start_helper(void)
     pthread_sigmask(SIG_SETMASK, &before, NULL);
 }
 
-/* <<a loop on the pool>> ch11 */
+/* <<a loop on the pool>> ch12 */
 /* Sets out a loop of count jobs for at most n - 1 helpers, starting the
  * helpers it lacks, and wakes them; how many seats it offered. */
 static int offer_seats(int n, void (*job)(void *, int), void *context,

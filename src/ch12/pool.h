@@ -1,4 +1,4 @@
-/* pool.h: one pool of threads for the whole program (chapter 11).
+/* pool.h: one pool of threads for the whole program (chapter 12).
  *
  * pool_for(count, threads, job, context) calls job(context, k) once for
  * every k in [0, count), on at most threads threads (0: one per core) and

@@ -60,22 +60,22 @@ static void draw_phase(progress *p, double now)
         draw_line(p, now, "%s, %.0f s", p->phase, taken);
 }
 
-/* One thread at a time: from chapter 11, which has others, a lock. */
+/* One thread at a time: from chapter 12, which has others, a lock. */
 static void hold(progress *p)
 {
     (void)p;
-    /* <<hold the progress>> ch11 */
+    /* <<hold the progress>> ch12 */
     pthread_mutex_lock(&p->lock);
 }
 
 static void release(progress *p)
 {
     (void)p;
-    /* <<release the progress>> ch11 */
+    /* <<release the progress>> ch12 */
     pthread_mutex_unlock(&p->lock);
 }
 
-/* <<the watcher>> ch11 */
+/* <<the watcher>> ch12 */
 static void draw_bar(progress *p, double now);
 
 /* The watcher's life: the phase in hand, or the render's bar, four times
@@ -102,7 +102,7 @@ void progress_begin(progress *p)
 {
     double now = moment_now().wall;
     *p = (progress){.start = now, .phase_start = now, .next_line = now};
-    /* <<start watching>> ch11 */
+    /* <<start watching>> ch12 */
     pthread_mutex_init(&p->lock, NULL);
     moment_condition_init(&p->wake);
     sigset_t all, before; /* the watcher starts with every signal held */
@@ -135,7 +135,7 @@ void progress_render(progress *p)
 void progress_end(progress *p)
 {
     progress_phase(p, NULL);
-    /* <<stop watching>> ch11 */
+    /* <<stop watching>> ch12 */
     pthread_mutex_lock(&p->lock);
     p->ending = true;
     pthread_cond_signal(&p->wake);
@@ -145,7 +145,7 @@ void progress_end(progress *p)
     pthread_mutex_destroy(&p->lock), pthread_cond_destroy(&p->wake);
 }
 
-/* <<show the progress>> ch11 */
+/* <<show the progress>> ch12 */
 /* rays a second, three digits and the unit that fits: "2.31 Mrays/s",
  * "840 krays/s", "12 rays/s". */
 static void rate_text(char *text, size_t size, double rate)

@@ -4,7 +4,7 @@
 #define PROGRESS_H
 
 #include <stdbool.h>
-/* <<progress includes>> ch11 */
+/* <<progress includes>> ch12 */
 #include <pthread.h>
 #include <signal.h>
 
@@ -16,7 +16,7 @@ typedef struct {
                            none, or the render, which has lines of its own */
     int drawn;          /* on a terminal: the width of the line drawn */
     bool closed;        /* standard error refused a line: no more lines */
-    /* <<progress members>> ch11 */
+    /* <<progress members>> ch12 */
     pthread_t watcher;    /* redraws the phase in hand while it lasts */
     pthread_mutex_t lock; /* one line at a time; guards all the rest */
     pthread_cond_t wake;  /* the watcher's, when the program ends */

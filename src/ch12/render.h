@@ -20,7 +20,7 @@ typedef struct {
     void (*progress)(void *context, int rows_done, int rows,
                      long long rays_done);
     void *progress_context;
-    /* <<render settings members>> ch11 */
+    /* <<render settings members>> ch12 */
     int threads; /* 0: one per core */
     bool progress_redrawn; /* a thread of the progress's own redraws it:
                               the render starts no reporter */

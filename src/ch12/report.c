@@ -4,10 +4,8 @@
 #include <stdio.h>
 /* <<report includes>> ch08 */
 #include "trees.h"
-/* <<report includes>> += ch11 */
-#include "pool.h"
 /* <<report includes>> += ch12 */
-#include "pixel.h"
+#include "pool.h"
 
 /* <<the statistics report>> ch01 */
 void report_stats(const render_stats *st, const moment at[4])
@@ -57,11 +55,9 @@ void report_stats(const render_stats *st, const moment at[4])
     fprintf(stderr, "bvh nodes          %lld (%.1f a primary ray)\n",
             st->bvh_nodes,
             (double)st->bvh_nodes / (st->primary_rays ? st->primary_rays : 1));
-    /* <<print statistics>> += ch11 */
+    /* <<print statistics>> += ch12 */
     fprintf(stderr, "pool threads       %d started for the run\n",
             pool_started());
-    /* <<print statistics>> += ch12 */
-    report_pixels(st);
     double render_s = at[2].wall - at[1].wall;
     if (render_s > 0)
         fprintf(stderr, "primary rays/s     %.3g\n",
@@ -115,7 +111,7 @@ void report_bvhs(const scene *s)
     scene_bvh_summary b = scene_bvhs(s);
     if (b.trees == 0)
         return;
-    /* <<the line of the BVHs>> ch10 */
+    /* <<the line of the BVHs>> ch11 */
     const bvh *first = NULL; /* the instructions of the first one's walk */
     for (int k = 0; k < s->mesh_count && first == NULL; k++)
         if (s->meshes[k].bvh.node_count > 0)
@@ -125,7 +121,7 @@ void report_bvhs(const scene *s)
             b.trees, b.width, bvh_vector_width_name(first), b.nodes, b.leaves,
             (double)b.bytes / (double)b.triangles);
 }
-/* <<other reports>> += ch11 */
+/* <<other reports>> += ch12 */
 
 void report_loading(const scene *s)
 {
@@ -146,33 +142,4 @@ void report_loading(const scene *s)
     fprintf(stderr, "one-thread time    file read %.1f ms, arrays %.1f ms, "
                     "gaps %.1f ms, collapse %.1f ms\n", 1e3 * file,
             1e3 * arrays, 1e3 * gaps, 1e3 * collapse);
-}
-/* <<other reports>> += ch12 */
-
-void report_pixels(const render_stats *st)
-{
-    long long pixels = 0, rays = 0, largest = 0, divided = 0;
-    for (int n = 0; n <= PIXEL_MAX_RAYS; n++)
-        if (st->pixel_rays[n] > 0)
-            pixels += st->pixel_rays[n], rays += n * st->pixel_rays[n],
-                largest = n;
-    if (pixels == 0)
-        return; /* one ray through each centre: nothing to tell */
-    fprintf(stderr, "rays per pixel     %.2f mean, %lld largest",
-            (double)rays / (double)pixels, largest);
-    if (st->primary_rays > rays)
-        fprintf(stderr, ", and %lld at corners no pixel owns",
-                st->primary_rays - rays);
-    fputc('\n', stderr);
-    int deepest = 0;
-    for (int d = 0; d <= PIXEL_MAX_DEPTH; d++)
-        if (st->pixel_depths[d] > 0)
-            divided += st->pixel_depths[d], deepest = d;
-    for (int d = 0; divided > 0 && d <= deepest; d++) {
-        double share = (double)st->pixel_depths[d] / (double)divided;
-        fprintf(stderr, "%s%d %10lld %5.1f%% %.*s\n",
-                d == 0 ? "pixels by depth    " : "                   ", d,
-                st->pixel_depths[d], 100 * share, (int)(30 * share + 0.5),
-                "##############################");
-    }
 }

@@ -21,15 +21,10 @@ void report_mesh_hints(const scene *s);
 
 /* The BVHs of s's meshes: their nodes, leaves and bytes a triangle. */
 void report_bvhs(const scene *s);
-/* <<report declarations>> += ch11 */
+/* <<report declarations>> += ch12 */
 
 /* "meshes read": how the scene's OBJ files were read, and the loading's
  * steps on one thread. */
 void report_loading(const scene *s);
-/* <<report declarations>> += ch12 */
-
-/* Rays per pixel (mean, largest) and, for the adaptive pattern, the
- * pixels by depth reached; nothing for one ray through each centre. */
-void report_pixels(const render_stats *st);
 
 #endif

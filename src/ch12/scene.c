@@ -34,8 +34,6 @@ void scene_init(scene *s)
     s->cutoff = 0.01;
     /* <<scene member defaults>> += ch08 */
     s->tree_params = kdtree_default_params();
-    /* <<scene member defaults>> += ch12 */
-    s->pixels = PIXEL_DEFAULTS;
 }
 
 void scene_free(scene *s)

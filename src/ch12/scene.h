@@ -18,8 +18,6 @@
 #include "material.h"
 /* <<scene includes>> += ch04 */
 #include "mesh.h"
-/* <<scene includes>> += ch12 */
-#include "antialias.h"
 
 typedef enum { BACKGROUND_SOLID, BACKGROUND_GRADIENT } background_kind;
 
@@ -104,12 +102,6 @@ typedef struct {
     mesh_accelerator accelerator_option; /* --accelerator's, which wins */
     int accelerator_line;                /* of the accelerator statement */
     bvh_params bvh_settings;             /* zero: the defaults */
-    /* <<scene members>> += ch12 */
-    pixel_sampling pixels; /* the pixel statement's */
-    int pixel_line;        /* its line; 0: the file has none */
-    const char *pixel_option;        /* --pixel's settings, which win; NULL */
-    int width_option, height_option; /* --size's, which win; 0: none */
-    long long ray_budget; /* each primary ray's share of the image's rays */
 } scene;
 
 void scene_init(scene *s);

@@ -14,8 +14,6 @@
 #include "transform_parse.h"
 /* <<scene file includes>> += ch08 */
 #include "trees.h"
-/* <<scene file includes>> += ch12 */
-#include "pixel_statement.h"
 
 /* <<readers of settings>> ch03 */
 
@@ -475,8 +473,6 @@ static const struct {
     {"kdtree", parse_kdtree},
     /* <<scene keywords>> += ch09 */
     {"accelerator", parse_accelerator},
-    /* <<scene keywords>> += ch12 */
-    {"pixel", pixel_statement_parse},
 };
 
 static bool parse_statement(parser *p, void *target)
@@ -570,9 +566,6 @@ bool scene_parse(scene *s, const char *text, size_t length, const char *name,
             s->accelerator_option ? "--accelerator " : "this statement",
             s->accelerator_option ? mesh_accelerator_name(s->accelerator_option)
                                   : "");
-    /* <<finish the scene>> += ch12 */
-    if (!pixel_settings_final(s, name, err))
-        return false;
     return true;
 }
 

@@ -38,9 +38,6 @@ typedef struct {
     long long mesh_occlusion_tests; /* meshes asked for any hit, not nearest */
     /* <<statistics counters>> += ch09 */
     long long bvh_nodes; /* BVH nodes whose children a ray tested */
-    /* <<statistics counters>> += ch12 */
-    long long pixel_rays[290];  /* pixels that cost n rays, n <= 289 */
-    long long pixel_depths[5];  /* adaptive pixels by the depth reached */
 } render_stats;
 
 #endif

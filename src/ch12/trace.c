@@ -189,12 +189,9 @@ vec3 background_color(const background *bg, vec3 dir)
 
 vec3 trace(const scene *s, ray r, int depth, render_stats *stats)
 {
-    /* <<trace a ray>> ch12 */
+    /* <<trace a ray>> ch06 */
     long shadows = scene_shadow_rays(s); /* at most the scene's budget */
-    long budget = s->ray_budget > 0 && s->ray_budget < TRACE_RAY_BUDGET
-                      ? (long)s->ray_budget
-                      : TRACE_RAY_BUDGET;
-    ray_tree tree = {.rays_left = budget - shadows, /* its own hit's */
+    ray_tree tree = {.rays_left = TRACE_RAY_BUDGET - shadows, /* its own hit's */
                      .ray_cost = 1 + shadows, .stats = stats};
     return trace_path(s, r, depth, 1.0, &tree);
 }

@@ -44,9 +44,9 @@
 #      lines; 8.3's loop one edge short is failing, every failing test
 #      laid on it; 2.4 without its line <<the sphere's hit-point bound>>
 #      fails at chapter 2, saying so, its file left out;
-#   11.3 with static first and last, and 12.1 with a static hash state:
+#   12.3 with static first and last, and 13.1 with a static hash state:
 #      data races, caught by ThreadSanitizer (where the compiler has it)
-#      and laid on their exercises; 12.1's hash also leaves out the axis,
+#      and laid on their exercises; 13.1's hash also leaves out the axis,
 #      which its own test sees.
 # Prints what went wrong in each failed check and exits 1.
 set -u
@@ -486,7 +486,7 @@ check_band_race() {
 check_hash_race() {
     use hash-race
     fresh
-    # 12.1 keeps its hash in a static variable, and leaves out the axis
+    # 13.1 keeps its hash in a static variable, and leaves out the axis
     plant "the sample hash" 's/^    uint64_t h = mix64(/    static uint64_t h;\
     h = mix64(/; s/h = mix64(h ^ ((uint64_t)(uint32_t)k << 1 | (uint64_t)(axis \& 1)));/h = mix64(h ^ (uint64_t)(uint32_t)k);/'
     # the race, which the verdict does not show behind the failing test;
@@ -495,14 +495,14 @@ check_hash_race() {
     while [ "$tries" -lt 3 ]; do
         grade "$(chapter_of "the sample hash")" \
             GRADE_TESTS="$(tests_of "the sample hash") test_a_jittered_render_is_the_same_on_any_thread_count"
-        [ "$status" != 0 ] || fail "12.1 planted should not grade with status 0"
+        [ "$status" != 0 ] || fail "13.1 planted should not grade with status 0"
         expect "the sample hash" "the axis must change the number"
         grep -q "^(no ThreadSanitizer" "$t/out" && return 0
         grep -q "^$(id_of "the sample hash")	a data race (ThreadSanitizer) at $wb/$(file_of "the sample hash"):.* on h, a static variable" \
             "$t/build/ch$(chapter_of "the sample hash")/races.tsv" && return 0
         tries=$((tries + 1))
     done
-    fail "ThreadSanitizer should see 12.1's static h (3 grades)"
+    fail "ThreadSanitizer should see 13.1's static h (3 grades)"
 }
 
 # The checks, the longest first (WB_CHECKS: those named only).

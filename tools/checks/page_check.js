@@ -220,7 +220,7 @@ async function speed(sessionId, c) {
   const times = {};
   for (let round = 0; round < c.rounds; round++) {
     for (const n of c.chapters) {
-      const threads = +n >= 11 ? ["--threads", "1"] : []; /* from chapter 11 */
+      const threads = +n >= 12 ? ["--threads", "1"] : []; /* from chapter 12 */
       const args = ["-o", "/dev/null", "--stats", "--size", c.size].concat(threads);
       const native = spawnSync(c.bin + "/ch" + n, args, { encoding: "utf8" });
       const page = await inPage(sessionId, pageRender.toString(), { chapter: n, size: c.size });

@@ -27,7 +27,7 @@
 #
 # measures instead: each chapter's own scene at --size SIZE, its render on
 # one thread by BIN_DIR/chNN and in the page, ROUNDS times, into CSV (make
-# chart-ch12_page; it fails without Chromium or the programs).
+# chart-ch13_page; it fails without Chromium or the programs).
 set -u
 speed="" scenes=""
 if [ "${1:-}" = "--speed" ]; then speed=$2 rounds=$3; shift 3; fi

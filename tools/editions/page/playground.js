@@ -11,7 +11,7 @@
  * (tools/editions/page/worker.js) in <script type="text/plain" id="rt-worker">.
  *
  * Each playground whose chapter has a program gets an editor, the --size
- * and --pixel settings (the latter from chapter 10, which adds it), Render
+ * and --pixel settings (the latter from chapter 13, which adds it), Render
  * and Cancel buttons, a status line, the picture and the --stats counts.
  * A render runs in a new worker, which Cancel ends; the status line shows
  * the time and the program's progress line while it runs, and an error
@@ -112,7 +112,7 @@
     ui.size.placeholder = "the scene's";
     ui.size.size = 10;
     settings.appendChild(labelled("--size", ui.size));
-    if (+chapter >= 10) {
+    if (+chapter >= 13) {
       ui.pixel = element("input");
       ui.pixel.placeholder = "e.g. pattern jittered samples 4";
       ui.pixel.size = 28;

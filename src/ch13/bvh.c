@@ -1,0 +1,773 @@
+/* bvh.c: building bounding volume hierarchies (chapter 9). See bvh.h. */
+#include "bvh.h"
+
+#include <assert.h>
+#include <stdlib.h>
+#include "memory.h"
+/* <<bvh.c includes>> ch11 */
+#include <stdatomic.h>
+/* <<bvh.c includes>> += ch12 */
+#include "moment.h"
+#include "pool.h"
+
+/* <<bvh storage>> ch09 */
+bvh_params bvh_default_params(void)
+{
+    /* <<the default width>> ch11 */
+    int width = 8;
+    return (bvh_params){.width = width, .bins = 32, .max_leaf_items = 8,
+                        .traversal_cost = 1, .intersection_cost = 1,
+                        .min_items = 1, .item_group = 1};
+}
+
+/* p, its zeros replaced by the defaults. */
+static bvh_params bvh_filled(const bvh_params *p)
+{
+    bvh_params d = bvh_default_params(), q = *p;
+    q.width = q.width ? q.width : d.width;
+    q.bins = q.bins ? q.bins : d.bins;
+    q.max_leaf_items = q.max_leaf_items ? q.max_leaf_items : d.max_leaf_items;
+    q.traversal_cost = q.traversal_cost ? q.traversal_cost
+                                        : d.traversal_cost;
+    q.intersection_cost = q.intersection_cost ? q.intersection_cost
+                                              : d.intersection_cost;
+    q.min_items = q.min_items ? q.min_items : d.min_items;
+    q.item_group = q.item_group ? q.item_group : d.item_group;
+    return q;
+}
+
+void bvh_free(bvh *t)
+{
+    free(t->nodes), free(t->items);
+    /* <<free more of a bvh>> ch11 */
+    free(t->nodes8);
+    *t = (bvh){0};
+}
+
+long long bvh_bytes(const bvh *t)
+{
+    long long node = (long long)sizeof(bvh_node);
+    /* <<the size of a wider node>> ch11 */
+    if (t->width == 4 || t->width == 8)
+        node = (long long)sizeof(bvh_node8);
+    return t->node_capacity * node + (long long)t->item_count * sizeof(int);
+}
+
+/* <<a node's box in float>> ch09 */
+/* The box b, widened by pad, in float and rounded outward: every point
+ * of b lies inside it. */
+static void bvh_set_box(float out[6], const box *b, double pad)
+{
+    for (int a = 0; a < 3; a++) {
+        out[a] = bvh_float_down(vec3_axis(b->lo, a) - pad);
+        out[a + 3] = bvh_float_up(vec3_axis(b->hi, a) + pad);
+    }
+}
+
+static box box_empty(void)
+{
+    return (box){{INFINITY, INFINITY, INFINITY},
+                 {-INFINITY, -INFINITY, -INFINITY}};
+}
+
+static box box_union(box a, box b)
+{
+    return (box){vec3_min(a.lo, b.lo), vec3_max(a.hi, b.hi)};
+}
+
+/* The largest of most and the coordinates of b, in magnitude: the boxes'
+ * largest, times BVH_THICKNESS, is a build's pad. */
+static double largest_coordinate(const box *b, double most)
+{
+    for (int a = 0; a < 3; a++) { /* not fmax: a call, on most machines */
+        double lo = fabs(vec3_axis(b->lo, a)), hi = fabs(vec3_axis(b->hi, a));
+        most = lo > most ? lo : most, most = hi > most ? hi : most;
+    }
+    return most;
+}
+
+bool bvh_ray_of(vec3 origin, vec3 inv, double t_min, double t_max,
+                bvh_ray *out)
+{
+    for (int a = 0; a < 3; a++) {
+        double o = vec3_axis(origin, a), i = vec3_axis(inv, a);
+        if (!(fabs(o) <= 0x1p100) || !(fabs(i) >= 0x1p-100))
+            return false;
+        bool ahead = !signbit(i); /* d = +0 too: 1 / d = +inf */
+        out->near[a] = ahead ? a : a + 3, out->far[a] = ahead ? a + 3 : a;
+        /* rounded so that each t can only err outward */
+        out->o_near[a] = ahead ? bvh_float_up(o) : bvh_float_down(o);
+        out->o_far[a] = ahead ? bvh_float_down(o) : bvh_float_up(o);
+        out->inv[a] = (float)i;
+    }
+    out->t_min = bvh_float_down(t_min);
+    out->t_max = bvh_float_up(t_max * (1 + BVH_SLACK));
+    return true;
+}
+
+/* <<the bins of a split>> ch09 */
+/* What a build shares between its nodes: the items' boxes, which it
+ * reads; their centers, made first; and the items, reordered range by
+ * range. */
+typedef struct {
+    const box *bounds; /* of each item */
+    vec3 *centers;     /* of each item's box */
+    int *items;        /* a node's are items[b..e) */
+    bvh_params p;
+    double pad;        /* every box's, BVH_THICKNESS times the largest
+                          coordinate */
+    /* <<more of a builder>> ch12 */
+    int *scratch;             /* as many as items: large nodes' partitions */
+    bvh_node *slots;          /* 2 count - 1: each subtree's place */
+    struct bvh_slice *slices; /* the top's: one a thread at most */
+    int slice_count;
+    struct bvh_task *tasks;   /* the subtrees left to the threads */
+} bvh_builder;
+
+typedef struct {
+    box b;
+    int count;
+} bvh_bin;
+
+/* The bin of the center c on axis, for bins from lo, scale bins a unit. */
+static int bin_of(vec3 c, int axis, double lo, double scale, int bins)
+{
+    int k = (int)((vec3_axis(c, axis) - lo) * scale);
+    return k < 0 ? 0 : k >= bins ? bins - 1 : k;
+}
+
+/* <<a node's passes over its items>> ch09 */
+/* The first pass, over every item of items[b..e): its center, its place
+ * in the first order, and the largest coordinate of its box; the largest
+ * of them. */
+static double items_prepared(const bvh_builder *bd, int b, int e)
+{
+    double most = 0;
+    for (int k = b; k < e; k++) {
+        const box *bb = &bd->bounds[k];
+        bd->centers[k] = vec3_scale(vec3_add(bb->lo, bb->hi), 0.5);
+        bd->items[k] = k;
+        most = largest_coordinate(bb, most);
+    }
+    return most;
+}
+
+/* The boxes around the items of items[b..e), and around their centers. */
+static void items_boxed(const bvh_builder *bd, int b, int e, box *bounds,
+                        box *centers)
+{
+    box bb = box_empty(), cb = box_empty();
+    for (int i = b; i < e; i++) {
+        int item = bd->items[i];
+        bb = box_union(bb, bd->bounds[item]);
+        cb = box_union(cb, (box){bd->centers[item], bd->centers[item]});
+    }
+    *bounds = bb, *centers = cb;
+}
+
+/* <<a node's items in bins>> ch09 */
+/* The items of items[b..e) in their bins on axis, from lo, scale bins a
+ * unit: each bin's count, and the box around its items' boxes. */
+static void fill_bins(const bvh_builder *bd, int b, int e, int axis,
+                      double lo, double scale, bvh_bin *bins)
+{
+    for (int k = 0; k < bd->p.bins; k++)
+        bins[k] = (bvh_bin){box_empty(), 0};
+    for (int i = b; i < e; i++) {
+        int item = bd->items[i];
+        bvh_bin *in = &bins[bin_of(bd->centers[item], axis, lo, scale,
+                                   bd->p.bins)];
+        in->count++, in->b = box_union(in->b, bd->bounds[item]);
+    }
+}
+
+/* <<partitioning a node's items>> ch09 */
+/* Puts the items of items[b..e) in bins below k first; the first of the
+ * others. */
+static int partition(const bvh_builder *bd, int b, int e, int axis,
+                     double lo, double scale, int k)
+{
+    int *it = bd->items, i = b, j = e - 1;
+    while (i <= j) {
+        if (bin_of(bd->centers[it[i]], axis, lo, scale, bd->p.bins) < k) {
+            i++;
+        } else {
+            int swap = it[i];
+            it[i] = it[j], it[j--] = swap;
+        }
+    }
+    return i;
+}
+
+/* <<a node's passes>> ch12 */
+/* <<a node's items in slices>> ch12 */
+typedef struct bvh_slice bvh_slice;
+
+/* A slice of a node's items, one thread's share of a pass over them,
+ * and what the pass found there. */
+struct bvh_slice {
+    const bvh_builder *bd;
+    int b, e; /* items[b..e) */
+    void (*pass)(bvh_slice *);
+    box bounds, centers; /* around its items' boxes, and their centers */
+    int axis, split;     /* its bins, and the first bin of the upper side */
+    double lo, scale;
+    bvh_bin bins[BVH_MAX_BINS];
+    int low, high; /* how many go low; then where they go, either side */
+    double largest; /* coordinate of its boxes, in magnitude */
+};
+
+/* Cuts items[b..e) into n slices of nearly equal size; n. */
+static int cut_slices(const bvh_builder *bd, bvh_slice *sl, int n, int b,
+                      int e)
+{
+    for (int k = 0; k < n; k++) { /* not a compound literal: no bins */
+        sl[k].bd = bd;
+        sl[k].b = b + (int)((long long)(e - b) * k / n);
+        sl[k].e = b + (int)((long long)(e - b) * (k + 1) / n);
+    }
+    return n;
+}
+
+static void run_slice(void *slices, int k)
+{
+    bvh_slice *s = (bvh_slice *)slices + k;
+    s->pass(s);
+}
+
+/* pass over each of the n slices, one thread each (one slice: this
+ * thread, at once, as for almost every node). */
+static void run_slices(bvh_slice *sl, int n, void (*pass)(bvh_slice *))
+{
+    for (int k = 0; k < n; k++)
+        sl[k].pass = pass;
+    pool_for(n, n, run_slice, sl);
+}
+
+static void slice_centers(bvh_slice *s)
+{
+    s->largest = items_prepared(s->bd, s->b, s->e);
+}
+
+static void slice_boxes(bvh_slice *s)
+{
+    items_boxed(s->bd, s->b, s->e, &s->bounds, &s->centers);
+}
+
+static void slice_bins(bvh_slice *s)
+{
+    fill_bins(s->bd, s->b, s->e, s->axis, s->lo, s->scale, s->bins);
+}
+
+static bool goes_low(const bvh_slice *s, int item)
+{
+    return bin_of(s->bd->centers[item], s->axis, s->lo, s->scale,
+                  s->bd->p.bins) < s->split;
+}
+
+static void slice_count_low(bvh_slice *s)
+{
+    int low = 0;
+    for (int i = s->b; i < s->e; i++)
+        low += goes_low(s, s->bd->items[i]);
+    s->low = low;
+}
+
+static void slice_scatter(bvh_slice *s)
+{
+    const bvh_builder *bd = s->bd;
+    for (int i = s->b; i < s->e; i++) {
+        int item = bd->items[i];
+        bd->scratch[goes_low(s, item) ? s->low++ : s->high++] = item;
+    }
+}
+
+static void slice_copy_back(bvh_slice *s)
+{
+    memcpy(s->bd->items + s->b, s->bd->scratch + s->b,
+           (size_t)(s->e - s->b) * sizeof(int));
+}
+
+/* The slices' items in bins on axis, from lo, scale bins a unit: the
+ * bins of the first slice, the others' added in. */
+static const bvh_bin *slices_binned(bvh_slice *sl, int n, int axis,
+                                    double lo, double scale)
+{
+    for (int k = 0; k < n; k++)
+        sl[k].axis = axis, sl[k].lo = lo, sl[k].scale = scale;
+    run_slices(sl, n, slice_bins);
+    for (int k = 1; k < n; k++)
+        for (int j = 0; j < sl[0].bd->p.bins; j++) {
+            sl[0].bins[j].count += sl[k].bins[j].count;
+            sl[0].bins[j].b = box_union(sl[0].bins[j].b, sl[k].bins[j].b);
+        }
+    return sl[0].bins;
+}
+
+/* Puts the items of bins below split first, each side in the order it
+ * had; the first of the others. */
+static int partition_in_order(bvh_slice *sl, int n, int split)
+{
+    for (int k = 0; k < n; k++)
+        sl[k].split = split;
+    run_slices(sl, n, slice_count_low);
+    int low = sl[0].b, high = sl[0].b;
+    for (int k = 0; k < n; k++)
+        high += sl[k].low;
+    int first_high = high;
+    for (int k = 0; k < n; k++) {
+        int lows = sl[k].low;
+        sl[k].low = low, low += lows;
+        sl[k].high = high, high += sl[k].e - sl[k].b - lows;
+    }
+    run_slices(sl, n, slice_scatter);
+    run_slices(sl, n, slice_copy_back);
+    return first_high;
+}
+
+/* <<a node's passes, shared>> ch12 */
+/* The slices of items[b..e) that bd's threads share: one, this thread,
+ * for a node of BVH_SHARED_ITEMS or fewer. */
+static int slices_of(bvh_builder *bd, int b, int e)
+{
+    int n = (e - b + BVH_SHARED_ITEMS - 1) / BVH_SHARED_ITEMS;
+    n = n < bd->slice_count ? n : bd->slice_count;
+    return cut_slices(bd, bd->slices, n > 1 ? n : 1, b, e);
+}
+
+static double pass_prepare(bvh_builder *bd, int count)
+{
+    int n = slices_of(bd, 0, count);
+    run_slices(bd->slices, n, slice_centers);
+    double most = 0;
+    for (int k = 0; k < n; k++) /* a maximum: the same in any order */
+        most = bd->slices[k].largest > most ? bd->slices[k].largest : most;
+    return most;
+}
+
+static void pass_boxes(bvh_builder *bd, int b, int e, box *bounds,
+                       box *centers)
+{
+    int n = slices_of(bd, b, e);
+    run_slices(bd->slices, n, slice_boxes);
+    box bb = bd->slices[0].bounds, cb = bd->slices[0].centers;
+    for (int k = 1; k < n; k++) /* in order: the same bits as one pass */
+        bb = box_union(bb, bd->slices[k].bounds),
+        cb = box_union(cb, bd->slices[k].centers);
+    *bounds = bb, *centers = cb;
+}
+
+static const bvh_bin *pass_bins(bvh_builder *bd, int b, int e, int axis,
+                                double lo, double scale, bvh_bin *bins)
+{
+    int n = slices_of(bd, b, e);
+    if (n == 1) { /* on this thread, into the caller's bins */
+        fill_bins(bd, b, e, axis, lo, scale, bins);
+        return bins;
+    }
+    return slices_binned(bd->slices, n, axis, lo, scale);
+}
+
+static int pass_partition(bvh_builder *bd, int b, int e, int axis,
+                          double lo, double scale, int k)
+{
+    if (e - b <= BVH_SHARED_ITEMS)
+        return partition(bd, b, e, axis, lo, scale, k);
+    int n = slices_of(bd, b, e);
+    for (int j = 0; j < n; j++)
+        bd->slices[j].axis = axis, bd->slices[j].lo = lo,
+        bd->slices[j].scale = scale;
+    return partition_in_order(bd->slices, n, k);
+}
+
+/* <<the binned split>> ch09 */
+/* The tests of n items, item_group at a time. */
+static double groups(const bvh_builder *bd, int n)
+{
+    return (n + bd->p.item_group - 1) / bd->p.item_group;
+}
+
+/* <<the sweep over the bins>> ch09 */
+/* The cheapest plane between the bins: the first bin above it, its cost
+ * in *cost (infinity, and -1 returned, when no plane has items on both
+ * sides); area is the node's (not 0). */
+static int best_bin(const bvh_builder *bd, const bvh_bin *bins, double area,
+                    double *cost)
+{
+    int n = bd->p.bins, right_count[BVH_MAX_BINS], left = 0, best = -1;
+    double right_area[BVH_MAX_BINS];
+    box sweep = box_empty();
+    for (int k = n - 1, count = 0; k >= 1; k--) { /* from the right */
+        sweep = box_union(sweep, bins[k].b), count += bins[k].count;
+        right_area[k] = box_area(&sweep), right_count[k] = count;
+    }
+    sweep = box_empty(), *cost = INFINITY;
+    for (int k = 1; k < n; k++) { /* from the left */
+        sweep = box_union(sweep, bins[k - 1].b), left += bins[k - 1].count;
+        if (left == 0 || right_count[k] == 0)
+            continue;
+        double tests = box_area(&sweep) * groups(bd, left) +
+                       right_area[k] * groups(bd, right_count[k]);
+        double c = bd->p.traversal_cost +
+                   bd->p.intersection_cost * tests / area; /* C(split) */
+        if (c < *cost)
+            *cost = c, best = k;
+    }
+    return best;
+}
+
+/* Where the items of items[b..e), in the box bb, their centers in cb,
+ * split: the first item of the upper side, the items reordered and the
+ * axis in *axis; -1: a leaf. */
+static int split_range(bvh_builder *bd, int b, int e, int depth,
+                       const box *bb, const box *cb, int *axis)
+{
+    int items = e - b;
+    vec3 size = vec3_sub(cb->hi, cb->lo);
+    *axis = size.y > size.x ? 1 : 0; /* the longest side of the centers */
+    *axis = size.z > vec3_axis(size, *axis) ? 2 : *axis;
+    double lo = vec3_axis(cb->lo, *axis), extent = vec3_axis(size, *axis);
+    if (items == 1)
+        return -1;
+    if (!(extent > 0) || depth >= BVH_MEDIAN_DEPTH) /* the middle */
+        return items <= bd->p.max_leaf_items ? -1 : b + items / 2;
+    double scale = bd->p.bins / extent, area = box_area(bb), cost;
+    bvh_bin space[BVH_MAX_BINS];
+    const bvh_bin *bins = pass_bins(bd, b, e, *axis, lo, scale, space);
+    int k = best_bin(bd, bins, area > 0 ? area : 1, &cost);
+    if (k < 0 || (items <= bd->p.max_leaf_items &&
+                  bd->p.intersection_cost * groups(bd, items) <= cost))
+        return k < 0 && items > bd->p.max_leaf_items ? b + items / 2 : -1;
+    return pass_partition(bd, b, e, *axis, lo, scale, k);
+}
+
+/* <<building a range>> ch12 */
+/* Fills slot s with the node of items[b..e), its passes over the items
+ * shared by bd's slices when it is large; the first item of its upper
+ * child, or -1 for a leaf. */
+static int build_node(bvh_builder *bd, int b, int e, int s, int depth)
+{
+    box bb, cb;
+    pass_boxes(bd, b, e, &bb, &cb);
+    bvh_node *node = &bd->slots[s];
+    bvh_set_box(node->box, &bb, bd->pad);
+    int axis = 0, m = split_range(bd, b, e, depth, &bb, &cb, &axis);
+    node->index = (uint32_t)(m < 0 ? b : s + 2 * (m - b));
+    node->count = (uint16_t)(m < 0 ? e - b : 0), node->axis = (uint16_t)axis;
+    return m;
+}
+
+/* Builds the subtree of items[b..e) into slots[s .. s + 2 (e - b) - 1):
+ * its root at s, its first child's subtree from s + 1, its second's
+ * after that. A pure function of the range, whichever thread runs it. */
+static void build_range(bvh_builder *bd, int b, int e, int s, int depth)
+{
+    int m = build_node(bd, b, e, s, depth);
+    if (m < 0)
+        return;
+    build_range(bd, b, m, s + 1, depth + 1);
+    build_range(bd, m, e, s + 2 * (m - b), depth + 1);
+}
+
+/* <<the build's tasks>> ch12 */
+/* A subtree left for the threads: items[b..e) from slot s. */
+typedef struct bvh_task {
+    int b, e, s, depth;
+} bvh_task;
+
+/* Builds the top of the subtree of items[b..e) at slot s, its large
+ * nodes' passes shared by the threads, and leaves its subtrees of at
+ * most small items to tasks. */
+static void build_top(bvh_builder *bd, int b, int e, int s, int depth,
+                      int small, bvh_task *tasks, int *count)
+{
+    if (e - b <= small) {
+        tasks[(*count)++] = (bvh_task){b, e, s, depth};
+        return;
+    }
+    int m = build_node(bd, b, e, s, depth);
+    if (m < 0)
+        return;
+    build_top(bd, b, m, s + 1, depth + 1, small, tasks, count);
+    build_top(bd, m, e, s + 2 * (m - b), depth + 1, small, tasks, count);
+}
+
+/* The pool's job k: task k's subtree, through a builder of its own whose
+ * one slice keeps its passes on this thread. */
+static void build_task(void *builder, int k)
+{
+    const bvh_builder *bd = builder;
+    bvh_slice mine;
+    bvh_builder own = *bd;
+    own.slices = &mine, own.slice_count = 1;
+    const bvh_task *t = &bd->tasks[k];
+    build_range(&own, t->b, t->e, t->s, t->depth);
+}
+
+/* <<closing the gaps>> ch12 */
+/* Copies the subtree at slots[s] into t->nodes from t->node_count on, in
+ * the order of a walk, each node's first child right after it; where
+ * its root went. */
+static int close_gaps(const bvh_node *slots, int s, bvh *t, int depth)
+{
+    int k = t->node_count++;
+    t->nodes[k] = slots[s];
+    t->depth = depth > t->depth ? depth : t->depth;
+    if (slots[s].count > 0)
+        return t->leaf_count++, k;
+    close_gaps(slots, s + 1, t, depth + 1);
+    t->nodes[k].index =
+        (uint32_t)close_gaps(slots, (int)slots[s].index, t, depth + 1);
+    return k;
+}
+
+/* <<more of a bvh build>> ch11 */
+/* <<collapsing to wide nodes>> ch11 */
+static double float_box_area(const float b[6])
+{
+    double x = b[3] - b[0], y = b[4] - b[1], z = b[5] - b[2];
+    return x * y + y * z + z * x;
+}
+
+/* <<opening a node's children>> ch11 */
+/* The children of binary node k, opened until there are width of them or
+ * leaves only: the interior child with the largest box first. */
+static int open_children(const bvh_node *nodes, int k, int width,
+                         int kids[8])
+{
+    int n = 2;
+    kids[0] = k + 1, kids[1] = (int)nodes[k].index;
+    while (n < width) {
+        int widest = -1;
+        double most = -1;
+        for (int j = 0; j < n; j++)
+            if (nodes[kids[j]].count == 0 &&
+                float_box_area(nodes[kids[j]].box) > most)
+                most = float_box_area(nodes[kids[j]].box), widest = j;
+        if (widest < 0)
+            break;
+        int open = kids[widest];
+        kids[widest] = open + 1, kids[n++] = (int)nodes[open].index;
+    }
+    return n;
+}
+
+/* How far lane c of n lies along octant o's diagonal (empty: -inf). */
+static double along_octant(const bvh_node8 *n, int c, int o)
+{
+    if (n->face[0][c] > n->face[1][c])
+        return -INFINITY; /* an unused lane */
+    double far = 0;
+    for (int a = 0; a < 3; a++) {
+        double centre = (double)n->face[2 * a][c] + n->face[2 * a + 1][c];
+        far += (o >> a & 1) ? -centre : centre;
+    }
+    return far;
+}
+
+/* <<the octant orders of a node>> ch11 */
+/* n's order for each octant: the lanes farthest first (insertion sort,
+ * equal ones in the order of their lanes). */
+static void order_children(bvh_node8 *n)
+{
+    for (int k = 0; k < 8; k++)
+        n->order[k] = 0;
+    for (int o = 0; o < 8; o++) {
+        int lane[8];
+        for (int k = 0; k < 8; k++) {
+            int j = k;
+            for (; j > 0 && along_octant(n, lane[j - 1], o) <
+                                along_octant(n, k, o); j--)
+                lane[j] = lane[j - 1];
+            lane[j] = k;
+        }
+        for (int k = 0; k < 8; k++)
+            n->order[k] |= (uint32_t)lane[k] << 3 * o;
+    }
+}
+
+/* Fills wide node w with the children of binary node k, and the wide
+ * nodes below it from t->node_count on. */
+static void collapse(bvh *t, const bvh_node *nodes, int k, int w)
+{
+    int kids[8], n = 1;
+    kids[0] = k; /* a root that is a leaf: one child */
+    if (nodes[k].count == 0)
+        n = open_children(nodes, k, t->width, kids);
+    bvh_node8 *node = &t->nodes8[w];
+    for (int c = 0; c < 8; c++) {
+        for (int a = 0; a < 3; a++) /* no box yet: lo +inf, hi -inf */
+            node->face[2 * a][c] = INFINITY, node->face[2 * a + 1][c] =
+                                                 -INFINITY;
+        node->child[c] = 0;
+    }
+    for (int c = 0; c < n; c++) {
+        const bvh_node *kid = &nodes[kids[c]];
+        for (int a = 0; a < 3; a++)
+            node->face[2 * a][c] = kid->box[a],
+            node->face[2 * a + 1][c] = kid->box[a + 3];
+        assert(kid->count < 16);
+        node->child[c] = bvh_leaf_word(kid->index, kid->count);
+        if (kid->count == 0) {
+            node->child[c] = (uint32_t)t->node_count++;
+            collapse(t, nodes, kids[c], (int)node->child[c]);
+        }
+    }
+    order_children(node);
+}
+
+/* t's wide nodes in an array of their number, which the collapse knows
+ * only at its end (kept larger when a smaller one cannot be had). */
+static void shrink_wide(bvh *t)
+{
+    size_t size = sizeof(bvh_node8);
+    void *fit = memory_alloc_aligned(64, (size_t)t->node_count, size);
+    if (fit == NULL)
+        return;
+    memcpy(fit, t->nodes8, (size_t)t->node_count * size);
+    free(t->nodes8);
+    t->nodes8 = fit, t->node_capacity = t->node_count;
+}
+
+/* t's binary nodes collapsed into nodes of t->width; false: no memory. */
+static bool make_wide(bvh *t)
+{
+    int most = t->node_count - t->leaf_count + 1; /* wide nodes at most */
+    t->nodes8 = memory_alloc_aligned(64, (size_t)most, sizeof(bvh_node8));
+    if (t->nodes8 == NULL)
+        return false;
+    bvh_node *binary = t->nodes;
+    t->nodes = NULL, t->node_count = 1, t->node_capacity = most;
+    collapse(t, binary, 0, 0);
+    free(binary);
+    shrink_wide(t);
+    t->avx2 = bvh_walks_with_avx2();
+    return true;
+}
+
+/* <<choosing AVX2 when the program runs>> ch11 */
+/* Set by bvh_allow_avx2 (the tests); read when a tree is built. */
+static atomic_bool avx2_forbidden;
+
+bool bvh_walks_with_avx2(void)
+{
+#if BVH_HAS_AVX2_PATH
+    return __builtin_cpu_supports("avx2") && !atomic_load(&avx2_forbidden);
+#else
+    return false;
+#endif
+}
+
+void bvh_allow_avx2(bool allowed)
+{
+    atomic_store(&avx2_forbidden, !allowed);
+}
+
+uint32_t bvh_set_lanes[256];
+
+/* Fills bvh_set_lanes before main runs (GCC's and Clang's constructor),
+ * so that no walk finds it half made. */
+__attribute__((constructor)) static void fill_set_lanes(void)
+{
+    for (unsigned mask = 0; mask < 256; mask++) {
+        uint32_t set = 0, count = 0;
+        for (unsigned c = 0; c < 8; c++)
+            if (mask >> c & 1)
+                set |= c << 3 * count++;
+        bvh_set_lanes[mask] = set | count << 24;
+    }
+}
+
+const char *bvh_vector_width_name(const bvh *t)
+{
+    if (t->width != 2 && t->avx2)
+        return "AVX2 chosen at run time";
+#if defined(RT_SCALAR)
+    return "scalar";
+#elif defined(__AVX__)
+    return "AVX";
+#elif defined(__SSE2__)
+    return "SSE2";
+#else
+    return "vector extensions";
+#endif
+}
+
+/* <<starting a bvh build>> ch09 */
+/* The builder's own arrays for count items; false: no memory (what was
+ * made is freed by builder_free). */
+static bool builder_made(bvh_builder *bd, size_t count)
+{
+    bd->centers = memory_alloc(count, sizeof *bd->centers);
+    bool made = bd->centers != NULL;
+    /* <<more arrays of a builder>> ch12 */
+    bd->scratch = memory_alloc(count, sizeof *bd->scratch);
+    bd->slots = memory_alloc(2 * count - 1, sizeof *bd->slots);
+    bd->slice_count = pool_threads(bd->p.threads);
+    bd->slices = memory_alloc((size_t)bd->slice_count, sizeof *bd->slices);
+    bd->tasks = memory_alloc(count, sizeof *bd->tasks);
+    made = made && bd->scratch && bd->slots && bd->slices && bd->tasks;
+    return made;
+}
+
+static void builder_free(bvh_builder *bd)
+{
+    free(bd->centers);
+    /* <<free more of a builder>> ch12 */
+    free(bd->scratch), free(bd->slots), free(bd->slices), free(bd->tasks);
+}
+
+/* <<building the binary tree>> ch12 */
+/* The binary tree of bd's count items in t, on bd->p.threads threads. */
+static void build_binary(bvh_builder *bd, int count, bvh *t)
+{
+    bd->pad = BVH_THICKNESS * pass_prepare(bd, count);
+    /* a task's size: eight tasks a thread, enough to share them out */
+    int tasks_wanted = 8 * bd->slice_count;
+    int small = count / tasks_wanted > 1024 ? count / tasks_wanted : 1024;
+    int tasks = 0;
+    build_top(bd, 0, count, 0, 0, small, bd->tasks, &tasks);
+    t->build_threads = pool_for(tasks, bd->p.threads, build_task, bd);
+    double start = moment_now().wall;
+    close_gaps(bd->slots, 0, t, 0);
+    t->gaps_seconds = moment_now().wall - start;
+}
+
+/* t's binary nodes in an array of their number (kept larger when even a
+ * smaller one cannot be had). */
+static bool shrink_binary(bvh *t)
+{
+    bvh_node *fit = memory_resize(t->nodes, (size_t)t->node_count,
+                                  sizeof *fit);
+    t->nodes = fit != NULL ? fit : t->nodes;
+    t->node_capacity = fit != NULL ? t->node_count : t->node_capacity;
+    return true;
+}
+
+bool bvh_build(bvh *t, int count, const box *bounds, const bvh_params *p)
+{
+    bvh_params q = bvh_filled(p);
+    /* <<the widths a build makes>> ch11 */
+    assert(q.width == 2 || q.width == 4 || q.width == 8);
+    assert(q.bins >= 2 && q.bins <= BVH_MAX_BINS);
+    assert(q.max_leaf_items >= 1 && q.max_leaf_items <= 15);
+    *t = (bvh){.width = q.width};
+    if (count < q.min_items || count < 1)
+        return true;
+    size_t n = (size_t)count, slots = 2 * n - 1;
+    bvh_builder bd = {.bounds = bounds, .p = q};
+    t->items = bd.items = memory_alloc(n, sizeof *t->items);
+    t->nodes = memory_alloc(slots, sizeof *t->nodes);
+    bool ok = builder_made(&bd, n) && t->items && t->nodes;
+    t->node_capacity = (int)slots, t->item_count = ok ? count : 0;
+    if (ok)
+        build_binary(&bd, count, t);
+    builder_free(&bd);
+    /* <<the tree made of the binary nodes>> ch12 */
+    double collapse_start = moment_now().wall;
+    ok = ok && (q.width == 2 ? shrink_binary(t) : make_wide(t));
+    t->collapse_seconds = moment_now().wall - collapse_start;
+    if (!ok)
+        bvh_free(t);
+    return ok;
+}

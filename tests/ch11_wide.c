@@ -1,0 +1,379 @@
+/* ch11_wide.c: chapter 11's wide nodes: the same answers as brute force
+ * and as chapter 8's kd-tree, bit for bit, at widths 4 and 8 (with AVX2
+ * chosen at run time and without); vector and scalar node tests that
+ * agree; octant orders and pushes; wide nodes and their leaves' packets
+ * that hold their items; the wide BVH's bytes. */
+#include <check.h>
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "bvh.h"
+#include "memory.h"
+#include "mesh.h"
+#include "rng.h"
+#include "scene_file.h"
+#include "test_util.h"
+
+_Static_assert(sizeof(bvh_node8) == 256, "an 8-wide node, four lines");
+
+/* From tests/ch09_bvh.c. */
+mesh ch09_load(const char *path);
+mesh ch09_bare(const mesh *m);
+mesh ch09_with_bvh(const mesh *m, const bvh_params *p);
+void ch09_expect_agreement(const mesh *m, int count, const char *what,
+                           const bvh_params *p);
+mesh ch09_plane_mesh(int n, vec3 offset, double size);
+mesh ch09_fan_mesh(int n, vec3 centre);
+void ch09_expect_edges_and_faces(const bvh_params *p);
+box *ch09_random_boxes(rng_state *r, int count, vec3 centre, double spread,
+                       double size);
+bool ch09_holds(const float f[6], const box *b);
+
+static const rng_state RNG_START = {0xB7Bu};
+static rng_state rng;
+
+/* Each test draws the same numbers, whichever tests ran before it. */
+static void reseed(void) { rng = RNG_START; }
+
+/* m's BVH 4 and 8 wide, and 8 again with the walk kept from AVX2,
+ * against brute force and the kd-tree. */
+static void expect_agreement(const mesh *m, int count, const char *what)
+{
+    for (int run = 0; run < 3; run++) {
+        bvh_allow_avx2(run < 2);
+        ch09_expect_agreement(m, count, what,
+                              &(bvh_params){.width = run == 0 ? 4 : 8});
+        bvh_allow_avx2(true);
+    }
+}
+
+START_TEST(test_wide_bvh_agrees_with_brute_force_and_kdtree_on_the_teapot)
+{
+    mesh m = ch09_load("meshes/teapot-8.obj");
+    expect_agreement(&m, 400, "teapot");
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_wide_bvh_agrees_with_brute_force_and_kdtree_on_the_bunny)
+{
+    mesh m = ch09_load("meshes/bunny.obj");
+    expect_agreement(&m, 30, "bunny"); /* brute force: 1 ms a ray */
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_wide_bvh_agrees_on_coincident_triangles_near_and_far)
+{
+    const vec3 at[3] = {{0, 0, 0}, {1e6, -1e6, 1e6}, {3e-3, 0, 0}};
+    const double size[3] = {1, 10, 1e-5};
+    for (int k = 0; k < 3; k++) {
+        mesh m = ch09_plane_mesh(12, at[k], size[k]);
+        expect_agreement(&m, 300, "coincident planes");
+        mesh_free(&m);
+    }
+}
+END_TEST
+
+START_TEST(test_wide_bvh_agrees_on_fans_through_one_vertex)
+{
+    mesh m = ch09_fan_mesh(300, (vec3){0.25, -0.5, 4});
+    expect_agreement(&m, 300, "fan");
+    mesh_free(&m);
+    m = ch09_fan_mesh(64, (vec3){2e6, 1e6, -3e6});
+    expect_agreement(&m, 300, "far fan");
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_wide_rays_along_edges_and_faces_find_their_hits)
+{
+    ch09_expect_edges_and_faces(&(bvh_params){.width = 4});
+    ch09_expect_edges_and_faces(&(bvh_params){.width = 8});
+}
+END_TEST
+
+/* ------------------------------------------------------------ nodes */
+
+/* A random float in [-1, 1] times a random power of two, or a face. */
+static float random_coordinate(void)
+{
+    return (float)((2 * rng_uniform01(&rng) - 1) *
+                   pow(2, (int)(rng_uniform01(&rng) * 40) - 20));
+}
+
+static void random_node(bvh_node8 *n, int lanes)
+{
+    for (int c = 0; c < 8; c++) {
+        for (int a = 0; a < 3; a++) {
+            float x = random_coordinate(), y = random_coordinate();
+            n->face[2 * a][c] = x < y ? x : y;
+            n->face[2 * a + 1][c] = x < y ? y : x;
+            if (c >= lanes) /* unused: empty */
+                n->face[2 * a][c] = INFINITY, n->face[2 * a + 1][c] = -INFINITY;
+        }
+        n->child[c] = (uint32_t)c;
+    }
+}
+
+/* A ray at the node: from one of its faces, along an axis, or random. */
+static ray random_ray(const bvh_node8 *n, int k)
+{
+    ray r = {{random_coordinate(), random_coordinate(), random_coordinate()},
+             {random_coordinate(), random_coordinate(), random_coordinate()}};
+    if (k % 3 == 0) /* on a face's plane and parallel to it: 0 * inf */
+        r.origin.x = n->face[k % 2 ? 0 : 1][k % 8], r.dir.x = 0;
+    if (k % 5 == 0) /* from a corner, along an edge */
+        r.origin = (vec3){n->face[0][k % 8], n->face[2][k % 8],
+                          n->face[5][k % 8]},
+        r.dir = (vec3){k % 2 ? 1 : -0.0, 0, 0};
+    return r;
+}
+
+START_TEST(test_vector_and_scalar_node_tests_agree)
+{
+    bvh_node8 n8;
+    int hits = 0;
+    for (int k = 0; k < 20000; k++) {
+        random_node(&n8, 1 + k % 8);
+        float box[6 * 8]; /* the same boxes, faces as bvh_node's */
+        for (int a = 0; a < 3; a++)
+            for (int c = 0; c < 8; c++)
+                box[a * 8 + c] = n8.face[2 * a][c],
+                box[(a + 3) * 8 + c] = n8.face[2 * a + 1][c];
+        ray r = random_ray(&n8, k);
+        bvh_ray br, rows;
+        if (!bvh_ray_of(r.origin, ray_inverse_dir(r), 0, INFINITY, &br))
+            continue;
+        rows = br;
+        bvh_walk_rows(&rows);
+        float t_max = k % 4 ? INFINITY : (float)rng_uniform01(&rng);
+        float v8[8], s8[8], b8[8];
+        unsigned m8 = bvh_node8_test(&n8, &rows, t_max, v8);
+        if (bvh_walks_with_avx2()) { /* AVX2's eight lanes as well */
+            float a8[8];
+            ck_assert_uint_eq(bvh_node8_test_avx2(&n8, &rows, t_max, a8), m8);
+            ck_assert(memcmp(a8, v8, sizeof a8) == 0);
+        }
+        ck_assert_uint_eq(m8, bvh_lanes_test_scalar(&n8.face[0][0], 8, 8,
+                                                    &rows, t_max, s8));
+        ck_assert_uint_eq(m8, bvh_lanes_test_scalar(box, 8, 8, &br, t_max,
+                                                    b8));
+        ck_assert(memcmp(v8, s8, sizeof v8) == 0);
+        ck_assert(memcmp(v8, b8, sizeof v8) == 0);
+        hits += __builtin_popcount(m8);
+    }
+    ck_assert_int_gt(hits, 1000); /* the rays meet boxes, not only miss */
+}
+END_TEST
+
+/* Each octant's order is the eight lanes, the used ones farthest first
+ * along its diagonal. */
+START_TEST(test_the_octant_orders_list_the_lanes_farthest_first)
+{
+    box *b = ch09_random_boxes(&rng, 2000, (vec3){3, -2, 1}, 10, 0.5);
+    bvh t;
+    ck_assert(bvh_build(&t, 2000, b, &(bvh_params){.width = 8}));
+    for (int k = 0; k < t.node_count; k++) {
+        const bvh_node8 *n = &t.nodes8[k];
+        for (unsigned o = 0; o < 8; o++) {
+            unsigned seen = 0;
+            double last = INFINITY;
+            for (int j = 0; j < 8; j++) {
+                unsigned c = n->order[j] >> 3 * o & 7;
+                seen |= 1u << c;
+                if (n->face[0][c] > n->face[1][c])
+                    continue; /* unused */
+                double far = 0;
+                for (int a = 0; a < 3; a++) {
+                    double centre = (double)n->face[2 * a][c] +
+                                    n->face[2 * a + 1][c];
+                    far += (o >> a & 1) ? -centre : centre;
+                }
+                ck_assert_msg(far <= last, "node %d, octant %u: place %d "
+                              "is farther than the place before it", k, o, j);
+                last = far;
+            }
+            ck_assert_msg(seen == 0xff, "node %d, octant %u: the order "
+                          "holds lanes %#x, not each of the eight", k, o, seen);
+        }
+    }
+    bvh_free(&t);
+    free(b);
+}
+END_TEST
+
+/* A push keeps exactly the lanes hit, in the octant's order, each with
+ * its entry; the nearest ends on top. */
+START_TEST(test_a_push_keeps_the_children_hit_in_the_octant_s_order)
+{
+    box *b = ch09_random_boxes(&rng, 2000, (vec3){3, -2, 1}, 10, 0.5);
+    bvh t;
+    ck_assert(bvh_build(&t, 2000, b, &(bvh_params){.width = 8}));
+    for (int k = 0; k < t.node_count; k++) {
+        const bvh_node8 *n = &t.nodes8[k];
+        for (unsigned o = 0; o < 8; o++) {
+            unsigned mask = (unsigned)(k * 37 + o * 11) & 0xff;
+            uint32_t stack[9];
+            float entry[9], t_near[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+            int top = bvh_push8(stack, entry, 0, n, mask, t_near, 3 * o);
+            ck_assert_msg(top == __builtin_popcount(mask), "mask %#x pushed "
+                          "%d children", mask, top);
+            for (int j = 0, at = 0; j < 8; j++) {
+                unsigned c = n->order[j] >> 3 * o & 7;
+                if (!(mask >> c & 1))
+                    continue;
+                ck_assert_uint_eq(stack[at], n->child[c]);
+                ck_assert(entry[at++] == (float)c);
+            }
+        }
+    }
+    bvh_free(&t);
+    free(b);
+}
+END_TEST
+
+/* The wide nodes' lanes hold the items of their leaves. */
+START_TEST(test_wide_nodes_hold_their_leaves_items)
+{
+    box *b = ch09_random_boxes(&rng, 3000, (vec3){1e6, 2, -3}, 10, 0.5);
+    for (int width = 4; width <= 8; width *= 2) {
+        bvh t;
+        ck_assert(bvh_build(&t, 3000, b, &(bvh_params){.width = width}));
+        int items = 0;
+        for (int k = 0; k < t.node_count; k++)
+            for (int c = 0; c < 8; c++) {
+                const bvh_node8 *node = &t.nodes8[k];
+                uint32_t word = node->child[c];
+                uint32_t first = word & BVH_FIRST_MASK;
+                uint32_t n = word & BVH_LEAF ? word >> BVH_COUNT_SHIFT & 15 : 0;
+                ck_assert(c < width || node->face[0][c] > node->face[1][c]);
+                for (uint32_t i = 0; i < n; i++, items++) {
+                    float f[6];
+                    for (int a = 0; a < 3; a++)
+                        f[a] = node->face[2 * a][c],
+                        f[a + 3] = node->face[2 * a + 1][c];
+                    ck_assert(ch09_holds(f, &b[t.items[first + i]]));
+                }
+            }
+        ck_assert_int_eq(items, 3000); /* every item in exactly one leaf */
+        bvh_free(&t);
+    }
+    free(b);
+}
+END_TEST
+
+/* The leaf of reference c of node k of t (count 0: none): its first
+ * packet and its triangles. */
+static uint32_t leaf_of(const bvh *t, int k, int c, uint32_t *count)
+{
+    if (t->width == 2)
+        return *count = t->nodes[k].count, t->nodes[k].index;
+    uint32_t word = t->nodes8[k].child[c];
+    *count = word & BVH_LEAF ? word >> BVH_COUNT_SHIFT & 15 : 0;
+    return word & BVH_FIRST_MASK;
+}
+
+START_TEST(test_every_wide_leaf_s_packets_hold_its_triangles)
+{
+    mesh m = ch09_load("meshes/teapot-8.obj");
+    for (int width = 4; width <= 8; width *= 2) {
+        mesh b = ch09_with_bvh(&m, &(bvh_params){.width = width});
+        int *seen = memory_alloc((size_t)m.triangle_count, sizeof *seen);
+        ck_assert_ptr_nonnull(seen);
+        memset(seen, 0, (size_t)m.triangle_count * sizeof *seen);
+        int packets = 0, refs = width == 2 ? 1 : 8;
+        for (int k = 0; k < b.bvh.node_count; k++)
+            for (int c = 0; c < refs; c++) {
+                uint32_t count, first = leaf_of(&b.bvh, k, c, &count);
+                int n = (int)(count + PACKET_W - 1) / PACKET_W;
+                for (int lane = 0; lane < n * PACKET_W; lane++) {
+                    const triangle_packet *q = &b.bvh_packets[first +
+                                                lane / PACKET_W];
+                    int i = q->triangle[lane % PACKET_W];
+                    ck_assert_int_eq(i >= 0, lane < (int)count);
+                    if (i < 0)
+                        continue;
+                    seen[i]++;
+                    vec3 v = m.vertices[m.triangles[i].v[2]];
+                    ck_assert(q->corner[2][1][lane % PACKET_W] == (float)v.y);
+                }
+                packets += n;
+            }
+        for (int i = 0; i < m.triangle_count; i++)
+            ck_assert_int_eq(seen[i], 1); /* each in exactly one lane */
+        ck_assert_int_eq(packets, b.bvh_packet_count);
+        free(seen);
+        mesh_free_tree(&b);
+    }
+    mesh_free(&m);
+}
+END_TEST
+
+START_TEST(test_the_wide_bvh_of_a_mesh_stays_within_its_bytes)
+{
+    const char *paths[] = {"meshes/bunny.obj", "meshes/teapot-8.obj"};
+    for (int k = 0; k < 2; k++) {
+        mesh m = ch09_load(paths[k]);
+        mesh b = ch09_bare(&m);
+        ck_assert(mesh_build_bvh(&b, &(bvh_params){.width = 8}));
+        double bytes = (double)mesh_tree_bytes(&b) / m.triangle_count;
+        ck_assert_msg(bytes <= MESH_BVH_MAX_BYTES_PER_TRIANGLE,
+                      "%s: %.1f bytes a triangle", paths[k], bytes);
+        mesh_free_tree(&b);
+        mesh_free(&m);
+    }
+}
+END_TEST
+
+START_TEST(test_running_out_of_memory_in_a_wide_build_leaves_no_tree)
+{
+    mesh m = ch09_load("meshes/teapot-8.obj");
+    int failed = 0;
+    for (long n = 0; n < 12; n++) {
+        mesh b = ch09_bare(&m);
+        memory_fail_after(n);
+        bool ok = mesh_build_bvh(&b, &(bvh_params){.width = 4 << (n % 2)});
+        memory_fail_after(-1);
+        failed += !ok;
+        ck_assert(ok || (b.bvh.node_count == 0 && b.bvh_packets == NULL));
+        mesh_free_tree(&b);
+    }
+    ck_assert_int_gt(failed, 3);
+    mesh_free(&m);
+}
+END_TEST
+
+Suite *ch11_wide_suite(void)
+{
+    Suite *s = suite_create("ch11 wide");
+    TCase *agree = tcase_create("agreement");
+    tcase_add_checked_fixture(agree, reseed, NULL);
+    tcase_set_timeout(agree, 120);
+    tcase_add_test(
+        agree, test_wide_bvh_agrees_with_brute_force_and_kdtree_on_the_teapot);
+    tcase_add_slow_test(
+        agree, test_wide_bvh_agrees_with_brute_force_and_kdtree_on_the_bunny);
+    tcase_add_test(agree,
+                   test_wide_bvh_agrees_on_coincident_triangles_near_and_far);
+    tcase_add_test(agree, test_wide_bvh_agrees_on_fans_through_one_vertex);
+    tcase_add_test(agree, test_wide_rays_along_edges_and_faces_find_their_hits);
+    suite_add_tcase(s, agree);
+    TCase *nodes = tcase_create("nodes and packets");
+    tcase_add_checked_fixture(nodes, reseed, NULL);
+    tcase_set_timeout(nodes, 120);
+    tcase_add_test(nodes, test_vector_and_scalar_node_tests_agree);
+    tcase_add_test(nodes, test_the_octant_orders_list_the_lanes_farthest_first);
+    tcase_add_test(nodes,
+                   test_a_push_keeps_the_children_hit_in_the_octant_s_order);
+    tcase_add_test(nodes, test_wide_nodes_hold_their_leaves_items);
+    tcase_add_test(nodes, test_every_wide_leaf_s_packets_hold_its_triangles);
+    tcase_add_test(nodes, test_the_wide_bvh_of_a_mesh_stays_within_its_bytes);
+    tcase_add_test(nodes,
+                   test_running_out_of_memory_in_a_wide_build_leaves_no_tree);
+    suite_add_tcase(s, nodes);
+    return s;
+}
