@@ -349,19 +349,20 @@ static const char *small_scene(const char *pixel_line)
     return write_file("small.scene", text);
 }
 
-START_TEST(test_the_default_is_chapter_9s_picture)
+START_TEST(test_the_default_is_the_previous_chapters_picture)
 {
     char path[192];
-    size_t n9, n10, n;
+    size_t n_before, n_now, n;
     snprintf(path, sizeof path, "%s", small_scene("# no pixel statement"));
     const char *args[] = {path, NULL};
-    char *nine = draw(previous_bin(), args, &n9);
-    char *ten = draw(NULL, args, &n10);
-    expect_same(nine, n9, ten, n10, "chapters 9 and 10");
+    char *before = draw(previous_bin(), args, &n_before);
+    char *now = draw(NULL, args, &n_now);
+    expect_same(before, n_before, now, n_now,
+                "this program and the previous chapter's");
     const char *centre[] = {path, "--pixel", "pattern center", NULL};
-    nine = draw(previous_bin(), args, &n9);
-    ten = draw(NULL, centre, &n);
-    expect_same(nine, n9, ten, n, "--pixel center");
+    before = draw(previous_bin(), args, &n_before);
+    now = draw(NULL, centre, &n);
+    expect_same(before, n_before, now, n, "--pixel center");
 }
 END_TEST
 
@@ -975,7 +976,7 @@ Suite *ch13_antialiasing_suite(void)
     TCase *renders = tcase_create("renders");
     tcase_add_checked_fixture(renders, make_tmpdir, remove_tmpdir);
     tcase_set_timeout(renders, 120);
-    tcase_add_test(renders, test_the_default_is_chapter_9s_picture);
+    tcase_add_test(renders, test_the_default_is_the_previous_chapters_picture);
     tcase_add_test(renders, test_thread_counts_give_the_same_image);
     tcase_add_test(renders, test_stats_report_rays_per_pixel_and_depths);
     tcase_add_slow_test(renders, test_the_progress_line_gives_a_rate_of_rays);
