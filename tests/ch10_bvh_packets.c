@@ -80,39 +80,47 @@ static uint32_t leaf_of(const bvh *t, int k, int c, uint32_t *count)
     return *count = t->nodes[k].count, t->nodes[k].index;
 }
 
+/* Each triangle of m in exactly one lane of b's packets, found through
+ * the refs leaves a node of b's tree that leaf_of reads, each lane's
+ * corner the mesh's rounded to float, and no packet besides (chapter 11's
+ * suite calls it for the wide trees). */
+void ch10_expect_packets_hold_each_triangle(
+    const mesh *m, const mesh *b, int refs,
+    uint32_t (*leaf_of)(const bvh *, int, int, uint32_t *))
+{
+    int *seen = memory_alloc((size_t)m->triangle_count, sizeof *seen);
+    ck_assert_ptr_nonnull(seen);
+    memset(seen, 0, (size_t)m->triangle_count * sizeof *seen);
+    int packets = 0;
+    for (int k = 0; k < b->bvh.node_count; k++)
+        for (int c = 0; c < refs; c++) {
+            uint32_t count, first = leaf_of(&b->bvh, k, c, &count);
+            int n = (int)(count + PACKET_W - 1) / PACKET_W;
+            for (int lane = 0; lane < n * PACKET_W; lane++) {
+                const triangle_packet *q =
+                    &b->bvh_packets[first + lane / PACKET_W];
+                int i = q->triangle[lane % PACKET_W];
+                ck_assert_int_eq(i >= 0, lane < (int)count);
+                if (i < 0)
+                    continue;
+                seen[i]++;
+                vec3 v = m->vertices[m->triangles[i].v[2]];
+                ck_assert(q->corner[2][1][lane % PACKET_W] == (float)v.y);
+            }
+            packets += n;
+        }
+    for (int i = 0; i < m->triangle_count; i++)
+        ck_assert_int_eq(seen[i], 1); /* each in exactly one lane */
+    ck_assert_int_eq(packets, b->bvh_packet_count);
+    free(seen);
+}
+
 START_TEST(test_every_leaf_s_packets_hold_its_triangles)
 {
     mesh m = ch09_load("meshes/teapot-8.obj");
-    { /* binary here; chapter 11's suite packs the wide leaves */
-        int width = 2;
-        mesh b = ch09_with_bvh(&m, &(bvh_params){.width = width});
-        int *seen = memory_alloc((size_t)m.triangle_count, sizeof *seen);
-        ck_assert_ptr_nonnull(seen);
-        memset(seen, 0, (size_t)m.triangle_count * sizeof *seen);
-        int packets = 0, refs = width == 2 ? 1 : 8;
-        for (int k = 0; k < b.bvh.node_count; k++)
-            for (int c = 0; c < refs; c++) {
-                uint32_t count, first = leaf_of(&b.bvh, k, c, &count);
-                int n = (int)(count + PACKET_W - 1) / PACKET_W;
-                for (int lane = 0; lane < n * PACKET_W; lane++) {
-                    const triangle_packet *q = &b.bvh_packets[first +
-                                                lane / PACKET_W];
-                    int i = q->triangle[lane % PACKET_W];
-                    ck_assert_int_eq(i >= 0, lane < (int)count);
-                    if (i < 0)
-                        continue;
-                    seen[i]++;
-                    vec3 v = m.vertices[m.triangles[i].v[2]];
-                    ck_assert(q->corner[2][1][lane % PACKET_W] == (float)v.y);
-                }
-                packets += n;
-            }
-        for (int i = 0; i < m.triangle_count; i++)
-            ck_assert_int_eq(seen[i], 1); /* each in exactly one lane */
-        ck_assert_int_eq(packets, b.bvh_packet_count);
-        free(seen);
-        mesh_free_tree(&b);
-    }
+    mesh b = ch09_with_bvh(&m, &BINARY);
+    ch10_expect_packets_hold_each_triangle(&m, &b, 1, leaf_of);
+    mesh_free_tree(&b);
     mesh_free(&m);
 }
 END_TEST

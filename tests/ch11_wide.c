@@ -28,6 +28,9 @@ void ch09_expect_agreement(const mesh *m, int count, const char *what,
 mesh ch09_plane_mesh(int n, vec3 offset, double size);
 mesh ch09_fan_mesh(int n, vec3 centre);
 void ch09_expect_edges_and_faces(const bvh_params *p);
+void ch10_expect_packets_hold_each_triangle(
+    const mesh *m, const mesh *b, int refs,
+    uint32_t (*leaf_of)(const bvh *, int, int, uint32_t *));
 box *ch09_random_boxes(rng_state *r, int count, vec3 centre, double spread,
                        double size);
 bool ch09_holds(const float f[6], const box *b);
@@ -266,12 +269,10 @@ START_TEST(test_wide_nodes_hold_their_leaves_items)
 }
 END_TEST
 
-/* The leaf of reference c of node k of t (count 0: none): its first
+/* The leaf of reference c of wide node k of t (count 0: none): its first
  * packet and its triangles. */
 static uint32_t leaf_of(const bvh *t, int k, int c, uint32_t *count)
 {
-    if (t->width == 2)
-        return *count = t->nodes[k].count, t->nodes[k].index;
     uint32_t word = t->nodes8[k].child[c];
     *count = word & BVH_LEAF ? word >> BVH_COUNT_SHIFT & 15 : 0;
     return word & BVH_FIRST_MASK;
@@ -282,31 +283,7 @@ START_TEST(test_every_wide_leaf_s_packets_hold_its_triangles)
     mesh m = ch09_load("meshes/teapot-8.obj");
     for (int width = 4; width <= 8; width *= 2) {
         mesh b = ch09_with_bvh(&m, &(bvh_params){.width = width});
-        int *seen = memory_alloc((size_t)m.triangle_count, sizeof *seen);
-        ck_assert_ptr_nonnull(seen);
-        memset(seen, 0, (size_t)m.triangle_count * sizeof *seen);
-        int packets = 0, refs = width == 2 ? 1 : 8;
-        for (int k = 0; k < b.bvh.node_count; k++)
-            for (int c = 0; c < refs; c++) {
-                uint32_t count, first = leaf_of(&b.bvh, k, c, &count);
-                int n = (int)(count + PACKET_W - 1) / PACKET_W;
-                for (int lane = 0; lane < n * PACKET_W; lane++) {
-                    const triangle_packet *q = &b.bvh_packets[first +
-                                                lane / PACKET_W];
-                    int i = q->triangle[lane % PACKET_W];
-                    ck_assert_int_eq(i >= 0, lane < (int)count);
-                    if (i < 0)
-                        continue;
-                    seen[i]++;
-                    vec3 v = m.vertices[m.triangles[i].v[2]];
-                    ck_assert(q->corner[2][1][lane % PACKET_W] == (float)v.y);
-                }
-                packets += n;
-            }
-        for (int i = 0; i < m.triangle_count; i++)
-            ck_assert_int_eq(seen[i], 1); /* each in exactly one lane */
-        ck_assert_int_eq(packets, b.bvh_packet_count);
-        free(seen);
+        ch10_expect_packets_hold_each_triangle(&m, &b, 8, leaf_of);
         mesh_free_tree(&b);
     }
     mesh_free(&m);
