@@ -47,7 +47,10 @@
 #   12.3 with static first and last, and 13.1 with a static hash state:
 #      data races, caught by ThreadSanitizer (where the compiler has it)
 #      and laid on their exercises; 13.1's hash also leaves out the axis,
-#      which its own test sees.
+#      which its own test sees;
+#   fragment_waits: the report alone, on a made-up grade: in a handout, a
+#      test that a fragment not started names (its stub stands in) waits
+#      for it, and fails the exercise it was laid on without it.
 # Prints what went wrong in each failed check and exits 1.
 set -u
 MAKE=${MAKE:-make}
@@ -333,6 +336,30 @@ check_digits() {
     wrong "parse a size" "/if (text\[0\] < '0' || text\[0\] > '9')/,/return false;/d" \
         "failing: test_command_line_numbers_are_digits_only"
 }
+# In a handout, a fragment's stub stands in for it until it is started:
+# a test it names, failing, waits for it, though the laying laid it on
+# the exercise started (tools/workbook/grade_report.awk, stubbed); the
+# report alone, on a made-up grade of two exercises that name one test.
+check_fragment_waits() {
+    use fragment-waits
+    printf '9.1\tchapters/09-x.md\t1\tchunk\ta fragment\ttest_a test_b\n9.2\tchapters/09-x.md\t9\tchunk\ta function\ttest_c test_b\n' \
+        > "$t/list"
+    printf '9.1\tnot-started\twb/09-x.md\t1\t2\n9.2\tstarted\twb/09-x.md\t9\t12\n' > "$t/state"
+    printf 'tests/x.c:1:P:c:test_c:0: Passed\ntests/x.c:2:F:c:test_b:0: 3 rays differ\n' > "$t/log"
+    printf '9.2\ttest_b:0\n' > "$t/laid"
+    : > "$t/empty"
+    for stubbed in "9.1" ""; do
+        awk -v built=yes -v bad_files="$t/empty" -v laid="$t/laid" \
+            -v chapter=9 -v stubbed="$stubbed" \
+            -f tools/workbook/grade_report.awk "$t/list" "$t/state" "$t/log" \
+            > "$t/out" 2>&1
+        case "$stubbed:$(grep '^  9.2 ' "$t/out")" in
+        9.1:*"waiting for 9.1 (not started): test_b"*) ;;
+        :*"failing: test_b: 3 rays differ"*) ;;
+        *) fail "9.2 with stubbed='$stubbed' should $([ -n "$stubbed" ] && echo wait for 9.1 || echo fail on test_b)" ;;
+        esac
+    done
+}
 check_return() {
     use return
     fresh
@@ -509,7 +536,7 @@ check_hash_race() {
 CHECKS="${WB_CHECKS:-stubs solved hash_race band_race untouched crash camera shared clip_short
 clip_warnings loop sheet_snell sheet_normal unstratified seeds inside far_root
 lost_line cone directional digits return sheet_sphere sheet_half_vector
-sheet_tone_map}"
+sheet_tone_map fragment_waits}"
 
 n=$( (wc -l < "$list") 2> /dev/null || echo 0)
 last=$(ls chapters/[0-9][0-9]-*.md | tail -n 1 | sed 's|.*/||' | cut -c1-2)

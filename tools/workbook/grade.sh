@@ -634,10 +634,23 @@ if [ "$started" -gt 0 ]; then
         fi
     fi
 fi
+# In a handout, an exercise that is a part of a function's body has no
+# function to call the book's code through: its stub stands in until it is
+# started, and the tests that name it wait for it.
+stubbed=$(book_code forward "$@" | xargs -r awk '
+    /^```\{\.c chunk="/ { name = $0; sub(/^```\{\.c chunk="/, "", name)
+                         sub(/".*/, "", name); body = ""; next }
+    /^```[ \t]*$/ { if (name != "" && body == "return 0; /* your code here */\n")
+                      print name
+                  name = ""; next }
+    name != "" { body = body $0 "\n" }' |
+    awk -F '\t' 'NR == FNR { fragment[$0] = 1; next }
+                 $4 == "chunk" && ($5 in fragment) { printf "%s ", $1 }' - "$list")
 awk -v built="$built" -v bad_files="$bad_files" -v later="$later" \
     -v laid="$laid" -v cleared="$cleared" -v lost="$lost" \
     -v warned="$warned" -v races="$races" -v index_file="$work/tests.tsv" \
     -v multiplier="$multiplier" -v load="${load:-?}" -v cores="$cores" \
     -v only="${GRADE_EX:-}" -v junit="$WB_BUILD/junit.xml" \
     -v chapter="$target" -v stubs="$([ "${GRADE_BOOK_CODE:-}" = no ] && echo yes)" \
+    -v stubbed="$stubbed" \
     -f "$tools_dir/grade_report.awk" "$list" "$state" "$work/tests.log"

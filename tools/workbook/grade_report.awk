@@ -3,7 +3,8 @@
 #   awk -v built=yes|no -v bad_files=FILE [-v later=FILE -v laid=FILE \
 #       -v cleared=FILE -v lost=FILE -v warned=FILE -v races=FILE \
 #       -v index_file=FILE -v multiplier=M -v load=L -v cores=C \
-#       -v only=ID -v junit=FILE -v chapter=NN -v stubs=yes] \
+#       -v only=ID -v junit=FILE -v chapter=NN -v stubs=yes \
+#       -v stubbed="ID ..."] \
 #       -f tools/workbook/grade_report.awk EXERCISES.tsv STATE.tsv TESTS.log
 #
 # EXERCISES.tsv is tools/workbook/exercises.awk's listing, STATE.tsv tools/workbook/grade.sh's
@@ -40,6 +41,10 @@
 # nothing was laid on an exercise: a failing test that a not-started
 # exercise names, or that no started exercise names, waits for the
 # exercises not started; it is listed as waiting and fails nothing.
+# stubbed lists the exercises whose stubs stand in though the book's code
+# is linked (in a handout, a part of a function's body, which has no
+# function to call the book's code through): a test that one of them
+# names, not started, waits for it in the same way.
 
 # A test's name without the iteration an exercise may give it (TEST:K).
 function bare_name(t) {
@@ -107,13 +112,14 @@ function verdict(id,    names, n, i, t, graded, keys, m, j, k) {
         m = failing_keys(t, keys)
         for (j = 1; j <= m; j++) {
             k = keys[j]
+            # a stub's test fails whoever is laid on it: it waits first
+            if (bare[k] in named_by_waiting || k in named_by_waiting)
+                return "waiting for " named_by_waiting[k in named_by_waiting ? k : bare[k]] \
+                       " (not started): " shown[k]
             if ((id SUBSEP k) in laid_on)
                 return describe(k)
             if ((k in laid_any) || ((id SUBSEP k) in clear))
                 continue
-            if (stubs == "yes" && (bare[k] in named_by_waiting || k in named_by_waiting))
-                return "waiting for " named_by_waiting[k in named_by_waiting ? k : bare[k]] \
-                       " (not started): " shown[k]
             claimed[k] = 1
             return describe(k)
         }
@@ -185,7 +191,10 @@ FILENAME == ARGV[1] { split($0, f, "\t"); order[++count] = f[1]; key[f[1]] = f[5
                       tests[f[1]] = f[6]; next }
 FILENAME == ARGV[2] {
     split($0, f, "\t"); st[f[1]] = f[2]; file_of[f[1]] = f[3]
-    if (f[2] != "started") { # its tests wait for it, where it is a stub
+    # its tests wait for it, where it is a stub: every exercise not
+    # started with stubs=yes, those listed in stubbed otherwise
+    if (f[2] != "started" &&
+        (stubs == "yes" || index(" " stubbed " ", " " f[1] " ") > 0)) {
         n = split(tests[f[1]], names, " ")
         for (i = 1; i <= n; i++)
             if (!(names[i] in named_by_waiting))
@@ -265,14 +274,16 @@ END {
         k = ran[i]
         if (result[k] == "P" || (k in laid_any) || (k in claimed))
             continue
-        if (stubs == "yes")
+        if (stubs == "yes" || bare[k] in named_by_waiting || k in named_by_waiting)
             waiting[++waits] = k
         else
             other[++elsewhere] = k
     }
     if (waits > 0)
         printf "Waiting for the exercises you have not started (their stubs" \
-               " stand in; book/ is not for this machine): %d test(s)\n", waits
+               " stand in; %s): %d test(s)\n", stubs == "yes" ? \
+               "book/ is not for this machine" : \
+               "a part of a function has no book's code to call", waits
     if (elsewhere + loose_races > 0) {
         print "Failing, and laid on no one exercise of yours (each test passes" \
               " with the book's code, and with each of your exercises alone;" \
