@@ -2,13 +2,15 @@
 # book_check.sh -- look at the woven book in a real browser (headless
 # Chromium) at a 1280 x 900 window, as a reader on a laptop meets it.
 #
-# Usage: sh tools/checks/book_check.sh [--no-install] BOOK.html SCREENSHOT.png
+# Usage: sh tools/checks/book_check.sh [--no-install] BOOK.html SCREENSHOT.png|-
 #
 # It runs tools/checks/book_check.js in a copy of BOOK.html and prints one line per
 # element wider than its place: a code box or display formula whose content
 # needs scrolling, or a box, table, image or paragraph whose right edge is
 # beyond the text column. Exits 1 if there is any, 0 if none. It also saves
-# the top of the page as SCREENSHOT.png, to look at.
+# the top of the page as SCREENSHOT.png, to look at; with SCREENSHOT "-"
+# (make test), none: the book loaded once more costs Chromium about ten
+# seconds of a core.
 #
 # Chromium is installed with apt-get when missing (as root, through
 # tools/book/deps.sh, with fonts-dejavu-extra for the math font); if it cannot
@@ -19,7 +21,7 @@ set -u
 install=yes
 if [ "${1:-}" = "--no-install" ]; then install=no; shift; fi
 if [ "$#" -ne 2 ]; then
-  echo "usage: $0 [--no-install] BOOK.html SCREENSHOT.png" >&2
+  echo "usage: $0 [--no-install] BOOK.html SCREENSHOT.png|-" >&2
   exit 2
 fi
 book=$1
@@ -71,9 +73,11 @@ if ! grep -q '^book-check: done' "$work/report.txt"; then
   exit 1
 fi
 
-mkdir -p "$(dirname "$screenshot")"
-run_browser --screenshot="$screenshot" "file://$(cd "$(dirname "$book")" && pwd)/$(basename "$book")" \
-  >/dev/null || echo "book-check: warning: no screenshot" >&2
+if [ "$screenshot" != - ]; then
+  mkdir -p "$(dirname "$screenshot")"
+  run_browser --screenshot="$screenshot" "file://$(cd "$(dirname "$book")" && pwd)/$(basename "$book")" \
+    >/dev/null || echo "book-check: warning: no screenshot" >&2
+fi
 
 problems=$(grep -c '^book-check: problem: ' "$work/report.txt")
 grep '^book-check: problem: ' "$work/report.txt" | sed "s|^book-check: problem: |$book: error: |" >&2
@@ -82,4 +86,6 @@ if [ "$problems" -gt 0 ]; then
   echo "book-check: $problems element(s) wider than their place at 1280 px ($summary)" >&2
   exit 1
 fi
-echo "book-check: $summary at 1280 x 900, none wider than its place; screenshot $screenshot"
+shot="; screenshot $screenshot"
+[ "$screenshot" != - ] || shot=""
+echo "book-check: $summary at 1280 x 900, none wider than its place$shot"

@@ -81,19 +81,42 @@ make_scratch() {
   echo "$scratch"
 }
 
-# run_file ROOT SCRATCH FILE: runs FILE's commands; counts in ran/failed.
-run_file() {
-  extract "$3" > "$2/.commands" || exit 2
+# list_file SCRATCH FILE: appends FILE's commands to SCRATCH/.commands as
+# "FILE<tab>LINE<tab>COMMAND"; counts them in ran.
+list_file() {
+  extract "$2" > "$1/.one" || exit 2
   while IFS="$(printf '\t')" read -r line command; do
     if has_placeholder "$command"; then continue; fi
     ran=$((ran + 1))
-    rewritten=$(redirect_output "$2/check-commands-out" "$command")
-    if ! (cd "$2" && timeout 600 sh -c "$rewritten") > "$2/.output" 2>&1; then
-      failed=$((failed + 1))
-      echo "$3:$line: error: quoted command fails: $command" >&2
-      tail -n 5 "$2/.output" | sed 's/^/    /' >&2
-    fi
-  done < "$2/.commands"
+    printf '%s\t%s\t%s\n' "$2" "$line" "$command" >> "$1/.commands"
+  done < "$1/.one"
+}
+
+# run_one SCRATCH K: runs command K of SCRATCH/.commands there; its output
+# goes to SCRATCH/.output.K, and SCRATCH/.failed.K is made if it fails.
+run_one() {
+  command=$(sed -n "$2{s/^[^\t]*\t[^\t]*\t//;p;q;}" "$1/.commands")
+  rewritten=$(redirect_output "$1/check-commands-out" "$command")
+  (cd "$1" && timeout 600 sh -c "$rewritten") > "$1/.output.$2" 2>&1 ||
+    : > "$1/.failed.$2"
+}
+
+# run_all SCRATCH: every listed command, one a core at a time (each is a
+# program of its own); the failures reported in the order of the list and
+# counted in failed.
+run_all() {
+  cores=$(nproc 2>/dev/null || echo 2)
+  k=0
+  while [ "$k" -lt "$ran" ]; do k=$((k + 1)); echo "$k"; done |
+    xargs -P "$cores" -I {} sh "$0" --run-one "$1" {}
+  k=0
+  while IFS="$(printf '\t')" read -r file line command; do
+    k=$((k + 1))
+    [ -e "$1/.failed.$k" ] || continue
+    failed=$((failed + 1))
+    echo "$file:$line: error: quoted command fails: $command" >&2
+    tail -n 5 "$1/.output.$k" | sed 's/^/    /' >&2
+  done < "$1/.commands"
 }
 
 # check ROOT BINDIR FILE...
@@ -104,12 +127,14 @@ check() {
   shift 2
   scratch=$(make_scratch "$root" "$bin_dir")
   ran=0 failed=0
+  : > "$scratch/.commands"
   for file in "$@"; do
     if [ ! -f "$file" ]; then
       echo "check-commands: error: no file $file" >&2; failed=$((failed + 1)); continue
     fi
-    run_file "$root" "$scratch" "$file"
+    list_file "$scratch" "$file"
   done
+  run_all "$scratch"
   rm -rf "$scratch"
   if [ "$failed" -gt 0 ]; then
     echo "check-commands: $failed of $ran quoted commands failed" >&2
@@ -164,6 +189,10 @@ self_test() {
   return "$status"
 }
 
+if [ "${1:-}" = "--run-one" ]; then # a command of run_all's, in xargs
+  run_one "$2" "$3"
+  exit 0
+fi
 if [ "${1:-}" = "--self-test" ]; then
   self_test
   exit $?
