@@ -187,7 +187,8 @@ BC := build/bookcode
         book-check check-book-browser check-page check-code-width check-commands
 
 ifeq ($(HANDOUT),)
-all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures wasm book
+# (the text woven before the page's programs are compiled: the two overlap)
+all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures build/book-text.html wasm book
 else
 # A handout's book comes woven (book.html), its figures made, and with the
 # page's programs (the book's code compiled for WebAssembly where the
@@ -1003,10 +1004,14 @@ CHARTS := $(wildcard figures/ch[0-9][0-9]-*.svg)
 book: build/book.html
 # With the programs for the page (above), the page renders the scenes.
 PAGE_HTML := $(if $(HAVE_WASM),build/page/playground.html)
-build/book.html: book.md $(CHAPTERS) tools/book/weave.lua tools/book/weave_names.lua tools/book/weave.sh \
-                 tools/book/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) $(PAGE_HTML) | deps
+# The text is woven while the page's programs compile (pandoc takes one
+# core for seconds); the page's HTML is added to it at the end.
+build/book-text.html: book.md $(CHAPTERS) tools/book/weave.lua tools/book/weave_names.lua tools/book/weave.sh \
+                 tools/book/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) | deps
 	@$(dir_of_target)
-	WEAVE_PAGE=$(PAGE_HTML) sh tools/book/weave.sh book.md $@ $(CHAPTERS)
+	sh tools/book/weave.sh book.md $@ $(CHAPTERS)
+build/book.html: build/book-text.html $(PAGE_HTML)
+	$(if $(PAGE_HTML),sh tools/book/weave.sh --page $(PAGE_HTML) $< $@,cp $< $@)
 # The handout's book holds the same programs (make handout, above).
 build/handout/book.html build/handoutpage.tar.gz: $(PAGE_HTML)
 

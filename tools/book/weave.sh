@@ -10,7 +10,25 @@
 #
 # WEAVE_PAGE=FILE: FILE's HTML goes before the page's </body> (the book's
 # scenes rendered in the page: tools/editions/page.sh makes it).
+#     tools/book/weave.sh --page FILE IN_HTML OUT_HTML
+# does that alone, to a page woven before (make weaves the text while the
+# programs for the page are compiled, and adds them at the end).
 set -eu  # plain POSIX sh: the Makefile may run it as 'sh tools/book/weave.sh'
+
+# add_page PAGE IN OUT: IN with PAGE's HTML before its </body>, as OUT.
+add_page() {
+    awk -v page="$1" '
+      /<\/body>/ { while ((getline line < page) > 0) print line }
+      { print }' "$2" > "$3.tmp" && mv "$3.tmp" "$3"
+}
+
+if [ "${1:-}" = "--page" ]; then
+    [ "$#" -eq 4 ] || { echo "usage: $0 --page PAGE_HTML IN_HTML OUT_HTML" >&2; exit 2; }
+    [ -r "$2" ] && [ -r "$3" ] || { echo "weave.sh: cannot read $2 or $3" >&2; exit 1; }
+    add_page "$2" "$3" "$4"
+    echo "weave.sh: wrote $4"
+    exit 0
+fi
 
 if [ "$#" -lt 3 ]; then
     echo "usage: $0 BOOK_MD OUT_HTML CHAPTER..." >&2
@@ -84,11 +102,6 @@ if missing_resources > /dev/null; then
     exit 1
 fi
 
-if [ -n "${WEAVE_PAGE:-}" ]; then
-    awk -v page="$WEAVE_PAGE" '
-      /<\/body>/ { while ((getline line < page) > 0) print line }
-      { print }' "$partial" > "$partial.page"
-    mv "$partial.page" "$partial"
-fi
+[ -z "${WEAVE_PAGE:-}" ] || add_page "$WEAVE_PAGE" "$partial" "$partial"
 mv "$partial" "$out"
 echo "weave.sh: wrote $out"
