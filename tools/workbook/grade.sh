@@ -382,12 +382,21 @@ run_threads_sanitized() {
     }
     rm -rf "$work/tsan"
     mkdir -p "$work/tsan"
+    # one test a core at a time (several wait on clocks or on each other's
+    # threads); each writes its own files, read in order below
+    TSAN_DIR=$work/tsan TSAN_RUNNER=$WB_BUILD/tsan/test/ch$target \
+    TSAN_PROGRAM=$WB_BUILD/bin/ch$target \
+    TSAN_MULTIPLIER=$(awk -v m="$multiplier" 'BEGIN { print 4 * m }') \
+    xargs -P "$cores" -n 1 sh -c '
+        TSAN_OPTIONS="exitcode=66 report_signal_unsafe=0 log_path=$TSAN_DIR/$0" \
+        RUNNER_ONLY=$0 CK_FORK=yes CK_VERBOSITY=verbose \
+        CK_DEFAULT_TIMEOUT=10 CK_TIMEOUT_MULTIPLIER=$TSAN_MULTIPLIER \
+        CHAPTER_BIN=$TSAN_PROGRAM \
+            timeout 1800 "$TSAN_RUNNER" > "$TSAN_DIR/$0.out" 2>&1
+        exit 0' <<EOF
+$names
+EOF
     for name in $names; do
-        TSAN_OPTIONS="exitcode=66 report_signal_unsafe=0 log_path=$work/tsan/$name" \
-        RUNNER_ONLY=$name CK_FORK=yes CK_VERBOSITY=verbose \
-        CK_DEFAULT_TIMEOUT=10 CK_TIMEOUT_MULTIPLIER=$(awk -v m="$multiplier" 'BEGIN { print 4 * m }') \
-        CHAPTER_BIN=$WB_BUILD/bin/ch$target \
-            timeout 1800 "$WB_BUILD/tsan/test/ch$target" > "$work/tsan/$name.out" 2>&1
         for report in "$work/tsan/$name".*; do
             [ -f "$report" ] || continue
             awk -v wb="$WB_DIR/" -v cwd="$PWD/" -v test="$name" -v state="$state" '
