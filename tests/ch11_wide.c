@@ -1,7 +1,7 @@
 /* ch11_wide.c: chapter 11's wide nodes: the same answers as brute force
  * and as chapter 8's kd-tree, bit for bit, at widths 4 and 8 (with AVX2
  * chosen at run time and without); vector and scalar node tests that
- * agree; octant orders and pushes; wide nodes and their leaves' packets
+ * agree, and a fused test that never loses a box; octant orders and pushes; wide nodes and their leaves' packets
  * that hold their items; the wide BVH's bytes. */
 #include <check.h>
 #include <math.h>
@@ -136,6 +136,55 @@ static ray random_ray(const bvh_node8 *n, int k)
     return r;
 }
 
+/* The fused test (AVX2 with FMA) lane by lane: fmaf's one rounding a
+ * face, the numbers of v, the rest as chapter 9's scalar test. */
+static unsigned fused_test_alone(const bvh_node8 *n, const bvh_ray8 *v,
+                                 float t_max, float t_near[8])
+{
+    unsigned mask = 0;
+    for (int c = 0; c < 8; c++) {
+        float t0 = v->t_min, t1 = t_max;
+        for (int a = 0; a < 3; a++) {
+            const float *near = (const float *)((const char *)n +
+                                                v->rows[2 * a]);
+            const float *far = (const float *)((const char *)n +
+                                               v->rows[2 * a + 1]);
+            float enter = fmaf(near[c], v->inv[a][0], v->zero_near[a][0]);
+            float leave = fmaf(far[c], v->inv[a][0], v->zero_far[a][0]);
+            t0 = enter > t0 ? enter : t0; /* a NaN keeps t0 */
+            t1 = leave < t1 ? leave : t1;
+        }
+        t1 = t1 * BVH_FAR_WIDENING;
+        t_near[c] = t0;
+        mask |= (unsigned)(t0 <= t1) << c;
+    }
+    return mask;
+}
+
+/* Does the ray r meet lane c's box in [0, t_max], in double with 1 / d
+ * exact to double's rounding, by a margin (2^-40, relative) far above
+ * that rounding and far below float's? *t0: where it enters. */
+static bool clearly_meets(const bvh_node8 *n, int c, ray r, double t_max,
+                          double *t0)
+{
+    double lo = 0, hi = t_max;
+    for (int a = 0; a < 3; a++) {
+        double o = vec3_axis(r.origin, a), d = vec3_axis(r.dir, a);
+        double f0 = n->face[2 * a][c], f1 = n->face[2 * a + 1][c];
+        if (!(f0 <= f1))
+            return false; /* an unused lane */
+        if (d == 0) {
+            if (o < f0 || o > f1)
+                return false;
+            continue;
+        }
+        double e = (f0 - o) / d, x = (f1 - o) / d;
+        lo = fmax(lo, fmin(e, x)), hi = fmin(hi, fmax(e, x));
+    }
+    *t0 = lo;
+    return lo * (1 + 0x1p-40) + 0x1p-1000 < hi;
+}
+
 START_TEST(test_vector_and_scalar_node_tests_agree)
 {
     bvh_node8 n8;
@@ -156,10 +205,20 @@ START_TEST(test_vector_and_scalar_node_tests_agree)
         float t_max = k % 4 ? INFINITY : (float)rng_uniform01(&rng);
         float v8[8], s8[8], b8[8];
         unsigned m8 = bvh_node8_test(&n8, &rows, t_max, v8);
-        if (bvh_walks_with_avx2()) { /* AVX2's eight lanes as well */
-            float a8[8];
-            ck_assert_uint_eq(bvh_node8_test_avx2(&n8, &rows, t_max, a8), m8);
-            ck_assert(memcmp(a8, v8, sizeof a8) == 0);
+        if (bvh_walks_with_avx2()) { /* AVX2's fused test as well */
+            float a8[8], f8[8];
+            bvh_ray8 v = bvh_ray8_of(&rows);
+            bvh_ray8_fused(&v, &rows);
+            unsigned fused = bvh_node8_test_avx2(&n8, &rows, t_max, a8);
+            ck_assert_uint_eq(fused, fused_test_alone(&n8, &v, t_max, f8));
+            ck_assert(memcmp(a8, f8, sizeof a8) == 0);
+            for (int c = 0; c < 8; c++) { /* it never loses a box */
+                double t0;
+                if (!clearly_meets(&n8, c, r, t_max, &t0))
+                    continue;
+                ck_assert_msg(fused >> c & 1, "ray %d misses lane %d", k, c);
+                ck_assert(a8[c] <= t0 * (1 + 0x1p-21) + 0x1p-140);
+            }
         }
         ck_assert_uint_eq(m8, bvh_lanes_test_scalar(&n8.face[0][0], 8, 8,
                                                     &rows, t_max, s8));

@@ -387,10 +387,10 @@ bvh_node8_lanes_avx2(const bvh_node8 *n, const bvh_ray8 *r, float bound,
     bvh_f8 t0 = max8(bvh_enter_fused(n, r, 0), bvh_splat8(r->t_min));
     t0 = max8(bvh_enter_fused(n, r, 1), t0); /* a NaN keeps t0 */
     t0 = max8(bvh_enter_fused(n, r, 2), t0);
-    bvh_f8 t1 = min8(bvh_leave_fused(n, r, 0), bvh_splat8(INFINITY));
+    bvh_f8 t1 = min8(bvh_leave_fused(n, r, 0), bvh_splat8(bound));
     t1 = min8(bvh_leave_fused(n, r, 1), t1);
     t1 = min8(bvh_leave_fused(n, r, 2), t1);
-    t1 = min8(t1 * BVH_FAR_WIDENING, bvh_splat8(bound)); /* once, not by axis */
+    t1 = t1 * BVH_FAR_WIDENING; /* the bound widened too: a hair more kept */
     memcpy(t_near, &t0, sizeof t0);
     return mask8(t0 <= t1);
 #else
