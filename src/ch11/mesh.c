@@ -657,8 +657,21 @@ BVH_INLINE bool bvh_misses_box(const box *b, const mesh_ray *mr,
 {
     const double widen = 1 + 2 * (3 * (DBL_EPSILON / 2) /
                                   (1 - 3 * (DBL_EPSILON / 2)));
+    int a = 0;
+#if defined(__SSE2__) && !defined(RT_SCALAR) /* x and y in two lanes */
+    typedef double d2 __attribute__((vector_size(16), aligned(8)));
+    d2 o = *(const d2 *)&mr->r.origin.x, q = *(const d2 *)&mr->inv_dir.x;
+    d2 lo = (*(const d2 *)&b->lo.x - o) * q, hi = (*(const d2 *)&b->hi.x - o) * q;
+    /* minpd(x, y) is x < y ? x : y, and y for a NaN: box_clip's swap */
+    d2 near = __builtin_ia32_minpd(hi, lo);
+    d2 far = __builtin_ia32_maxpd(lo, hi) * widen;
+    for (; a < 2; a++) {
+        t_min = near[a] > t_min ? near[a] : t_min;
+        t_max = far[a] < t_max ? far[a] : t_max;
+    }
+#endif
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; a++) {
+    for (; a < 3; a++) {
         double o = vec3_axis(mr->r.origin, a), q = vec3_axis(mr->inv_dir, a);
         double lo = (vec3_axis(b->lo, a) - o) * q;
         double hi = (vec3_axis(b->hi, a) - o) * q;
