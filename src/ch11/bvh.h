@@ -47,8 +47,9 @@ bvh_params bvh_default_params(void);
 /* <<bvh parameters>> += ch11 */
 
 /* Does the walk test nodes with AVX2's eight lanes? Where the processor
- * has AVX2 and bvh_allow_avx2 has not forbidden it; the build's flags
- * need not name AVX2 (the answer is known when the program runs). */
+ * has AVX2 and FMA and bvh_allow_avx2 has not forbidden it; the build's
+ * flags need not name them (the answer is known when the program
+ * runs). */
 bool bvh_walks_with_avx2(void);
 
 /* false: trees built from now on are walked with the build's own
@@ -72,8 +73,9 @@ _Static_assert(sizeof(bvh_node) == 32, "a node is 32 bytes");
 /* A node of up to eight children, laid out for the walk: face[2 a] the
  * lower and face[2 a + 1] the upper faces of axis a of the eight
  * children, a lane each; an unused lane has an empty box (lo +inf, hi
- * -inf). child[c] is a node's index, or (BVH_LEAF set) a leaf: its item
- * count in bits 27-30, its first item (or packet) below. order[k] holds,
+ * -inf) and an empty leaf. child[c] is a node's index, or (BVH_LEAF set)
+ * a leaf: its item count in bits 27-30, its first item (or packet)
+ * below. order[k] holds,
  * in bits 3 o to 3 o + 2, the lane at place k of octant o's order
  * (bit a of o: the ray goes down axis a), farthest first. */
 typedef struct {
@@ -87,7 +89,7 @@ _Static_assert(sizeof(bvh_node8) == 256, "four cache lines");
 #define BVH_COUNT_SHIFT 27
 #define BVH_FIRST_MASK ((1u << BVH_COUNT_SHIFT) - 1)
 
-/* A leaf's word: count items (1 to 15) from first. */
+/* A leaf's word: count items (1 to 15; 0: an unused lane) from first. */
 static inline uint32_t bvh_leaf_word(uint32_t first, uint32_t count)
 {
     return BVH_LEAF | count << BVH_COUNT_SHIFT | first;
