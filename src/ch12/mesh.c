@@ -719,7 +719,8 @@ BVH_INLINE bool bvh_misses_box(const box *b, const mesh_ray *mr,
 #if defined(__SSE2__) && !defined(RT_SCALAR) /* x and y in two lanes */
     typedef double d2 __attribute__((vector_size(16), aligned(8)));
     d2 o = *(const d2 *)&mr->r.origin.x, q = *(const d2 *)&mr->inv_dir.x;
-    d2 lo = (*(const d2 *)&b->lo.x - o) * q, hi = (*(const d2 *)&b->hi.x - o) * q;
+    d2 lo = (*(const d2 *)&b->lo.x - o) * q;
+    d2 hi = (*(const d2 *)&b->hi.x - o) * q;
     /* minpd(x, y) is x < y ? x : y, and y for a NaN: box_clip's swap */
     d2 near = __builtin_ia32_minpd(hi, lo);
     d2 far = __builtin_ia32_maxpd(lo, hi) * widen;
