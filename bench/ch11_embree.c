@@ -237,6 +237,7 @@ BVH_INLINE double double_leaves_walk(const subject *s, const mesh_ray *mr, bool 
         return INFINITY;
     unsigned shift = bvh_walk_rows(&r);
     bvh_ray8 v = bvh_ray8_of(&r);
+    bvh_ray8_fused(&v, &r); /* the AVX2 test's crossings */
     uint32_t stack[BVH_STACK8], now = 0; /* the root */
     float entry[BVH_STACK8], bound = r.t_max;
     int top = 0, found = -1;

@@ -1,8 +1,9 @@
 /* ch11_wide.c: chapter 11's wide nodes: the same answers as brute force
  * and as chapter 8's kd-tree, bit for bit, at widths 4 and 8 (with AVX2
  * chosen at run time and without); vector and scalar node tests that
- * agree; octant orders and pushes; wide nodes and their leaves' packets
- * that hold their items; the wide BVH's bytes. */
+ * agree, and a fused test that never loses a box; octant orders and
+ * pushes; wide nodes and their leaves' packets that hold their items;
+ * the wide BVH's bytes. */
 #include <check.h>
 #include <math.h>
 #include <stdint.h>
@@ -136,6 +137,52 @@ static ray random_ray(const bvh_node8 *n, int k)
     return r;
 }
 
+/* Lane c of the fused test (AVX2 with FMA), alone: fmaf's one rounding
+ * a face, the numbers of v. Where the ray enters into *enter; does it
+ * meet the box? (Neither bound can become a NaN: a NaN never wins.) */
+static bool fused_lane(const bvh_node8 *n, int c, const bvh_ray8 *v,
+                       float t_max, float *enter)
+{
+    float lo = v->t_min, hi = t_max;
+    for (int a = 0; a < 3; a++) {
+        const char *node = (const char *)n;
+        float f0 = ((const float *)(node + v->rows[2 * a]))[c];
+        float f1 = ((const float *)(node + v->rows[2 * a + 1]))[c];
+        float e = fmaf(f0, v->inv[a][0], v->zero_near[a][0]);
+        float x = fmaf(f1, v->inv[a][0], v->zero_far[a][0]);
+        if (e > lo)
+            lo = e;
+        if (x < hi)
+            hi = x;
+    }
+    *enter = lo;
+    return lo <= hi * BVH_FAR_WIDENING;
+}
+
+/* Does the ray r meet lane c's box in [0, t_max], in double with 1 / d
+ * exact to double's rounding, by a margin (2^-40, relative) far above
+ * that rounding and far below float's? *t0: where it enters. */
+static bool clearly_meets(const bvh_node8 *n, int c, ray r, double t_max,
+                          double *t0)
+{
+    double lo = 0, hi = t_max;
+    for (int a = 0; a < 3; a++) {
+        double o = vec3_axis(r.origin, a), d = vec3_axis(r.dir, a);
+        double f0 = n->face[2 * a][c], f1 = n->face[2 * a + 1][c];
+        if (!(f0 <= f1))
+            return false; /* an unused lane */
+        if (d == 0) {
+            if (o < f0 || o > f1)
+                return false;
+            continue;
+        }
+        double e = (f0 - o) / d, x = (f1 - o) / d;
+        lo = fmax(lo, fmin(e, x)), hi = fmin(hi, fmax(e, x));
+    }
+    *t0 = lo;
+    return lo * (1 + 0x1p-40) + 0x1p-1000 < hi;
+}
+
 START_TEST(test_vector_and_scalar_node_tests_agree)
 {
     bvh_node8 n8;
@@ -156,10 +203,24 @@ START_TEST(test_vector_and_scalar_node_tests_agree)
         float t_max = k % 4 ? INFINITY : (float)rng_uniform01(&rng);
         float v8[8], s8[8], b8[8];
         unsigned m8 = bvh_node8_test(&n8, &rows, t_max, v8);
-        if (bvh_walks_with_avx2()) { /* AVX2's eight lanes as well */
-            float a8[8];
-            ck_assert_uint_eq(bvh_node8_test_avx2(&n8, &rows, t_max, a8), m8);
-            ck_assert(memcmp(a8, v8, sizeof a8) == 0);
+        if (bvh_walks_with_avx2()) { /* AVX2's fused test as well */
+            float a8[8], f8[8];
+            bvh_ray8 v = bvh_ray8_of(&rows);
+            bvh_ray8_fused(&v, &rows);
+            unsigned fused = bvh_node8_test_avx2(&n8, &rows, t_max, a8);
+            unsigned alone = 0;
+            for (int c = 0; c < 8; c++)
+                if (fused_lane(&n8, c, &v, t_max, &f8[c]))
+                    alone |= 1u << c;
+            ck_assert_uint_eq(fused, alone);
+            ck_assert(memcmp(a8, f8, sizeof a8) == 0);
+            for (int c = 0; c < 8; c++) { /* it never loses a box */
+                double t0;
+                if (!clearly_meets(&n8, c, r, t_max, &t0))
+                    continue;
+                ck_assert_msg(fused >> c & 1, "ray %d misses lane %d", k, c);
+                ck_assert(a8[c] <= t0 * (1 + 0x1p-21) + 0x1p-140);
+            }
         }
         ck_assert_uint_eq(m8, bvh_lanes_test_scalar(&n8.face[0][0], 8, 8,
                                                     &rows, t_max, s8));

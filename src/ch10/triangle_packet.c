@@ -50,12 +50,13 @@ packet_ray packet_ray_of(const watertight_ray *w)
 {
     packet_ray r = {w->kx, w->ky, w->kz, (float)w->sx, (float)w->sy,
                     (float)w->sz, {0}, 0, w};
-    const int axes[3] = {w->kx, w->ky, w->kz};
-    for (int i = 0; i < 3; i++) {
-        r.origin[i] = (float)vec3_axis(w->origin, axes[i]);
-        float m = fabsf(r.origin[i]);
+    const float o[3] = {(float)w->origin.x, (float)w->origin.y,
+                        (float)w->origin.z}; /* indexed: no branch */
+    for (int a = 0; a < 3; a++) {
+        float m = fabsf(o[a]);
         r.origin_reach = m > r.origin_reach ? m : r.origin_reach;
     }
+    r.origin[0] = o[w->kx], r.origin[1] = o[w->ky], r.origin[2] = o[w->kz];
     return r;
 }
 

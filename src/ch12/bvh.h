@@ -49,8 +49,9 @@ bvh_params bvh_default_params(void);
 /* <<bvh parameters>> += ch11 */
 
 /* Does the walk test nodes with AVX2's eight lanes? Where the processor
- * has AVX2 and bvh_allow_avx2 has not forbidden it; the build's flags
- * need not name AVX2 (the answer is known when the program runs). */
+ * has AVX2 and FMA and bvh_allow_avx2 has not forbidden it; the build's
+ * flags need not name them (the answer is known when the program
+ * runs). */
 bool bvh_walks_with_avx2(void);
 
 /* false: trees built from now on are walked with the build's own
@@ -81,8 +82,9 @@ _Static_assert(sizeof(bvh_node) == 32, "a node is 32 bytes");
 /* A node of up to eight children, laid out for the walk: face[2 a] the
  * lower and face[2 a + 1] the upper faces of axis a of the eight
  * children, a lane each; an unused lane has an empty box (lo +inf, hi
- * -inf). child[c] is a node's index, or (BVH_LEAF set) a leaf: its item
- * count in bits 27-30, its first item (or packet) below. order[k] holds,
+ * -inf) and an empty leaf. child[c] is a node's index, or (BVH_LEAF set)
+ * a leaf: its item count in bits 27-30, its first item (or packet)
+ * below. order[k] holds,
  * in bits 3 o to 3 o + 2, the lane at place k of octant o's order
  * (bit a of o: the ray goes down axis a), farthest first. */
 typedef struct {
@@ -96,7 +98,7 @@ _Static_assert(sizeof(bvh_node8) == 256, "four cache lines");
 #define BVH_COUNT_SHIFT 27
 #define BVH_FIRST_MASK ((1u << BVH_COUNT_SHIFT) - 1)
 
-/* A leaf's word: count items (1 to 15) from first. */
+/* A leaf's word: count items (1 to 15; 0: an unused lane) from first. */
 static inline uint32_t bvh_leaf_word(uint32_t first, uint32_t count)
 {
     return BVH_LEAF | count << BVH_COUNT_SHIFT | first;
@@ -285,7 +287,9 @@ BVH_INLINE unsigned bvh_mask8(bvh_i8 m)
  * node; near and far as rows of a node8. */
 typedef struct {
     bvh_f8 o_near[3], o_far[3], inv[3];
+    bvh_f8 zero_near[3], zero_far[3]; /* AVX2's: -o / d, down and up */
     int near[3], far[3];
+    const int32_t *rows; /* AVX2's: near[a], far[a] as byte offsets */
     float t_min;
 } bvh_ray8;
 
@@ -360,7 +364,7 @@ static inline unsigned bvh_node8_test(const bvh_node8 *n, const bvh_ray *r,
 #undef mask8
 
 #if defined(__x86_64__) && !defined(RT_SCALAR)
-#define BVH_AVX2_TARGET __attribute__((target("avx2")))
+#define BVH_AVX2_TARGET __attribute__((target("avx2,fma")))
 #define BVH_HAS_AVX2_PATH 1
 #else /* no AVX2 to choose: the walk never asks for it */
 #define BVH_AVX2_TARGET
@@ -373,21 +377,34 @@ static inline unsigned bvh_node8_test(const bvh_node8 *n, const bvh_ray *r,
 #define mask8(m) (unsigned)__builtin_ia32_movmskps256((bvh_f8)(m))
 #endif
 
-/* bvh_node8_lanes in AVX2's eight lanes, whatever the build's flags: to
- * be called only where bvh_walks_with_avx2() says yes. */
+/* Where the ray enters and leaves the eight slabs of axis a, each face
+ * by one fused multiply-add: face / d plus -o / d, rounded once. */
+#define bvh_row8(n, offset)                                                  \
+    (*(const bvh_f8_row *)((const char *)(n) + (offset)))
+#define bvh_enter_fused(n, r, a)                                             \
+    __builtin_ia32_vfmaddps256(bvh_row8(n, (r)->rows[2 * (a)]), (r)->inv[a], \
+                               (r)->zero_near[a])
+#define bvh_leave_fused(n, r, a)                                             \
+    __builtin_ia32_vfmaddps256(bvh_row8(n, (r)->rows[2 * (a) + 1]),          \
+                               (r)->inv[a], (r)->zero_far[a])
+
+/* Which of n's children the ray r meets, as bvh_node8_lanes, in AVX2's
+ * eight lanes with FMA, whatever the build's flags: to be called only
+ * where bvh_walks_with_avx2() says yes. r's zero_near and zero_far must
+ * be made (bvh_ray8_fused). */
 BVH_AVX2_TARGET static inline unsigned
 bvh_node8_lanes_avx2(const bvh_node8 *n, const bvh_ray8 *r, float bound,
                      float t_near[8])
 {
 #if BVH_HAS_AVX2_PATH
-    /* <<the slab test of a node>> ch11 */
-    bvh_f8 t0 = max8(bvh_enter8(n, r, 0), bvh_splat8(r->t_min));
-    t0 = max8(bvh_enter8(n, r, 1), t0); /* a NaN keeps t0 */
-    t0 = max8(bvh_enter8(n, r, 2), t0);
-    bvh_f8 t1 = min8(bvh_leave8(n, r, 0), bvh_splat8(INFINITY));
-    t1 = min8(bvh_leave8(n, r, 1), t1);
-    t1 = min8(bvh_leave8(n, r, 2), t1);
-    t1 = min8(t1 * BVH_FAR_WIDENING, bvh_splat8(bound)); /* once, not by axis */
+    /* <<the fused slab test of a node>> ch11 */
+    bvh_f8 t0 = max8(bvh_enter_fused(n, r, 0), bvh_splat8(r->t_min));
+    t0 = max8(bvh_enter_fused(n, r, 1), t0); /* a NaN keeps t0 */
+    t0 = max8(bvh_enter_fused(n, r, 2), t0);
+    bvh_f8 t1 = min8(bvh_leave_fused(n, r, 0), bvh_splat8(bound));
+    t1 = min8(bvh_leave_fused(n, r, 1), t1);
+    t1 = min8(bvh_leave_fused(n, r, 2), t1);
+    t1 = t1 * BVH_FAR_WIDENING; /* the bound widened too: a hair more kept */
     memcpy(t_near, &t0, sizeof t0);
     return mask8(t0 <= t1);
 #else
@@ -395,12 +412,42 @@ bvh_node8_lanes_avx2(const bvh_node8 *n, const bvh_ray8 *r, float bound,
 #endif
 }
 
-/* bvh_node8_test's in AVX2's lanes (for the tests). */
+/* How far -o / d, rounded to the nearest float p, is moved outward so
+ * that it lies on the safe side of the exact value after the rounding
+ * of the move itself: 4 u |p|, and the smallest float (an underflow). */
+static inline float bvh_zero_margin(float p)
+{
+    return fabsf(p) * 0x1p-22f + 0x1p-149f;
+}
+
+/* For each octant, the byte offsets in a node8 of its near and far
+ * faces, axis by axis (bvh.c fills it). */
+extern int32_t bvh_octant_rows[8][6];
+
+/* The fused test's numbers of r (its rows a node8's: bvh_walk_rows): its
+ * crossings of the planes through zero, -o / d, from its float origins
+ * and 1 / d, rounded down (zero_near) and up (zero_far); its rows. */
+BVH_INLINE void bvh_ray8_fused(bvh_ray8 *v, const bvh_ray *r)
+{
+    unsigned octant = 0;
+    for (int a = 0; a < 3; a++)
+        octant |= (unsigned)(r->near[a] != 2 * a) << a;
+    v->rows = bvh_octant_rows[octant];
+    for (int a = 0; a < 3; a++) {
+        float p_near = -r->o_near[a] * r->inv[a];
+        float p_far = -r->o_far[a] * r->inv[a];
+        v->zero_near[a] = bvh_splat8(p_near - bvh_zero_margin(p_near));
+        v->zero_far[a] = bvh_splat8(p_far + bvh_zero_margin(p_far));
+    }
+}
+
+/* bvh_node8_lanes_avx2 for r as bvh_ray_of makes it (for the tests). */
 BVH_AVX2_TARGET static inline unsigned
 bvh_node8_test_avx2(const bvh_node8 *n, const bvh_ray *r, float bound,
                     float t_near[8])
 {
     bvh_ray8 v = bvh_ray8_of(r);
+    bvh_ray8_fused(&v, r);
     return bvh_node8_lanes_avx2(n, &v, bound, t_near);
 }
 
@@ -488,6 +535,7 @@ BVH_INLINE bool bvh_ray8_setup(vec3 origin, vec3 inv, double t_min,
     if (!bvh_wide_ray_of(origin, inv, t_min, t_max, &r, shift))
         return false;
     *v = bvh_ray8_of(&r), *ray_bound = r.t_max;
+    bvh_ray8_fused(v, &r);
     return true;
 }
 
@@ -496,6 +544,19 @@ typedef int64_t bvh_l4 __attribute__((vector_size(32)));
 
 /* Lane a (a constant) of a vector of four in all eight lanes. */
 #define bvh_lane8(v, a) __builtin_shufflevector(v, v, a, a, a, a, a, a, a, a)
+
+typedef int32_t bvh_i4 __attribute__((vector_size(16)));
+
+/* -o / d lane by lane, o and 1 / d floats, rounded down (*down) and up
+ * (*up): the product to nearest, moved outward by bvh_zero_margin. */
+BVH_AVX2_TARGET static inline void bvh_zeros4(bvh_f4 o, bvh_f4 inv,
+                                              bvh_f4 *down, bvh_f4 *up)
+{
+    bvh_f4 p = -o * inv;
+    bvh_f4 size = (bvh_f4)((bvh_i4)p & 0x7fffffff); /* |p| */
+    bvh_f4 margin = size * 0x1p-22f + 0x1p-149f;
+    *down = p - margin, *up = p + margin;
+}
 
 /* bvh_ray8_setup in AVX's lanes, the three axes at once (the fourth lane
  * a harmless 1): to be called only where bvh_walks_with_avx2() says yes.
@@ -516,17 +577,18 @@ bvh_ray8_setup_avx2(vec3 origin, vec3 inv, double t_min, double t_max,
         return bvh_ray8_setup(origin, inv, t_min, t_max, v, ray_bound, shift);
     bvh_f4 q_f = __builtin_convertvector(q, bvh_f4);
     unsigned octant = (unsigned)__builtin_ia32_movmskpd256(q); /* signs */
-    v->o_near[0] = v->o_far[0] = bvh_lane8(o_f, 0);
-    v->o_near[1] = v->o_far[1] = bvh_lane8(o_f, 1);
-    v->o_near[2] = v->o_far[2] = bvh_lane8(o_f, 2);
+    bvh_f4 zero_near, zero_far;
+    bvh_zeros4(o_f, q_f, &zero_near, &zero_far);
+    v->zero_near[0] = bvh_lane8(zero_near, 0);
+    v->zero_near[1] = bvh_lane8(zero_near, 1);
+    v->zero_near[2] = bvh_lane8(zero_near, 2);
+    v->zero_far[0] = bvh_lane8(zero_far, 0);
+    v->zero_far[1] = bvh_lane8(zero_far, 1);
+    v->zero_far[2] = bvh_lane8(zero_far, 2);
     v->inv[0] = bvh_lane8(q_f, 0);
     v->inv[1] = bvh_lane8(q_f, 1);
     v->inv[2] = bvh_lane8(q_f, 2);
-#pragma GCC unroll 3
-    for (int a = 0; a < 3; a++) {
-        int down = octant >> a & 1; /* enters by the upper face */
-        v->near[a] = 2 * a + down, v->far[a] = 2 * a + 1 - down;
-    }
+    v->rows = bvh_octant_rows[octant & 7];
     v->t_min = bvh_float_down(t_min);
     *ray_bound = bvh_float_up(t_max * (1 + BVH_SLACK));
     *shift = 3 * (octant & 7);

@@ -599,7 +599,7 @@ static void collapse(bvh *t, const bvh_node *nodes, int k, int w)
         for (int a = 0; a < 3; a++) /* no box yet: lo +inf, hi -inf */
             node->face[2 * a][c] = INFINITY, node->face[2 * a + 1][c] =
                                                  -INFINITY;
-        node->child[c] = 0;
+        node->child[c] = bvh_leaf_word(0, 0); /* unused: an empty leaf */
     }
     for (int c = 0; c < n; c++) {
         const bvh_node *kid = &nodes[kids[c]];
@@ -652,7 +652,8 @@ static atomic_bool avx2_forbidden;
 bool bvh_walks_with_avx2(void)
 {
 #if BVH_HAS_AVX2_PATH
-    return __builtin_cpu_supports("avx2") && !atomic_load(&avx2_forbidden);
+    return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
+           !atomic_load(&avx2_forbidden);
 #else
     return false;
 #endif
@@ -664,6 +665,7 @@ void bvh_allow_avx2(bool allowed)
 }
 
 uint32_t bvh_set_lanes[256];
+int32_t bvh_octant_rows[8][6];
 
 /* Fills bvh_set_lanes before main runs (GCC's and Clang's constructor),
  * so that no walk finds it half made. */
@@ -676,6 +678,13 @@ __attribute__((constructor)) static void fill_set_lanes(void)
                 set |= c << 3 * count++;
         bvh_set_lanes[mask] = set | count << 24;
     }
+    for (unsigned octant = 0; octant < 8; octant++)
+        for (int a = 0; a < 3; a++) {
+            int down = octant >> a & 1; /* enters by the upper face */
+            int32_t row = (int32_t)sizeof(float[8]); /* bytes */
+            bvh_octant_rows[octant][2 * a] = (2 * a + down) * row;
+            bvh_octant_rows[octant][2 * a + 1] = (2 * a + 1 - down) * row;
+        }
 }
 
 const char *bvh_vector_width_name(const bvh *t)

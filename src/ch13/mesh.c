@@ -715,8 +715,22 @@ BVH_INLINE bool bvh_misses_box(const box *b, const mesh_ray *mr,
 {
     const double widen = 1 + 2 * (3 * (DBL_EPSILON / 2) /
                                   (1 - 3 * (DBL_EPSILON / 2)));
+    int a = 0;
+#if defined(__SSE2__) && !defined(RT_SCALAR) /* x and y in two lanes */
+    typedef double d2 __attribute__((vector_size(16), aligned(8)));
+    d2 o = *(const d2 *)&mr->r.origin.x, q = *(const d2 *)&mr->inv_dir.x;
+    d2 lo = (*(const d2 *)&b->lo.x - o) * q;
+    d2 hi = (*(const d2 *)&b->hi.x - o) * q;
+    /* minpd(x, y) is x < y ? x : y, and y for a NaN: box_clip's swap */
+    d2 near = __builtin_ia32_minpd(hi, lo);
+    d2 far = __builtin_ia32_maxpd(lo, hi) * widen;
+    for (; a < 2; a++) {
+        t_min = near[a] > t_min ? near[a] : t_min;
+        t_max = far[a] < t_max ? far[a] : t_max;
+    }
+#endif
 #pragma GCC unroll 3
-    for (int a = 0; a < 3; a++) {
+    for (; a < 3; a++) {
         double o = vec3_axis(mr->r.origin, a), q = vec3_axis(mr->inv_dir, a);
         double lo = (vec3_axis(b->lo, a) - o) * q;
         double hi = (vec3_axis(b->hi, a) - o) * q;
@@ -731,6 +745,20 @@ BVH_INLINE bool bvh_misses_box(const box *b, const mesh_ray *mr,
 /* The walk of m's wide BVH for mr, its nodes tested with AVX2 when avx2
  * (which the caller's instructions must allow), its leaves decided in
  * float when in_float; both constants where it is inlined. */
+/* The top of the stack into *now, skipping the children that start
+ * beyond bound (the nearest hit); false when none is left. */
+BVH_INLINE bool bvh_pop(const uint32_t *stack, const float *entry, int *top,
+                        float bound, uint32_t *now)
+{
+    int k = *top;
+    while (k > 0 && !(entry[k - 1] <= bound))
+        k--; /* beyond the nearest hit */
+    if (k == 0)
+        return false;
+    *now = stack[--k], *top = k;
+    return true;
+}
+
 BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
                            double t_max, triangle_hit *out,
                            render_stats *stats, bool avx2, bool in_float)
@@ -754,49 +782,45 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
     packet_ray pr;
     bool made = false; /* pr: made at the first leaf, if any */
     for (;;) {
-        if (!(now & BVH_LEAF)) {
+        while (!(now & BVH_LEAF)) { /* the nodes, down to a leaf */
             const bvh_node8 *n = &tree[now];
             float t_near[8];
             unsigned hit = avx2 ? bvh_node8_lanes_avx2(n, &v, bound, t_near)
                                 : bvh_node8_test(n, &r, bound, t_near);
             nodes++;
-            if (hit != 0 && (hit & (hit - 1)) == 0) { /* one: descend */
+            if (hit == 0 && !bvh_pop(stack, entry, &top, bound, &now))
+                goto done; /* none, and nothing left */
+            else if (hit != 0 && (hit & (hit - 1)) == 0) /* one: descend */
                 now = n->child[__builtin_ctz(hit)];
-                continue;
-            }
-            if (hit != 0) { /* more: push them, take the nearest */
+            else if (hit != 0) { /* more: push them, take the nearest */
                 top = avx2 ? bvh_push8_avx2(stack, entry, top, n, hit,
                                             t_near, shift)
                            : bvh_push8(stack, entry, top, n, hit, t_near,
                                        shift);
                 now = stack[--top];
-                continue;
-            }
-        } else {
-            /* <<a leaf of the wide walk>> ch11 */
-            bvh_leaf leaf = {(int)(now & BVH_FIRST_MASK),
-                             (int)(now >> BVH_COUNT_SHIFT & 15)};
-            if (!made)
-                pr = packet_ray_of(&mr->shear), made = true;
-            tests += leaf.count;
-            int k = bvh_leaf_test(m, &pr, leaf, in_float, t_min, t_max, found, out,
-                                  &decided);
-            if (k >= 0 && out == NULL) {
-                found = k;
-                break; /* any hit blocks a shadow ray */
-            }
-            if (k >= 0) {
-                found = k, t_max = out->t;
-                float b = float_up_by_bits(t_max * (1 + BVH_SLACK));
-                bound = b < ray_bound ? b : ray_bound;
             }
         }
-        while (top > 0 && !(entry[top - 1] <= bound))
-            top--; /* beyond the nearest hit */
-        if (top == 0)
+        /* <<a leaf of the wide walk>> ch11 */
+        bvh_leaf leaf = {(int)(now & BVH_FIRST_MASK),
+                         (int)(now >> BVH_COUNT_SHIFT & 15)};
+        if (!made)
+            pr = packet_ray_of(&mr->shear), made = true;
+        tests += leaf.count;
+        int k = bvh_leaf_test(m, &pr, leaf, in_float, t_min, t_max, found, out,
+                              &decided);
+        if (k >= 0 && out == NULL) {
+            found = k;
+            break; /* any hit blocks a shadow ray */
+        }
+        if (k >= 0) {
+            found = k, t_max = out->t;
+            float b = float_up_by_bits(t_max * (1 + BVH_SLACK));
+            bound = b < ray_bound ? b : ray_bound;
+        }
+        if (!bvh_pop(stack, entry, &top, bound, &now))
             break;
-        now = stack[--top];
     }
+done:
     stats->bvh_nodes += nodes, stats->triangle_tests += tests;
     return found;
 }
