@@ -23,8 +23,10 @@
  *      kdtree-build,MESH,ns_per_build,ms,build_ms
  * 2. Where the time of a ray goes (bunny, K = 1 and 2.5, 512 x 512 rays
  *    from the renderer's camera): making the camera's ray, then its
- *    per-ray constants, then the box test, then the walk and the leaves,
- *    each step timed with the steps before it, the eight together:
+ *    per-ray constants (1 / d and chapter 4's shear, which the search
+ *    makes again once the ray is inside the box, as it tests the box
+ *    again), then the box test, then the walk and the leaves, each step
+ *    timed with the steps before it, the eight together:
  *      fixed-cost,STEP@K,ns_per_ray_so_far,share,share_of_ray
  *    (share: this step's part of the whole ray's median time).
  * 3. The crossover: the first N triangles of the bunny (N = 1, 2, 4, ...,
@@ -278,8 +280,9 @@ static void fixed_run(void *ctx, long reps)
         sum += ray.dir.x;
         if (j->steps < 2)
             continue;
-        mesh_ray mr = mesh_ray_of(ray);
-        sum += mr.shear.sz;
+        mesh_ray mr = mesh_ray_of(ray); /* 1 / d */
+        watertight_ray shear = watertight_ray_of(ray); /* the search's */
+        sum += mr.inv_dir.x + shear.sz;
         if (j->steps < 3)
             continue;
         double near = 0, far = INFINITY;

@@ -88,6 +88,7 @@ static double items_walk(const subject *s, const mesh_ray *mr, method how,
     if (!box_clip(&s->m.bounds, mr->r.origin, mr->inv_dir, &near, &far) ||
         !bvh_ray_of(mr->r.origin, mr->inv_dir, 0, INFINITY, &r))
         return INFINITY;
+    watertight_ray shear = watertight_ray_of(mr->r); /* inside the box */
     bvh_walk w;
     bvh_leaf leaf;
     triangle_hit th;
@@ -97,10 +98,10 @@ static double items_walk(const subject *s, const mesh_ray *mr, method how,
         const int *items = s->items.items + leaf.first;
         int k = -1;
         if (how == CH09)
-            k = ch09_leaf(&s->m, &mr->shear, items, leaf.count, t_max,
+            k = ch09_leaf(&s->m, &shear, items, leaf.count, t_max,
                           *triangle, &th);
         else {
-            int j = triangle_nearest_of_leaf(&mr->shear,
+            int j = triangle_nearest_of_leaf(&shear,
                                              s->corners + leaf.first, items,
                                              leaf.count, 0, t_max, *triangle,
                                              &th);

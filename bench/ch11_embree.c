@@ -186,13 +186,14 @@ static double chapter8_ray(const mesh *m, const mesh_ray *mr)
     double near = 0, far = INFINITY, t_max = INFINITY;
     if (!box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
         return INFINITY;
+    watertight_ray shear = watertight_ray_of(mr->r); /* inside the box */
     kdtree_walk w;
     kdtree_leaf leaf;
     int found = -1;
     triangle_hit th;
     kdtree_walk_start(&w, &m->tree, mr->r.origin, mr->inv_dir, near, far);
     while (kdtree_walk_next(&w, t_max, &leaf)) {
-        int k = chapter8_leaf(&mr->shear, m->leaf_corners + leaf.first,
+        int k = chapter8_leaf(&shear, m->leaf_corners + leaf.first,
                               m->tree.items + leaf.first, leaf.count, 0, t_max, found, &th);
         if (k >= 0)
             found = m->tree.items[leaf.first + k], t_max = th.t;
@@ -235,6 +236,7 @@ BVH_INLINE double double_leaves_walk(const subject *s, const mesh_ray *mr, bool 
     if (!box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far) ||
         !bvh_ray_of(mr->r.origin, mr->inv_dir, 0, INFINITY, &r))
         return INFINITY;
+    watertight_ray shear = watertight_ray_of(mr->r); /* inside the box */
     unsigned shift = bvh_walk_rows(&r);
     bvh_ray8 v = bvh_ray8_of(&r);
     bvh_ray8_fused(&v, &r); /* the AVX2 test's crossings */
@@ -257,9 +259,9 @@ BVH_INLINE double double_leaves_walk(const subject *s, const mesh_ray *mr, bool 
         } else {
             int first = (int)(now & BVH_FIRST_MASK) * PACKET_W; /* a lane */
             int count = (int)(now >> BVH_COUNT_SHIFT & 15);
-            int k = from_mesh ? mesh_corners_leaf(m, &mr->shear, s->lane_items + first,
+            int k = from_mesh ? mesh_corners_leaf(m, &shear, s->lane_items + first,
                                                   count, t_max, found, &th)
-                              : triangle_nearest_of_leaf(&mr->shear, s->corners + first,
+                              : triangle_nearest_of_leaf(&shear, s->corners + first,
                                                          s->lane_items + first, count, 0,
                                                          t_max, found, &th);
             if (k >= 0) {

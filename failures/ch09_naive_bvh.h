@@ -90,10 +90,11 @@ static inline int naive_bvh_nearest(const mesh *m, const mesh_ray *mr,
     bvh_leaf leaf;
     int found = -1;
     double t_max = INFINITY;
+    watertight_ray shear = watertight_ray_of(mr->r);
     bvh_walk_start(&w, &m->bvh, &r);
     while (bvh_walk_next(&w, t_max, &leaf)) {
         stats->triangle_tests += leaf.count;
-        int k = naive_leaf_nearest(m, &mr->shear, leaf, t_max, found, out);
+        int k = naive_leaf_nearest(m, &shear, leaf, t_max, found, out);
         if (k >= 0)
             found = k, t_max = out->t;
     }

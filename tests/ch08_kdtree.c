@@ -517,6 +517,7 @@ typedef struct {
 static double naive_nearest(const mesh *m, ray r, naive nv)
 {
     mesh_ray mr = mesh_ray_of(r);
+    watertight_ray shear = watertight_ray_of(r);
     double t0 = 0, t1 = INFINITY, best = INFINITY;
     const double o[3] = {r.origin.x, r.origin.y, r.origin.z};
     const double inv[3] = {mr.inv_dir.x, mr.inv_dir.y, mr.inv_dir.z};
@@ -541,7 +542,7 @@ static double naive_nearest(const mesh *m, ray r, naive nv)
             int first = (int)n->first, count = (int)(n->bits >> 2);
             double lo = nv.leaf_interval ? t0 : 0,
                    hi = nv.leaf_interval ? fmin(t1, best) : best;
-            if (triangle_nearest_corners(&mr.shear, m->leaf_corners + first,
+            if (triangle_nearest_corners(&shear, m->leaf_corners + first,
                                          count, lo, hi, &th) >= 0)
                 best = th.t;
         } else if (!skip) {

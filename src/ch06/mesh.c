@@ -212,7 +212,7 @@ void mesh_fill_hit(const mesh *m, int k, ray r, const triangle_hit *th,
 
 mesh_ray mesh_ray_of(ray r)
 {
-    return (mesh_ray){r, ray_inverse_dir(r), watertight_ray_of(r)};
+    return (mesh_ray){r, ray_inverse_dir(r)};
 }
 
 int mesh_nearest(const mesh *m, const mesh_ray *mr, double t_min,
@@ -223,7 +223,8 @@ int mesh_nearest(const mesh *m, const mesh_ray *mr, double t_min,
     if (!box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
         return -1; /* missing the box, the ray misses every triangle */
     stats->triangle_tests += m->triangle_count;
-    return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
+    watertight_ray shear = watertight_ray_of(mr->r); /* inside the box */
+    return triangle_nearest_watertight(&shear, m->vertices, m->triangles,
                                        m->triangle_count, t_min, t_max, out);
 }
 

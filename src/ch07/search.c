@@ -21,8 +21,9 @@ typedef struct {
     nearest_hit best;
     render_stats *stats;
     /* <<search members>> ch04 */
-    mesh_ray prepared; /* valid once is_prepared is set */
-    bool is_prepared;
+    mesh_ray prepared;    /* valid once is_prepared is set */
+    watertight_ray shear; /* valid once is_sheared is set */
+    bool is_prepared, is_sheared;
     /* <<search members>> += ch06 */
     bool any_hit; /* a shadow ray's search: the first hit settles it */
 } scene_search;
@@ -34,6 +35,14 @@ static const mesh_ray *prepared_ray(scene_search *q)
     if (!q->is_prepared)
         q->prepared = mesh_ray_of(q->r), q->is_prepared = true;
     return &q->prepared;
+}
+
+/* The search's ray sheared for the triangles, made on first use. */
+static const watertight_ray *prepared_shear(scene_search *q)
+{
+    if (!q->is_sheared)
+        q->shear = watertight_ray_of(q->r), q->is_sheared = true;
+    return &q->shear;
 }
 
 /* <<searching a placed object>> ch05 */
@@ -53,7 +62,8 @@ static void search_placed_object(const object *o, scene_search *q)
 {
     scene_search local = *q;
     local.r = ray_to_object(scene_transform(q->scene, o->transform), q->r);
-    local.is_prepared = false; /* the world ray's shear is not this ray's */
+    /* the world ray's constants are not this ray's */
+    local.is_prepared = local.is_sheared = false;
     q->stats->object_space_rays++;
     shape_intersect(o, &local);
     q->best = local.best;
@@ -75,8 +85,8 @@ static void shape_intersect(const object *o, scene_search *q)
         triangle_hit th;
         q->stats->triangle_tests++;
         const vec3 *c = o->corners;
-        if (triangle_hit_prepared(&prepared_ray(q)->shear, c[0], c[1], c[2],
-                                  q->t_min, t_max, &th))
+        if (triangle_hit_prepared(prepared_shear(q), c[0], c[1], c[2], q->t_min,
+                                  t_max, &th))
             q->best = (nearest_hit){o, th.t, 0, {th.b[0], th.b[1], th.b[2]},
                                     q->r};
         break;

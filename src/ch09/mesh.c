@@ -214,7 +214,7 @@ void mesh_fill_hit(const mesh *m, int k, ray r, const triangle_hit *th,
 
 mesh_ray mesh_ray_of(ray r)
 {
-    return (mesh_ray){r, ray_inverse_dir(r), watertight_ray_of(r)};
+    return (mesh_ray){r, ray_inverse_dir(r)};
 }
 
 int mesh_nearest(const mesh *m, const mesh_ray *mr, double t_min,
@@ -231,7 +231,8 @@ int mesh_nearest(const mesh *m, const mesh_ray *mr, double t_min,
     if (m->bvh.node_count > 0)
         return mesh_search_bvh(m, mr, t_min, t_max, out, stats);
     stats->triangle_tests += m->triangle_count;
-    return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
+    watertight_ray shear = watertight_ray_of(mr->r); /* inside the box */
+    return triangle_nearest_watertight(&shear, m->vertices, m->triangles,
                                        m->triangle_count, t_min, t_max, out);
 }
 
@@ -251,10 +252,12 @@ bool mesh_intersect(const mesh *m, ray r, double t_min, double t_max, hit *h,
 /* <<intersecting a mesh>> += ch08 */
 
 /* Narrows *t_max and *found, the nearest hit so far and its triangle (-1:
- * none), by node's subtree, the ray in [t0, t1] inside its cell. */
-static void nearest_in(const mesh *m, const mesh_ray *mr, int node,
-                       double t0, double t1, double t_min, double *t_max,
-                       int *found, triangle_hit *out, render_stats *stats)
+ * none), by node's subtree, the ray in [t0, t1] inside its cell (w: its
+ * shear). */
+static void nearest_in(const mesh *m, const mesh_ray *mr,
+                       const watertight_ray *w, int node, double t0,
+                       double t1, double t_min, double *t_max, int *found,
+                       triangle_hit *out, render_stats *stats)
 {
     const kdtree_node *n = &m->tree.nodes[node];
     int axis = (int)(n->bits & 3);
@@ -262,7 +265,7 @@ static void nearest_in(const mesh *m, const mesh_ray *mr, int node,
     if (axis == 3) {
         int first = (int)n->first, count = (int)(n->bits >> 2);
         stats->triangle_tests += count;
-        int k = triangle_nearest_of_leaf(&mr->shear, m->leaf_corners + first,
+        int k = triangle_nearest_of_leaf(w, m->leaf_corners + first,
                                          m->tree.items + first, count, t_min,
                                          *t_max, *found, out);
         if (k >= 0)
@@ -276,8 +279,8 @@ static void nearest_in(const mesh *m, const mesh_ray *mr, int node,
     for (int c = 0; c < 2 && next[c].node >= 0; c++) {
         if (next[c].t_min > *t_max * (1 + KDTREE_SLACK))
             break; /* a hit nearer than this cell is already found */
-        nearest_in(m, mr, next[c].node, next[c].t_min, next[c].t_max, t_min,
-                   t_max, found, out, stats);
+        nearest_in(m, mr, w, next[c].node, next[c].t_min, next[c].t_max,
+                   t_min, t_max, found, out, stats);
     }
 }
 
@@ -290,7 +293,9 @@ int mesh_nearest_recursive(const mesh *m, const mesh_ray *mr, double t_min,
         !box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
         return mesh_nearest(m, mr, t_min, t_max, out, stats);
     int found = -1;
-    nearest_in(m, mr, 0, near, far, t_min, &t_max, &found, out, stats);
+    watertight_ray shear = watertight_ray_of(mr->r); /* inside the box */
+    nearest_in(m, mr, &shear, 0, near, far, t_min, &t_max, &found, out,
+               stats);
     return found;
 }
 
@@ -410,15 +415,16 @@ int mesh_search_tree(const mesh *m, const mesh_ray *mr, double near,
     kdtree_walk w;
     kdtree_leaf leaf;
     int found = -1;
+    watertight_ray shear = watertight_ray_of(mr->r); /* inside the box */
     kdtree_walk_start(&w, &m->tree, mr->r.origin, mr->inv_dir, near, far);
     while (kdtree_walk_next(&w, t_max, &leaf)) {
         const triangle_corners *corners = m->leaf_corners + leaf.first;
         stats->triangle_tests += leaf.count;
-        int k = out == NULL ? (triangle_any_corners(&mr->shear, corners,
+        int k = out == NULL ? (triangle_any_corners(&shear, corners,
                                                     leaf.count, t_min, t_max)
                                    ? 0 : -1)
                             : triangle_nearest_of_leaf(
-                                  &mr->shear, corners,
+                                  &shear, corners,
                                   m->tree.items + leaf.first, leaf.count,
                                   t_min, t_max, found, out);
         if (k >= 0)
@@ -445,7 +451,8 @@ bool mesh_occluded(const mesh *m, const mesh_ray *mr, double t_min,
         return mesh_search_bvh(m, mr, t_min, t_max, NULL, stats) >= 0;
     triangle_hit unused;
     stats->triangle_tests += m->triangle_count;
-    return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
+    watertight_ray shear = watertight_ray_of(mr->r); /* inside the box */
+    return triangle_nearest_watertight(&shear, m->vertices, m->triangles,
                                        m->triangle_count, t_min, t_max,
                                        &unused) >= 0;
 }
@@ -499,7 +506,8 @@ static int mesh_search_all(const mesh *m, const mesh_ray *mr, double t_min,
 {
     triangle_hit unused;
     stats->triangle_tests += m->triangle_count;
-    return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
+    watertight_ray shear = watertight_ray_of(mr->r);
+    return triangle_nearest_watertight(&shear, m->vertices, m->triangles,
                                        m->triangle_count, t_min, t_max,
                                        out != NULL ? out : &unused);
 }
@@ -551,18 +559,19 @@ int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
     bvh_walk w;
     bvh_leaf leaf;
     int found = -1;
+    watertight_ray shear = watertight_ray_of(mr->r); /* inside the box */
     bvh_walk_start(&w, &m->bvh, &r);
     w.sorted = out != NULL; /* any hit will do: no order to keep */
     while (bvh_walk_next(&w, t_max, &leaf)) {
         stats->triangle_tests += leaf.count;
         if (out == NULL) {
-            if (leaf_any(m, &mr->shear, leaf, t_min, t_max)) {
+            if (leaf_any(m, &shear, leaf, t_min, t_max)) {
                 found = 0; /* any hit blocks a shadow ray */
                 break;
             }
             continue;
         }
-        int k = leaf_nearest(m, &mr->shear, leaf, t_min, t_max, found, out);
+        int k = leaf_nearest(m, &shear, leaf, t_min, t_max, found, out);
         if (k >= 0)
             found = k, t_max = out->t;
     }

@@ -100,12 +100,12 @@ void triangle_fill_hit(vec3 a, vec3 b, vec3 c, ray r, double t, hit *h);
 void mesh_fill_hit(const mesh *m, int k, ray r, const triangle_hit *th,
                    hit *h);
 
-/* A ray with what every box and triangle test of a mesh needs of it,
- * computed once per ray. */
+/* A ray with what every box test of a mesh needs of it, computed once
+ * per ray; its shear for the triangles is watertight_ray_of(r), made by
+ * a search once the ray is inside the box. */
 typedef struct {
     ray r;
-    vec3 inv_dir;        /* 1 / r.dir, for the boxes */
-    watertight_ray shear; /* for the triangles */
+    vec3 inv_dir; /* 1 / r.dir, for the boxes */
 } mesh_ray;
 
 mesh_ray mesh_ray_of(ray r);

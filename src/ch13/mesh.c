@@ -218,7 +218,7 @@ void mesh_fill_hit(const mesh *m, int k, ray r, const triangle_hit *th,
 
 mesh_ray mesh_ray_of(ray r)
 {
-    return (mesh_ray){r, ray_inverse_dir(r), watertight_ray_of(r)};
+    return (mesh_ray){r, ray_inverse_dir(r)};
 }
 
 int mesh_nearest(const mesh *m, const mesh_ray *mr, double t_min,
@@ -238,7 +238,8 @@ int mesh_nearest(const mesh *m, const mesh_ray *mr, double t_min,
     if (m->bvh.node_count > 0)
         return mesh_search_bvh(m, mr, t_min, t_max, out, stats);
     stats->triangle_tests += m->triangle_count;
-    return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
+    watertight_ray shear = watertight_ray_of(mr->r); /* inside the box */
+    return triangle_nearest_watertight(&shear, m->vertices, m->triangles,
                                        m->triangle_count, t_min, t_max, out);
 }
 
@@ -258,10 +259,12 @@ bool mesh_intersect(const mesh *m, ray r, double t_min, double t_max, hit *h,
 /* <<intersecting a mesh>> += ch08 */
 
 /* Narrows *t_max and *found, the nearest hit so far and its triangle (-1:
- * none), by node's subtree, the ray in [t0, t1] inside its cell. */
-static void nearest_in(const mesh *m, const mesh_ray *mr, int node,
-                       double t0, double t1, double t_min, double *t_max,
-                       int *found, triangle_hit *out, render_stats *stats)
+ * none), by node's subtree, the ray in [t0, t1] inside its cell (w: its
+ * shear). */
+static void nearest_in(const mesh *m, const mesh_ray *mr,
+                       const watertight_ray *w, int node, double t0,
+                       double t1, double t_min, double *t_max, int *found,
+                       triangle_hit *out, render_stats *stats)
 {
     const kdtree_node *n = &m->tree.nodes[node];
     int axis = (int)(n->bits & 3);
@@ -269,7 +272,7 @@ static void nearest_in(const mesh *m, const mesh_ray *mr, int node,
     if (axis == 3) {
         int first = (int)n->first, count = (int)(n->bits >> 2);
         stats->triangle_tests += count;
-        int k = triangle_nearest_of_leaf(&mr->shear, m->leaf_corners + first,
+        int k = triangle_nearest_of_leaf(w, m->leaf_corners + first,
                                          m->tree.items + first, count, t_min,
                                          *t_max, *found, out);
         if (k >= 0)
@@ -283,8 +286,8 @@ static void nearest_in(const mesh *m, const mesh_ray *mr, int node,
     for (int c = 0; c < 2 && next[c].node >= 0; c++) {
         if (next[c].t_min > *t_max * (1 + KDTREE_SLACK))
             break; /* a hit nearer than this cell is already found */
-        nearest_in(m, mr, next[c].node, next[c].t_min, next[c].t_max, t_min,
-                   t_max, found, out, stats);
+        nearest_in(m, mr, w, next[c].node, next[c].t_min, next[c].t_max,
+                   t_min, t_max, found, out, stats);
     }
 }
 
@@ -297,7 +300,9 @@ int mesh_nearest_recursive(const mesh *m, const mesh_ray *mr, double t_min,
         !box_clip(&m->bounds, mr->r.origin, mr->inv_dir, &near, &far))
         return mesh_nearest(m, mr, t_min, t_max, out, stats);
     int found = -1;
-    nearest_in(m, mr, 0, near, far, t_min, &t_max, &found, out, stats);
+    watertight_ray shear = watertight_ray_of(mr->r); /* inside the box */
+    nearest_in(m, mr, &shear, 0, near, far, t_min, &t_max, &found, out,
+               stats);
     return found;
 }
 
@@ -425,15 +430,16 @@ int mesh_search_tree(const mesh *m, const mesh_ray *mr, double near,
     kdtree_walk w;
     kdtree_leaf leaf;
     int found = -1;
+    watertight_ray shear = watertight_ray_of(mr->r); /* inside the box */
     kdtree_walk_start(&w, &m->tree, mr->r.origin, mr->inv_dir, near, far);
     while (kdtree_walk_next(&w, t_max, &leaf)) {
         const triangle_corners *corners = m->leaf_corners + leaf.first;
         stats->triangle_tests += leaf.count;
-        int k = out == NULL ? (triangle_any_corners(&mr->shear, corners,
+        int k = out == NULL ? (triangle_any_corners(&shear, corners,
                                                     leaf.count, t_min, t_max)
                                    ? 0 : -1)
                             : triangle_nearest_of_leaf(
-                                  &mr->shear, corners,
+                                  &shear, corners,
                                   m->tree.items + leaf.first, leaf.count,
                                   t_min, t_max, found, out);
         if (k >= 0)
@@ -463,7 +469,8 @@ bool mesh_occluded(const mesh *m, const mesh_ray *mr, double t_min,
         return mesh_search_bvh(m, mr, t_min, t_max, NULL, stats) >= 0;
     triangle_hit unused;
     stats->triangle_tests += m->triangle_count;
-    return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
+    watertight_ray shear = watertight_ray_of(mr->r); /* inside the box */
+    return triangle_nearest_watertight(&shear, m->vertices, m->triangles,
                                        m->triangle_count, t_min, t_max,
                                        &unused) >= 0;
 }
@@ -648,7 +655,8 @@ static int mesh_search_all(const mesh *m, const mesh_ray *mr, double t_min,
 {
     triangle_hit unused;
     stats->triangle_tests += m->triangle_count;
-    return triangle_nearest_watertight(&mr->shear, m->vertices, m->triangles,
+    watertight_ray shear = watertight_ray_of(mr->r);
+    return triangle_nearest_watertight(&shear, m->vertices, m->triangles,
                                        m->triangle_count, t_min, t_max,
                                        out != NULL ? out : &unused);
 }
@@ -689,7 +697,8 @@ static int search_bvh2(const mesh *m, const mesh_ray *mr, double t_min,
     bvh_leaf leaf;
     int found = -1;
     long long decided = 0;
-    packet_ray pr = packet_ray_of(&mr->shear);
+    watertight_ray shear = watertight_ray_of(mr->r); /* inside the box */
+    packet_ray pr = packet_ray_of(&shear); /* which must outlive pr */
     bvh_walk_start(&w, &m->bvh, &r);
     w.sorted = out != NULL; /* any hit will do: no order to keep */
     while (bvh_walk_next(&w, t_max, &leaf)) {
@@ -779,8 +788,9 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
     float entry[BVH_STACK8], bound = ray_bound;
     int top = 0, found = -1;
     long long nodes = 0, tests = 0, decided = 0;
+    watertight_ray shear; /* chapter 4's, which pr points to */
     packet_ray pr;
-    bool made = false; /* pr: made at the first leaf, if any */
+    bool made = false; /* both made at the first leaf, if any */
     for (;;) {
         while (!(now & BVH_LEAF)) { /* the nodes, down to a leaf */
             const bvh_node8 *n = &tree[now];
@@ -803,8 +813,8 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
         /* <<a leaf of the wide walk>> ch11 */
         bvh_leaf leaf = {(int)(now & BVH_FIRST_MASK),
                          (int)(now >> BVH_COUNT_SHIFT & 15)};
-        if (!made)
-            pr = packet_ray_of(&mr->shear), made = true;
+        if (!made) /* the shear, and the packets' constants from it */
+            shear = watertight_ray_of(mr->r), pr = packet_ray_of(&shear), made = true;
         tests += leaf.count;
         int k = bvh_leaf_test(m, &pr, leaf, in_float, t_min, t_max, found, out,
                               &decided);
