@@ -187,8 +187,9 @@ BC := build/bookcode
         book-check check-book-browser check-page check-code-width check-commands
 
 ifeq ($(HANDOUT),)
-# (the text woven before the page's programs are compiled: the two overlap)
-all: deps $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures build/book-text.html wasm book
+# (pandoc's weave first, which needs no program: it runs beside the
+# compiles; the text woven before the page's programs are compiled)
+all: deps build/book-refs.html $(foreach n,$(NUMS),$(BIN)/ch$(n)) figures build/book-text.html wasm book
 else
 # A handout's book comes woven (book.html), its figures made, and with the
 # page's programs (the book's code compiled for WebAssembly where the
@@ -1006,10 +1007,16 @@ book: build/book.html
 PAGE_HTML := $(if $(HAVE_WASM),build/page/playground.html)
 # The text is woven while the page's programs compile (pandoc takes one
 # core for seconds); the page's HTML is added to it at the end.
-build/book-text.html: book.md $(CHAPTERS) tools/book/weave.lua tools/book/weave_names.lua tools/book/weave.sh \
-                 tools/book/book.css $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS) | deps
+# The book is woven in two steps: pandoc's, which needs no figure and
+# runs while the programs that draw them are compiled, then the figures
+# and the CSS put in, in a moment, once they are drawn.
+build/book-refs.html: book.md $(CHAPTERS) tools/book/weave.lua tools/book/weave_names.lua \
+                      tools/book/weave.sh | deps
 	@$(dir_of_target)
-	sh tools/book/weave.sh book.md $@ $(CHAPTERS)
+	sh tools/book/weave.sh --text book.md $@ $(CHAPTERS)
+build/book-text.html: build/book-refs.html tools/book/weave.sh tools/book/book.css \
+                      $(ALL_FIGS) $(FAILURE_FIGS) $(CHARTS)
+	sh tools/book/weave.sh --embed $< $@
 build/book.html: build/book-text.html $(PAGE_HTML)
 	$(if $(PAGE_HTML),sh tools/book/weave.sh --page $(PAGE_HTML) $< $@,cp $< $@)
 # The handout's book holds the same programs (make handout, above).

@@ -5,8 +5,17 @@
 # Usage, from the repository root (figures/... paths are relative to it):
 #     tools/book/weave.sh book.md build/book.html chapters/*.md
 #
-# Exits non-zero if pandoc fails or warns that a resource (an image, the
-# CSS) is missing; the output file is only written when all went well.
+# Exits non-zero if pandoc fails or a resource (an image, the CSS) is
+# missing; the output file is only written when all went well.
+#
+# The weave is two steps, which make runs apart:
+#     tools/book/weave.sh --text book.md build/book-refs.html chapters/*.md
+# is pandoc alone: the page with its images and CSS named, not inside
+# (it needs no figure, and runs while the programs that draw them are
+# compiled); then
+#     tools/book/weave.sh --embed build/book-refs.html build/book.html
+# puts every image named by a relative src="..." in as a data: URL and
+# the CSS in as a <style>, in a moment, once the figures are drawn.
 #
 # WEAVE_PAGE=FILE: FILE's HTML goes before the page's </body> (the book's
 # scenes rendered in the page: tools/editions/page.sh makes it).
@@ -22,16 +31,93 @@ add_page() {
       { print }' "$2" > "$3.tmp" && mv "$3.tmp" "$3"
 }
 
-if [ "${1:-}" = "--page" ]; then
+# embed IN OUT: IN with each image that a relative src="..." names as a
+# data: URL of its bytes in base64, and each stylesheet that a <link>
+# names as a <style> holding it, as OUT; fails, writing nothing, on a
+# file that cannot be read or an image of a kind it does not know.
+embed() {
+    awk '
+      function fail(what) {
+          print "weave.sh: " what > "/dev/stderr"
+          failed = 1
+          exit 1
+      }
+      function readable(path,    line, status) {
+          status = (getline line < path)
+          close(path)
+          return status >= 0
+      }
+      # the base64 of the file at path, on one line
+      function base64_of(path,    cmd, line, text) {
+          if (!readable(path))
+              fail("missing resource: " path)
+          gsub(/\047/, "\047\\\047\047", path)
+          cmd = "base64 < \047" path "\047 | tr -d \"\\n\""
+          text = ""
+          while ((cmd | getline line) > 0)
+              text = text line
+          close(cmd)
+          return text
+      }
+      function mime_of(path) {
+          if (path ~ /\.png$/) return "image/png"
+          if (path ~ /\.svg$/) return "image/svg+xml"
+          if (path ~ /\.jpe?g$/) return "image/jpeg"
+          if (path ~ /\.gif$/) return "image/gif"
+          fail("an image of a kind not known: " path)
+      }
+      # a line that only names a stylesheet: the stylesheet itself
+      /^[ \t]*<link rel="stylesheet" href="[^"]*" \/>[ \t]*$/ {
+          path = $0
+          sub(/^[^"]*"stylesheet" href="/, "", path)
+          sub(/".*$/, "", path)
+          if (!readable(path))
+              fail("missing resource: " path)
+          print "  <style type=\"text/css\">"
+          while ((getline line < path) > 0)
+              print line
+          close(path)
+          print "</style>"
+          next
+      }
+      {
+          out = ""
+          rest = $0
+          # src="PATH" with PATH neither a URL, a data: URL nor a fragment
+          while (match(rest, /src="[^"#:]+"/)) {
+              path = substr(rest, RSTART + 5, RLENGTH - 6)
+              out = out substr(rest, 1, RSTART - 1) "src=\"data:" \
+                    mime_of(path) ";base64," base64_of(path) "\""
+              rest = substr(rest, RSTART + RLENGTH)
+          }
+          print out rest
+      }
+      END { exit failed }' "$1" > "$2.tmp" && mv "$2.tmp" "$2" ||
+        { rm -f "$2.tmp"; echo "weave.sh: could not embed $1's resources" >&2
+          return 1; }
+}
+
+mode=both
+case "${1:-}" in
+--page)
     [ "$#" -eq 4 ] || { echo "usage: $0 --page PAGE_HTML IN_HTML OUT_HTML" >&2; exit 2; }
     [ -r "$2" ] && [ -r "$3" ] || { echo "weave.sh: cannot read $2 or $3" >&2; exit 1; }
     add_page "$2" "$3" "$4"
     echo "weave.sh: wrote $4"
-    exit 0
-fi
+    exit 0 ;;
+--embed)
+    [ "$#" -eq 3 ] || { echo "usage: $0 --embed IN_HTML OUT_HTML" >&2; exit 2; }
+    [ -r "$2" ] || { echo "weave.sh: cannot read $2" >&2; exit 1; }
+    embed "$2" "$3" || exit 1
+    echo "weave.sh: wrote $3"
+    exit 0 ;;
+--text)
+    mode=text
+    shift ;;
+esac
 
 if [ "$#" -lt 3 ]; then
-    echo "usage: $0 BOOK_MD OUT_HTML CHAPTER..." >&2
+    echo "usage: $0 [--text] BOOK_MD OUT_HTML CHAPTER..." >&2
     exit 2
 fi
 book=$1
@@ -47,20 +133,6 @@ tools_dir=$(cd "$(dirname "$0")" && pwd)
 work_dir=$(mktemp -d)
 trap 'rm -rf "$work_dir"' EXIT
 
-# pandoc 2.19 replaced --self-contained by --embed-resources (the old
-# option is deprecated since), so pick the option by pandoc's version.
-embed_options() {
-    version=$(pandoc --version | head -n 1 | sed 's/^[^0-9]*//')
-    major=${version%%.*}
-    minor=${version#*.}
-    minor=${minor%%.*}
-    if [ "$major" -gt 2 ] || { [ "$major" -eq 2 ] && [ "$minor" -ge 19 ]; }; then
-        echo "--embed-resources"  # --standalone is passed anyway
-    else
-        echo "--self-contained"
-    fi
-}
-
 # Defaults the book's own YAML may override (--metadata would win over it).
 cat > "$work_dir/defaults.yaml" <<'EOF'
 lang: en
@@ -71,11 +143,12 @@ mkdir -p "$(dirname "$out")"
 partial="$work_dir/book.html"
 log="$work_dir/pandoc.log"
 
-# shellcheck disable=SC2046  # embed_options is meant to split into words
+# The images and the CSS are named, not put in: embed puts them in, in a
+# moment where pandoc's own --self-contained takes seconds.
 if ! pandoc "$book" "$@" \
         --from markdown \
         --to html5 \
-        --standalone $(embed_options) \
+        --standalone \
         --toc --toc-depth=2 \
         --number-sections \
         --mathml \
@@ -90,18 +163,9 @@ if ! pandoc "$book" "$@" \
 fi
 cat "$log" >&2
 
-# Newer pandoc only warns about a missing image and writes a page without
-# it; for the book that is an error.  (Our filter's own warnings may name
-# chunks freely, so they are left out of the search.)
-missing_resources() {
-    grep -Ei 'could not fetch|not found' "$log" | grep -v '^weave\.lua: '
-}
-if missing_resources > /dev/null; then
-    echo "weave.sh: missing resources:" >&2
-    missing_resources >&2
-    exit 1
+if [ "$mode" = both ]; then
+    embed "$partial" "$partial" || exit 1
+    [ -z "${WEAVE_PAGE:-}" ] || add_page "$WEAVE_PAGE" "$partial" "$partial"
 fi
-
-[ -z "${WEAVE_PAGE:-}" ] || add_page "$WEAVE_PAGE" "$partial" "$partial"
 mv "$partial" "$out"
 echo "weave.sh: wrote $out"
