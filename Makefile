@@ -787,13 +787,11 @@ check-stubs: $(TANGLE)
 # objects of the chapters it grades (and of the chapters before them): this
 # make builds those first, so that no two makes write one object at once.
 # The book's code, typed in, builds the book's programs byte for byte: the
-# last chapter's suites, run first, give that grade its results. They run
-# in the recipe, not as a prerequisite, so that make test can start this
-# check at once (it waits for no other job), and runs them only here.
+# last chapter's suites, run first, give that grade its results.
 WB_CHECK_CHAPTERS := $(NUMS)
 .PHONY: check-workbook
-check-workbook: $(TANGLE) $(foreach n,$(filter $(NUMS),$(WB_CHECK_CHAPTERS)),$(B)/test/ch$(n) $(BIN)/ch$(n))
-	+@$(MAKE) --no-print-directory test-ch$(LAST)
+check-workbook: $(TANGLE) $(foreach n,$(filter $(NUMS),$(WB_CHECK_CHAPTERS)),$(B)/test/ch$(n) $(BIN)/ch$(n)) \
+                test-ch$(LAST)
 	+@MAKE="$(MAKE)" TANGLE=$(TANGLE) CC="$(CC)" BOOK_BUILD=$(B) BOOK_BIN=$(BIN) \
 	  WB_CHECK_DIR=build/wbcheck$(WB_TAG) sh tools/checks/check_workbook.sh
 
@@ -1148,12 +1146,7 @@ BOOK_TESTS := benches check-src check-charts check-book check-map check-stray \
               check-handout check-handout-page check-epub check-pdf check-book-browser check-page check-build-speed \
               check-brackets check-weave-errors check-reuse
 ifeq ($(HANDOUT),)
-# The longest checks first, the workbook's (over a minute, much of it on
-# one core) and the page's (half a minute in Chromium): the others fill
-# the cores meanwhile, instead of the cores waiting for them at the end.
-test: deps $(if $(SAN),,check-workbook check-page) \
-      $(if $(SAN),$(PROGRAM_TESTS),$(filter-out test-ch$(LAST),$(PROGRAM_TESTS))) \
-      $(if $(SAN),,$(BOOK_TESTS))
+test: deps $(PROGRAM_TESTS) $(if $(SAN),,$(BOOK_TESTS))
 	@# the book is up to date by now (check-book): -o keeps it so
 	$(if $(SAN),,@$(MAKE) --no-print-directory -o build/book.html check-code-width)
 	@echo "make test: all passed"
