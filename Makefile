@@ -1035,7 +1035,11 @@ check-weave-errors: | deps
 	if sh tools/book/weave.sh book.md $$d/bad.html $$d/01-a.md > $$d/log 2>&1 || \
 	   ! grep -q '<<unused>> is defined but never used' $$d/log; then \
 	  cat $$d/log; echo "check-weave-errors: an unused chunk did not stop the weave"; rm -rf $$d; exit 1; fi; \
-	rm -rf $$d; echo "check-weave-errors: an unused chunk stops the weave: ok"
+	printf '\n![A picture.](figures/no-such-figure.png)\n' > $$d/02-b.md; \
+	if sh tools/book/weave.sh book.md $$d/bad.html $$d/02-b.md > $$d/log 2>&1 || \
+	   ! grep -q 'missing resource: figures/no-such-figure.png' $$d/log || [ -e $$d/bad.html ]; then \
+	  cat $$d/log; echo "check-weave-errors: a missing figure did not stop the weave"; rm -rf $$d; exit 1; fi; \
+	rm -rf $$d; echo "check-weave-errors: an unused chunk and a missing figure stop the weave: ok"
 
 check-book: build/book.html $(B)/tools/checks/check_book
 	$(B)/tools/checks/check_book build/book.html
