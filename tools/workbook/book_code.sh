@@ -33,17 +33,32 @@ forms)
     out=$2 tangled=$3
     shift 3
     # the exercises whose code lands in a header: those whose lines the
-    # #line directives of a .h file of the tangle point at
-    headers=$(awk -f tools/workbook/exercises.awk "$@" | while IFS='	' read -r id chapter line rest; do
-        end=$(awk -v s="$line" 'NR > s && /^```/ { print NR; exit }' "$chapter")
-        for h in "$tangled"/*.h; do
-            awk -v ch="$chapter" -v s="$line" -v e="$end" '
-                /^#line / { n = $2; f = $3; gsub(/"/, "", f); next }
-                f == ch && n > s && n < e { found = 1; exit }
-                { n++ }
-                END { exit !found }' "$h" && { echo "$id"; break; }
-        done
-    done | tr '\n' ' ')
+    # #line directives of a .h file of the tangle point at (one awk for
+    # them all: one an exercise and a header took seconds)
+    headers=$(awk -f tools/workbook/exercises.awk "$@" | awk -F '\t' '
+        # the list: each exercise, its chapter, the line of its fence
+        FILENAME == "-" { n++; id[n] = $1; ch[n] = $2; from[n] = $3; next }
+        # a chapter: the fence that ends each of its exercises
+        FILENAME ~ /\.md$/ && /^```/ {
+            for (k = 1; k <= n; k++)
+                if (ch[k] == FILENAME && !(k in to) && FNR > from[k])
+                    to[k] = FNR
+            next
+        }
+        FILENAME ~ /\.md$/ { next }
+        # a header: the chapter and line each of its lines comes from
+        FNR == 1 { f = ""; line = 0 }
+        /^#line / { line = $0; sub(/^#line /, "", line); f = line
+                    sub(/ .*/, "", line); sub(/^[^ ]* /, "", f)
+                    gsub(/"/, "", f); line += 0; next }
+        {
+            for (k = 1; k <= n; k++)
+                if (ch[k] == f && line > from[k] && line < to[k])
+                    in_header[k] = 1
+            line++
+        }
+        END { for (k = 1; k <= n; k++) if (k in in_header) printf "%s ", id[k] }' \
+        - "$@" "$tangled"/*.h)
     mkdir -p "$out/forward" "$out/export" "$out/book"
     for mode in forward export book; do
         for c in "$@"; do
