@@ -1006,11 +1006,10 @@ CHARTS := $(wildcard figures/ch[0-9][0-9]-*.svg)
 book: build/book.html
 # With the programs for the page (above), the page renders the scenes.
 PAGE_HTML := $(if $(HAVE_WASM),build/page/playground.html)
-# The text is woven while the page's programs compile (pandoc takes one
-# core for seconds); the page's HTML is added to it at the end.
-# The book is woven in two steps: pandoc's, which needs no figure and
-# runs while the programs that draw them are compiled, then the figures
-# and the CSS put in, in a moment, once they are drawn.
+# The book is woven in steps: pandoc's (a core for seconds), which needs
+# no figure and runs while the programs are compiled; the figures and the
+# CSS put in, in a moment, once they are drawn; the page's HTML added at
+# the end, once its programs are compiled for WebAssembly.
 build/book-refs.html: book.md $(CHAPTERS) tools/book/weave.lua tools/book/weave_names.lua \
                       tools/book/weave.sh | deps
 	@$(dir_of_target)
