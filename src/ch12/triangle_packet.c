@@ -461,6 +461,7 @@ static unsigned float_hit_bits(const triangle_packet *p, const packet_ray *r,
 {
     unsigned bits = 0;
     if (alone) {
+        memset(h, 0, sizeof *h); /* a lane that stops early writes none */
         for (int k = 0; k < PACKET_W; k++)
             bits |= (unsigned)float_hit_alone(p, k, r, t_min, t_max, h) << k;
         return bits;
@@ -482,21 +483,27 @@ int triangle_packets_nearest_float(const packet_ray *r,
                                    triangle_hit *out)
 {
     float lo = (float)t_min, nearest_t = (float)t_max;
-    int nearest = -1;
+    float_hits won; /* the nearest hit's packet, and its lane */
+    int nearest = -1, lane = 0;
     for (const triangle_packet *q = packets; q < packets + count; q++) {
         float_hits h;
         unsigned bits = float_hit_bits(q, r, lo, nearest_t, &h, LANE_BY_LANE);
+        if (bits == 0)
+            continue;
+        packet_float t = h.n / h.det; /* every lane's t at once */
         for (; bits != 0; bits &= bits - 1) {
             int k = __builtin_ctz(bits), i = q->triangle[k];
-            float t = h.n[k] / h.det[k];
-            if (!(t > lo) || t > nearest_t || (t == nearest_t && i > best))
+            if (!(t[k] > lo) || t[k] > nearest_t ||
+                (t[k] == nearest_t && i > best))
                 continue; /* a tie: the lower index */
-            float inv = 1 / h.det[k];
-            out->t = t;
-            out->b[0] = h.u[k] * inv, out->b[1] = h.v[k] * inv;
-            out->b[2] = h.w[k] * inv;
-            nearest_t = t, best = i, nearest = i;
+            nearest_t = t[k], best = i, nearest = i, won = h, lane = k;
         }
+    }
+    if (nearest >= 0) { /* the barycentric coordinates of the winner */
+        float inv = 1 / won.det[lane];
+        out->t = nearest_t;
+        out->b[0] = won.u[lane] * inv, out->b[1] = won.v[lane] * inv;
+        out->b[2] = won.w[lane] * inv;
     }
     return nearest;
 }
@@ -509,10 +516,12 @@ bool triangle_packets_any_float(const packet_ray *r,
     for (const triangle_packet *q = packets; q < packets + count; q++) {
         float_hits h;
         unsigned bits = float_hit_bits(q, r, lo, hi, &h, LANE_BY_LANE);
+        if (bits == 0)
+            continue;
+        packet_float t = h.n / h.det;
         for (; bits != 0; bits &= bits - 1) {
             int k = __builtin_ctz(bits);
-            float t = h.n[k] / h.det[k];
-            if (t > lo && t < hi)
+            if (t[k] > lo && t[k] < hi)
                 return true;
         }
     }
