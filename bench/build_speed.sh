@@ -95,6 +95,12 @@ done
 
 # The machine, as the charts' CSVs name it.
 cpu=$(sed -n 's/^model name[ 	]*: //p' /proc/cpuinfo 2>/dev/null | head -n 1)
+# Machines of one name differ: their family and model, and widest vectors.
+family=$(sed -n 's/^cpu family[ 	]*: //p' /proc/cpuinfo 2>/dev/null | head -n 1)
+model=$(sed -n 's/^model[ 	]*: //p' /proc/cpuinfo 2>/dev/null | head -n 1)
+vectors=$(grep -qw avx512f /proc/cpuinfo 2>/dev/null && echo AVX-512 ||
+          { grep -qw avx2 /proc/cpuinfo 2>/dev/null && echo AVX2 || echo "no AVX2"; })
+[ -z "$family" ] || cpu="$cpu (family $family, model $model, $vectors)"
 cores=$(nproc 2>/dev/null || echo "?")
 cc_version=$(cc --version 2>/dev/null | head -n 1)
 load=$(cut -d ' ' -f 1 /proc/loadavg 2>/dev/null || echo "?")
