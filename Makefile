@@ -1052,12 +1052,16 @@ check-code-width: build/book.html $(B)/tools/checks/check_book
 book-check: build/book.html
 	sh tools/checks/book_check.sh build/book.html build/book-screenshot.png
 
+# The same check without a screenshot, where Chromium is installed (make
+# test has check-page make it, in the load of the page that its renders use).
 check-book-browser: build/book.html
 	@sh tools/checks/book_check.sh --no-install build/book.html -
 
 # The scenes rendered in the page against the programs' own PNGs (at a
 # small size, to be quick), a located mistake, a cancelled render, the
-# network off: headless Chromium, where it is installed (tools/checks/page_check.sh).
+# network off, and first, in the same load of the page, check-book-browser's
+# layout at 1280 x 900: headless Chromium, where it is installed
+# (tools/checks/page_check.sh; without node, the layout alone).
 PAGE_CHECK_SIZE := 160x120
 check-page: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n))
 	@sh tools/checks/page_check.sh build/book.html $(BIN) $(PAGE_CHECK_SIZE) $(NUMS)
@@ -1146,7 +1150,7 @@ PROGRAM_TESTS := test-tangle $(foreach n,$(NUMS),test-ch$(n)) \
                  check-lines check-commands
 BOOK_TESTS := benches check-src check-charts check-book check-map check-stray \
               check-allocations check-test-width check-quotes check-workbook \
-              check-handout check-handout-page check-epub check-pdf check-book-browser check-page check-build-speed \
+              check-handout check-handout-page check-epub check-pdf check-page check-build-speed \
               check-brackets check-weave-errors check-reuse
 ifeq ($(HANDOUT),)
 test: deps $(PROGRAM_TESTS) $(if $(SAN),,$(BOOK_TESTS))

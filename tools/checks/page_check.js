@@ -26,6 +26,11 @@
  * scene's: it must differ, so that the comparison is seen to be able to
  * fail. "mistake" and "pixelMistake" go together, as do "progress" and
  * "long": either pair may be left out (page_check.sh --scenes does).
+ * With "layout": { "script", "width", "height" }, the page is loaded at
+ * width x height with no scroll bars, and the script (book_check.js, the
+ * layout check of make book-check) runs in it before any render: each
+ * problem it writes is a failure, and its summary line is printed (one
+ * load of the book serves both checks).
  * Prints one line a check; exits 1 on any failure.
  *
  * With "speed": { "bin", "clangBin", "chapters", "size", "rounds", "csv" } in
@@ -300,9 +305,29 @@ async function longRenders(run) {
   report(again.state === "done", "after the cancel, a render: " + again.state);
 }
 
+// book_check.js's findings in the loaded page, taken out of it again:
+// each problem a failure, then its summary.
+async function layout(sessionId, l) {
+  const lines = await inPage(sessionId, "function (script) { (0, eval)(script);" +
+    " var report = document.getElementById('book-check-report');" +
+    " if (!report) return []; var text = report.textContent; report.remove();" +
+    " return text.split('\\n').filter(function (x) { return x; }); }",
+    fs.readFileSync(l.script, "utf8"));
+  const done = lines.filter((x) => x.startsWith("book-check: done, "));
+  for (const x of lines.filter((y) => y.startsWith("book-check: problem: ")))
+    report(false, "layout: " + x.slice("book-check: problem: ".length));
+  report(done.length === 1, "layout at " + l.width + " x " + l.height + ": " +
+         (done.length ? done[0].slice("book-check: done, ".length) : "the script did not finish"));
+}
+
 async function main() {
   const { targetId } = await send("Target.createTarget", { url: "about:blank" });
   const { sessionId } = await send("Target.attachToTarget", { targetId, flatten: true });
+  if (cases.layout) { // the reader's window, as make book-check opens it
+    await send("Emulation.setDeviceMetricsOverride", { width: cases.layout.width,
+      height: cases.layout.height, deviceScaleFactor: 1, mobile: false }, sessionId);
+    await send("Emulation.setScrollbarsHidden", { hidden: true }, sessionId);
+  }
   const requests = [];
   listeners.push((m) => {
     if (m.method === "Network.requestWillBeSent" && m.sessionId === sessionId)
@@ -318,6 +343,7 @@ async function main() {
   await send("Page.navigate", { url: "file://" + path.resolve(book) }, sessionId);
   await loaded;
   if (cases.speed) return speed(sessionId, cases.speed);
+  if (cases.layout) await layout(sessionId, cases.layout);
   const run = (c) => inPage(sessionId, renderInPage.toString().replace("HELPERS;", PAGE_HELPERS), c);
   const count = await inPage(sessionId, "function () { return document.querySelectorAll('div.playground details').length; }");
   report(count > 0, count + " playgrounds in the page");

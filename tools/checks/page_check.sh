@@ -10,8 +10,11 @@
 # (the program's own located error, as bin/chNN wrote it), a mistake in
 # --pixel (the option's, not the scene's), a render of some seconds (its
 # progress shown while it runs, none left under it), a long render
-# cancelled, and no request outside the file. Skipped, with status 0,
-# when Chromium or node is not installed, or the page has no programs.
+# cancelled, and no request outside the file; and, in the same load of
+# the page, make book-check's layout check at 1280 x 900
+# (tools/checks/book_check.js). Where Chromium is installed but node is
+# not, or the page has no programs, the layout is checked alone
+# (tools/checks/book_check.sh); skipped, with status 0, without Chromium.
 #
 #     sh tools/checks/page_check.sh --scenes BOOK.html BIN_DIR SIZE NN:SCENE...
 #
@@ -41,10 +44,13 @@ shift 3
 tools_dir=$(cd "$(dirname "$0")" && pwd)
 . "$tools_dir/../editions/find_chromium.sh"
 browser=$(find_chromium)
-# skip WHY: the check cannot run here; a measurement must.
+# skip WHY: the check cannot run here; a measurement must; the layout
+# is checked alone where it can be.
 skip() {
   if [ -n "$speed" ]; then echo "page-speed: error: $1" >&2; exit 1; fi
-  echo "page-check: skipped: $1"; exit 0
+  echo "page-check: skipped: $1"
+  [ -n "$scenes" ] || [ -z "$browser" ] || exec sh "$tools_dir/book_check.sh" --no-install "$book" -
+  exit 0
 }
 if [ -z "$browser" ] || ! command -v node >/dev/null 2>&1; then
   skip "no chromium or no node (make book-check installs Chromium)"
@@ -128,7 +134,9 @@ fi
   # Seconds of work on one thread, its progress shown while it runs.
   printf '"progress": {"chapter": "%s", "size": "1200x900", "pixel": "pattern grid samples 16", "text": "sphere center 0 0 5 radius 1\\n"},\n' "$last"
   # Minutes of work on one thread: 4000 x 3000 pixels, 16 rays each.
-  printf '"long": {"chapter": "%s", "size": "4000x3000", "pixel": "pattern grid samples 16", "text": "sphere center 0 0 5 radius 1\\n"}}\n' "$last"
+  printf '"long": {"chapter": "%s", "size": "4000x3000", "pixel": "pattern grid samples 16", "text": "sphere center 0 0 5 radius 1\\n"},\n' "$last"
+  # The layout at a reader's 1280 x 900, measured before any render.
+  printf '"layout": {"script": "%s", "width": 1280, "height": 900}}\n' "$tools_dir/book_check.js"
 } > "$work/cases.json" || exit 1
 
 node "$tools_dir/page_check.js" "$browser" "$book" "$work/cases.json"
