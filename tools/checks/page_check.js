@@ -307,16 +307,16 @@ async function longRenders(run) {
 
 // book_check.js's findings in the loaded page, taken out of it again:
 // each problem a failure, then its summary.
-async function layout(sessionId, l) {
+async function layout(sessionId, view) {
   const lines = await inPage(sessionId, "function (script) { (0, eval)(script);" +
     " var report = document.getElementById('book-check-report');" +
     " if (!report) return []; var text = report.textContent; report.remove();" +
     " return text.split('\\n').filter(function (x) { return x; }); }",
-    fs.readFileSync(l.script, "utf8"));
+    fs.readFileSync(view.script, "utf8"));
   const done = lines.filter((x) => x.startsWith("book-check: done, "));
   for (const x of lines.filter((y) => y.startsWith("book-check: problem: ")))
     report(false, "layout: " + x.slice("book-check: problem: ".length));
-  report(done.length === 1, "layout at " + l.width + " x " + l.height + ": " +
+  report(done.length === 1, "layout at " + view.width + " x " + view.height + ": " +
          (done.length ? done[0].slice("book-check: done, ".length) : "the script did not finish"));
 }
 
