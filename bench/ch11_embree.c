@@ -733,8 +733,9 @@ int main(int argc, char **argv)
     bench_print_machine();
     bench_csv_header();
     printf("vector,%s,0,0,bvh_vector_width\n",
-           bvh_walks_with_avx2() ? "AVX2 chosen at run time"
-                                 : "the build's own instructions");
+           bvh_walks_with_avx512() ? "AVX-512VL chosen at run time"
+           : bvh_walks_with_avx2() ? "AVX2 chosen at run time"
+                                   : "the build's own instructions");
     printf("default,bvh%d,0,0,default_method\n", bvh_default_params().width);
     /* CH11_QUICK=1: the bunny at K = 1 alone, no builds (a quick look) */
     bool quick = getenv("CH11_QUICK") != NULL || getenv("CH09_QUICK") != NULL;

@@ -49,6 +49,15 @@
 
 enum { SIDE = 256 };
 
+/* The row that names the node test's instructions. */
+static void print_vector(bool avx2, bool avx512)
+{
+    printf("vector,%s,0,0,bvh_vector_width\n",
+           avx512 ? "AVX-512VL chosen at run time"
+           : avx2 ? "AVX2 chosen at run time"
+                  : "the build's own instructions");
+}
+
 #ifdef HAVE_CALLGRIND
 static const char *const KINDS[] = {"all", "miss-box", "enter-miss", "hit"};
 static const char *const METHODS[] = {"loop", "bvh", "fast", "embree"};
@@ -128,7 +137,8 @@ static __attribute__((noinline)) long trace(const subject *s, int method,
 }
 
 /* The child, under callgrind: every method's trace of every kind, each
- * dumped apart as "METHOD KIND"; prints "KIND COUNT" for each kind. */
+ * dumped apart as "METHOD KIND"; prints "KIND COUNT" for each kind, after
+ * "avx2 0|1" and "avx512 0|1" for its walk's instructions. */
 static int count(void)
 {
     subject s;
@@ -145,6 +155,8 @@ static int count(void)
     methods = 4;
 #endif
     long n = (long)SIDE * SIDE;
+    /* what the walk takes under callgrind, which may hide AVX-512 */
+    printf("avx2 %d\navx512 %d\n", s.m.bvh.avx2, s.m.bvh.avx512);
     for (int k = 0; k < N_KINDS; k++) {
         float_ray *rays = make_rays(&s.m, 1.0, SIDE);
         long kept = keep_kind(&s, rays, n, k);
@@ -186,9 +198,10 @@ static double counted(const char *prefix, const char *name)
 }
 
 /* Runs this program under callgrind into files prefix.N; reads the rays
- * of each kind into rays; false if it cannot. */
+ * of each kind into rays, and the walk's instructions into isa[2] (AVX2,
+ * AVX-512VL); false if it cannot. */
 static bool run_counts(const char *self, const char *prefix,
-                       long rays[N_KINDS])
+                       long rays[N_KINDS], long isa[2])
 {
     char command[8400], kind[32];
     snprintf(command, sizeof command,
@@ -198,10 +211,13 @@ static bool run_counts(const char *self, const char *prefix,
     FILE *child = popen(command, "r");
     long n;
     int got = 0;
-    while (child != NULL && fscanf(child, "%31s %ld", kind, &n) == 2)
+    while (child != NULL && fscanf(child, "%31s %ld", kind, &n) == 2) {
+        if (strcmp(kind, "avx2") == 0 || strcmp(kind, "avx512") == 0)
+            isa[kind[3] == '5'] = n;
         for (int k = 0; k < N_KINDS; k++)
             if (strcmp(kind, KINDS[k]) == 0)
                 rays[k] = n, got++;
+    }
     return child != NULL && pclose(child) == 0 && got == N_KINDS;
 }
 
@@ -239,13 +255,15 @@ static bool count_all(void)
     char prefix[2048];
     ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
     self[n > 0 ? n : 0] = '\0'; /* this program, for valgrind to run */
-    long rays[N_KINDS] = {0};
+    long rays[N_KINDS] = {0}, isa[2] = {0};
     if (n <= 0 || mkdtemp(dir) == NULL)
         return false;
     snprintf(prefix, sizeof prefix, "%s/callgrind.out", dir);
-    bool ran = run_counts(self, prefix, rays);
-    if (ran)
+    bool ran = run_counts(self, prefix, rays, isa);
+    if (ran) {
+        print_vector(isa[0], isa[1]);
         print_counts(prefix, rays);
+    }
     char command[2200];
     snprintf(command, sizeof command, "rm -rf '%s'", dir);
     if (system(command) != 0)
@@ -267,13 +285,11 @@ int main(int argc, char **argv)
     }
     bench_print_machine();
     bench_csv_header();
-    printf("vector,%s,0,0,bvh_vector_width\n",
-           bvh_walks_with_avx2() ? "AVX2 chosen at run time"
-                                 : "the build's own instructions");
 #ifdef HAVE_CALLGRIND
     if (count_all())
         return 0;
 #endif
+    print_vector(bvh_walks_with_avx2(), bvh_walks_with_avx512());
     printf("instructions,absent,0,0,absent\n");
     return 0;
 }

@@ -1,6 +1,7 @@
 /* ch11_wide.c: chapter 11's wide nodes: the same answers as brute force
  * and as chapter 8's kd-tree, bit for bit, at widths 4 and 8 (with AVX2
- * chosen at run time and without); vector and scalar node tests that
+ * or AVX-512VL chosen at run time, and without); the vector pushes as the
+ * plain one; vector and scalar node tests that
  * agree, and a fused test that never loses a box; octant orders and
  * pushes; wide nodes and their leaves' packets that hold their items;
  * the wide BVH's bytes. */
@@ -42,15 +43,18 @@ static rng_state rng;
 /* Each test draws the same numbers, whichever tests ran before it. */
 static void reseed(void) { rng = RNG_START; }
 
-/* m's BVH 4 and 8 wide, and 8 again with the walk kept from AVX2,
+/* m's BVH 4 wide (its walk AVX2's at most), 8 wide (AVX-512VL's where
+ * the processor has it), and 8 again with the walk kept from AVX2,
  * against brute force and the kd-tree. */
 static void expect_agreement(const mesh *m, int count, const char *what)
 {
     for (int run = 0; run < 3; run++) {
         bvh_allow_avx2(run < 2);
+        bvh_allow_avx512(run != 0);
         ch09_expect_agreement(m, count, what,
                               &(bvh_params){.width = run == 0 ? 4 : 8});
         bvh_allow_avx2(true);
+        bvh_allow_avx512(true);
     }
 }
 
@@ -272,6 +276,29 @@ END_TEST
 
 /* A push keeps exactly the lanes hit, in the octant's order, each with
  * its entry; the nearest ends on top. */
+/* The AVX2 and AVX-512VL pushes of n's children in mask, for octant o,
+ * where the processor has them: the same top and the same stack as the
+ * plain push's (stack, entry, top). */
+static void expect_vector_pushes_alike(const bvh_node8 *n, unsigned mask,
+                                       unsigned o, const uint32_t *stack,
+                                       const float *entry, int top)
+{
+    const float t_near[8] = {0, 1, 2, 3, 4, 5, 6, 7};
+    for (int isa = 0; isa < 2; isa++) {
+        if (!(isa == 0 ? bvh_walks_with_avx2() : bvh_walks_with_avx512()))
+            continue;
+        uint32_t s[16];
+        float e[16];
+        int got = isa == 0
+                      ? bvh_push8_avx2(s, e, 0, n, mask, t_near, 3 * o)
+                      : bvh_push8_avx512(s, e, 0, n, mask, t_near, 3 * o);
+        ck_assert_msg(got == top, "%s push of mask %#x: top %d, not %d",
+                      isa == 0 ? "AVX2" : "AVX-512", mask, got, top);
+        ck_assert(memcmp(s, stack, (size_t)top * sizeof *s) == 0);
+        ck_assert(memcmp(e, entry, (size_t)top * sizeof *e) == 0);
+    }
+}
+
 START_TEST(test_a_push_keeps_the_children_hit_in_the_octant_s_order)
 {
     box *b = ch09_random_boxes(&rng, 2000, (vec3){3, -2, 1}, 10, 0.5);
@@ -286,6 +313,7 @@ START_TEST(test_a_push_keeps_the_children_hit_in_the_octant_s_order)
             int top = bvh_push8(stack, entry, 0, n, mask, t_near, 3 * o);
             ck_assert_msg(top == __builtin_popcount(mask), "mask %#x pushed "
                           "%d children", mask, top);
+            expect_vector_pushes_alike(n, mask, o, stack, entry, top);
             for (int j = 0, at = 0; j < 8; j++) {
                 unsigned c = n->order[j] >> 3 * o & 7;
                 if (!(mask >> c & 1))

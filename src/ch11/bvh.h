@@ -56,6 +56,15 @@ bool bvh_walks_with_avx2(void);
  * instructions (for the tests, which compare the two). */
 void bvh_allow_avx2(bool allowed);
 
+/* Does the walk take AVX-512VL as well: the same eight lanes, with
+ * thirty-two vector registers and a compress? Where the walk has AVX2,
+ * the processor has AVX-512F, AVX-512VL and POPCNT, and
+ * bvh_allow_avx512 has not forbidden it. */
+bool bvh_walks_with_avx512(void);
+
+/* false: trees built from now on are walked with AVX2 at most. */
+void bvh_allow_avx512(bool allowed);
+
 /* <<bvh nodes>> ch09 */
 /* A node of the binary tree, and its box: lo x, y, z, then hi x, y, z,
  * in float, rounded outward. Interior node k (count 0) was split on
@@ -106,6 +115,7 @@ typedef struct bvh {
     /* <<more of a bvh>> ch11 */
     bvh_node8 *nodes8; /* width 4 or 8; node 0 is the root */
     bool avx2; /* walked with AVX2 (bvh_walks_with_avx2 when collapsed) */
+    bool avx512; /* and with AVX-512VL (bvh_walks_with_avx512) */
 } bvh;
 
 /* <<bvh building>> ch09 */
@@ -613,6 +623,41 @@ bvh_push8_avx2(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
     memcpy(stack + top, &kids, sizeof kids);
     memcpy(entry + top, &entries, sizeof entries);
     return top + (int)(set >> 24);
+#else
+    return bvh_push8(stack, entry, top, n, mask, t_near, shift);
+#endif
+}
+
+#if BVH_HAS_AVX2_PATH
+#define BVH_AVX512_TARGET                                                    \
+    __attribute__((target("avx2,fma,avx512f,avx512vl,popcnt")))
+#else
+#define BVH_AVX512_TARGET
+#endif
+
+/* bvh_push8 with AVX-512VL's compress: to be called only where
+ * bvh_walks_with_avx512() says yes. */
+BVH_AVX512_TARGET static inline int
+bvh_push8_avx512(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
+                 unsigned mask, const float t_near[8], unsigned shift)
+{
+#if BVH_HAS_AVX2_PATH
+    bvh_i8 order, child;
+    bvh_f8 t;
+    memcpy(&order, n->order, sizeof order);
+    memcpy(&child, n->child, sizeof child);
+    memcpy(&t, t_near, sizeof t);
+    order = order >> (int)shift & 7; /* the lane at each place */
+    bvh_i8 kept = ((bvh_i8){0} + (int)mask) >> order << 31; /* sign: hit */
+    unsigned char places = (unsigned char)__builtin_ia32_movmskps256(
+        (bvh_f8)kept);
+    bvh_i8 kids = __builtin_ia32_permvarsi256(child, order);
+    bvh_f8 entries = __builtin_ia32_permvarsf256(t, order);
+    kids = __builtin_ia32_compresssi256_mask(kids, (bvh_i8){0}, places);
+    entries = __builtin_ia32_compresssf256_mask(entries, (bvh_f8){0}, places);
+    memcpy(stack + top, &kids, sizeof kids);
+    memcpy(entry + top, &entries, sizeof entries);
+    return top + __builtin_popcount(places);
 #else
     return bvh_push8(stack, entry, top, n, mask, t_near, shift);
 #endif

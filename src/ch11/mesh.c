@@ -586,7 +586,7 @@ bool mesh_build_bvh(mesh *m, const bvh_params *p)
     if (!make_packets(m))
         return bvh_free(&m->bvh), false;
     /* <<the leaves of a mesh's BVH made>> += ch11 */
-    m->bvh_walk = m->bvh.width == 2 ? 0 : m->bvh.avx2 ? 4 : 2;
+    m->bvh_walk = m->bvh.width == 2 ? 0 : m->bvh.avx512 ? 6 : m->bvh.avx2 ? 4 : 2;
     return true;
 }
 
@@ -693,9 +693,9 @@ BVH_INLINE bool bvh_misses_box(const box *b, const mesh_ray *mr,
     return t_min > t_max;
 }
 
-/* The walk of m's wide BVH for mr, its nodes tested with AVX2 when avx2
- * (which the caller's instructions must allow), its leaves decided in
- * float when in_float; both constants where it is inlined. */
+/* The instructions a copy of the wide walk is compiled for. */
+typedef enum { BVH_PLAIN, BVH_AVX2, BVH_AVX512 } bvh_isa;
+
 /* The top of the stack into *now, skipping the children that start
  * beyond bound (the nearest hit); false when none is left. */
 BVH_INLINE bool bvh_pop(const uint32_t *stack, const float *entry, int *top,
@@ -710,10 +710,14 @@ BVH_INLINE bool bvh_pop(const uint32_t *stack, const float *entry, int *top,
     return true;
 }
 
+/* The walk of m's wide BVH for mr, its nodes tested with AVX2 unless isa
+ * is BVH_PLAIN (the caller's instructions must allow isa), its leaves
+ * decided in float when in_float; both constants where it is inlined. */
 BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
                            double t_max, triangle_hit *out,
-                           render_stats *stats, bool avx2, bool in_float)
+                           render_stats *stats, bvh_isa isa, bool in_float)
 {
+    bool avx2 = isa != BVH_PLAIN;
     bvh_ray r;  /* the plain walk's ray */
     bvh_ray8 v; /* AVX2's, in vectors */
     unsigned shift;
@@ -745,10 +749,13 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
             else if (hit != 0 && (hit & (hit - 1)) == 0) /* one: descend */
                 now = n->child[__builtin_ctz(hit)];
             else if (hit != 0) { /* more: push them, take the nearest */
-                top = avx2 ? bvh_push8_avx2(stack, entry, top, n, hit,
-                                            t_near, shift)
-                           : bvh_push8(stack, entry, top, n, hit, t_near,
-                                       shift);
+                top = isa == BVH_AVX512
+                          ? bvh_push8_avx512(stack, entry, top, n, hit,
+                                             t_near, shift)
+                      : avx2 ? bvh_push8_avx2(stack, entry, top, n, hit,
+                                              t_near, shift)
+                             : bvh_push8(stack, entry, top, n, hit, t_near,
+                                         shift);
                 now = stack[--top];
             }
         }
@@ -783,14 +790,29 @@ BVH_AVX2_TARGET __attribute__((flatten)) static int
 search_avx2_exact(const mesh *m, const mesh_ray *mr, double t_min,
                   double t_max, triangle_hit *out, render_stats *stats)
 {
-    return search_bvh8(m, mr, t_min, t_max, out, stats, true, false);
+    return search_bvh8(m, mr, t_min, t_max, out, stats, BVH_AVX2, false);
 }
 
 BVH_AVX2_TARGET __attribute__((flatten)) static int
 search_avx2_float(const mesh *m, const mesh_ray *mr, double t_min,
                   double t_max, triangle_hit *out, render_stats *stats)
 {
-    return search_bvh8(m, mr, t_min, t_max, out, stats, true, true);
+    return search_bvh8(m, mr, t_min, t_max, out, stats, BVH_AVX2, true);
+}
+
+/* The same walk compiled for AVX-512VL: thirty-two vector registers. */
+BVH_AVX512_TARGET __attribute__((flatten)) static int
+search_avx512_exact(const mesh *m, const mesh_ray *mr, double t_min,
+                    double t_max, triangle_hit *out, render_stats *stats)
+{
+    return search_bvh8(m, mr, t_min, t_max, out, stats, BVH_AVX512, false);
+}
+
+BVH_AVX512_TARGET __attribute__((flatten)) static int
+search_avx512_float(const mesh *m, const mesh_ray *mr, double t_min,
+                    double t_max, triangle_hit *out, render_stats *stats)
+{
+    return search_bvh8(m, mr, t_min, t_max, out, stats, BVH_AVX512, true);
 }
 
 /* The wide walk compiled for the build's own instructions. */
@@ -798,14 +820,14 @@ static int search_plain_exact(const mesh *m, const mesh_ray *mr,
                               double t_min, double t_max, triangle_hit *out,
                               render_stats *stats)
 {
-    return search_bvh8(m, mr, t_min, t_max, out, stats, false, false);
+    return search_bvh8(m, mr, t_min, t_max, out, stats, BVH_PLAIN, false);
 }
 
 static int search_plain_float(const mesh *m, const mesh_ray *mr,
                               double t_min, double t_max, triangle_hit *out,
                               render_stats *stats)
 {
-    return search_bvh8(m, mr, t_min, t_max, out, stats, false, true);
+    return search_bvh8(m, mr, t_min, t_max, out, stats, BVH_PLAIN, true);
 }
 
 typedef int (*bvh_search)(const mesh *m, const mesh_ray *mr, double t_min,
@@ -814,9 +836,10 @@ typedef int (*bvh_search)(const mesh *m, const mesh_ray *mr, double t_min,
 
 /* By m->bvh_walk, then 1 more for the float path (0 and 1: the binary
  * walk, which mesh_search_bvh calls without the table). */
-static const bvh_search searches[6] = {
-    search_bvh2,        search_bvh2,        search_plain_exact,
-    search_plain_float, search_avx2_exact,  search_avx2_float};
+static const bvh_search searches[8] = {
+    search_bvh2,       search_bvh2,         search_plain_exact,
+    search_plain_float, search_avx2_exact,  search_avx2_float,
+    search_avx512_exact, search_avx512_float};
 
 int mesh_search_bvh(const mesh *m, const mesh_ray *mr, double t_min,
                     double t_max, triangle_hit *out, render_stats *stats)

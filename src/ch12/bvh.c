@@ -642,6 +642,7 @@ static bool make_wide(bvh *t)
     free(binary);
     shrink_wide(t);
     t->avx2 = bvh_walks_with_avx2();
+    t->avx512 = t->avx2 && bvh_walks_with_avx512();
     return true;
 }
 
@@ -662,6 +663,26 @@ bool bvh_walks_with_avx2(void)
 void bvh_allow_avx2(bool allowed)
 {
     atomic_store(&avx2_forbidden, !allowed);
+}
+
+/* Set by bvh_allow_avx512 (the tests). */
+static atomic_bool avx512_forbidden;
+
+bool bvh_walks_with_avx512(void)
+{
+#if BVH_HAS_AVX2_PATH
+    return bvh_walks_with_avx2() && __builtin_cpu_supports("avx512f") &&
+           __builtin_cpu_supports("avx512vl") &&
+           __builtin_cpu_supports("popcnt") &&
+           !atomic_load(&avx512_forbidden);
+#else
+    return false;
+#endif
+}
+
+void bvh_allow_avx512(bool allowed)
+{
+    atomic_store(&avx512_forbidden, !allowed);
 }
 
 uint32_t bvh_set_lanes[256];
@@ -689,6 +710,8 @@ __attribute__((constructor)) static void fill_set_lanes(void)
 
 const char *bvh_vector_width_name(const bvh *t)
 {
+    if (t->width != 2 && t->avx512)
+        return "AVX-512VL chosen at run time";
     if (t->width != 2 && t->avx2)
         return "AVX2 chosen at run time";
 #if defined(RT_SCALAR)

@@ -53,7 +53,7 @@ typedef struct {
     int bvh_packet_count;
     bool bvh_in_float; /* its leaves decided in float alone (bvh-float) */
     /* <<mesh members>> += ch11 */
-    unsigned char bvh_walk; /* its walk: 0 binary, 2 plain, 4 AVX2 */
+    unsigned char bvh_walk; /* its walk: 0 binary, 2 plain, 4 AVX2, 6 AVX-512 */
     /* <<mesh members>> += ch12 */
     int parts; /* of chapter 12's reader; 0: chapter 4's read it */
     double file_seconds, arrays_seconds; /* its reading on one thread */
