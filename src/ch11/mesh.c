@@ -659,29 +659,44 @@ static int search_bvh2(const mesh *m, const mesh_ray *mr, double t_min,
 }
 
 /* <<the walks of other trees>> ch11 */
-/* Chapter 4's box_clip of b, inline, its branches one at the end: does
- * mr miss b in [t_min, t_max]? The same roundings, the same answer. */
+#if defined(__SSE2__) && !defined(RT_SCALAR)
+typedef double bvh_d2 __attribute__((vector_size(16), aligned(8)));
+
+/* Lane 0 of the entry (near) and exit (far) of the slabs of one or two
+ * axes, the exit widened: chapter 4's swap, with no branch. minpd(x, y)
+ * is x < y ? x : y, and y for a NaN; maxpd(x, y) is x > y ? x : y. */
+#define bvh_slabs2(lo, hi, near, far, widen)                                 \
+    (near = __builtin_ia32_minpd(hi, lo),                                    \
+     far = __builtin_ia32_maxpd(lo, hi) * (widen))
+#endif
+
+/* Chapter 4's box_clip of b, inline, with no branch but its answer:
+ * does mr miss b in [t_min, t_max]? The same roundings, the same answer. */
 BVH_INLINE bool bvh_misses_box(const box *b, const mesh_ray *mr,
                                double t_min, double t_max)
 {
     const double widen = 1 + 2 * (3 * (DBL_EPSILON / 2) /
                                   (1 - 3 * (DBL_EPSILON / 2)));
-    int a = 0;
 #if defined(__SSE2__) && !defined(RT_SCALAR) /* x and y in two lanes */
-    typedef double d2 __attribute__((vector_size(16), aligned(8)));
-    d2 o = *(const d2 *)&mr->r.origin.x, q = *(const d2 *)&mr->inv_dir.x;
-    d2 lo = (*(const d2 *)&b->lo.x - o) * q;
-    d2 hi = (*(const d2 *)&b->hi.x - o) * q;
-    /* minpd(x, y) is x < y ? x : y, and y for a NaN: box_clip's swap */
-    d2 near = __builtin_ia32_minpd(hi, lo);
-    d2 far = __builtin_ia32_maxpd(lo, hi) * widen;
-    for (; a < 2; a++) {
-        t_min = near[a] > t_min ? near[a] : t_min;
-        t_max = far[a] < t_max ? far[a] : t_max;
-    }
-#endif
-#pragma GCC unroll 3
-    for (; a < 3; a++) {
+    bvh_d2 o = *(const bvh_d2 *)&mr->r.origin.x;
+    bvh_d2 q = *(const bvh_d2 *)&mr->inv_dir.x;
+    bvh_d2 oz = {mr->r.origin.z, 0}, qz = {mr->inv_dir.z, 0};
+    bvh_d2 near, far, near_z, far_z;
+    bvh_slabs2((*(const bvh_d2 *)&b->lo.x - o) * q,
+               (*(const bvh_d2 *)&b->hi.x - o) * q, near, far, widen);
+    bvh_slabs2(((bvh_d2){b->lo.z, 0} - oz) * qz,
+               ((bvh_d2){b->hi.z, 0} - oz) * qz, near_z, far_z, widen);
+    /* maxsd(x, y) is x > y ? x : y in lane 0, y for a NaN: x, y, z */
+    bvh_d2 t0 = {t_min, t_min}, t1 = {t_max, t_max};
+    t0 = __builtin_ia32_maxsd(near, t0), t1 = __builtin_ia32_minsd(far, t1);
+    near = __builtin_shufflevector(near, near, 1, 1); /* y in lane 0 */
+    far = __builtin_shufflevector(far, far, 1, 1);
+    t0 = __builtin_ia32_maxsd(near, t0), t1 = __builtin_ia32_minsd(far, t1);
+    t0 = __builtin_ia32_maxsd(near_z, t0);
+    t1 = __builtin_ia32_minsd(far_z, t1);
+    return t0[0] > t1[0];
+#else
+    for (int a = 0; a < 3; a++) {
         double o = vec3_axis(mr->r.origin, a), q = vec3_axis(mr->inv_dir, a);
         double lo = (vec3_axis(b->lo, a) - o) * q;
         double hi = (vec3_axis(b->hi, a) - o) * q;
@@ -691,6 +706,7 @@ BVH_INLINE bool bvh_misses_box(const box *b, const mesh_ray *mr,
         t_max = far < t_max ? far : t_max;
     }
     return t_min > t_max;
+#endif
 }
 
 /* The instructions a copy of the wide walk is compiled for. */
