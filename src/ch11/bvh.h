@@ -287,7 +287,7 @@ typedef struct {
     bvh_f8 o_near[3], o_far[3], inv[3];
     bvh_f8 zero_near[3], zero_far[3]; /* AVX2's: -o / d, down and up */
     int near[3], far[3];
-    const int32_t *rows; /* AVX2's: near[a], far[a] as byte offsets */
+    int32_t rows[6]; /* AVX2's: near[a], far[a] as byte offsets */
     float t_min;
 } bvh_ray8;
 
@@ -430,7 +430,7 @@ BVH_INLINE void bvh_ray8_fused(bvh_ray8 *v, const bvh_ray *r)
     unsigned octant = 0;
     for (int a = 0; a < 3; a++)
         octant |= (unsigned)(r->near[a] != 2 * a) << a;
-    v->rows = bvh_octant_rows[octant];
+    memcpy(v->rows, bvh_octant_rows[octant], sizeof v->rows);
     for (int a = 0; a < 3; a++) {
         float p_near = -r->o_near[a] * r->inv[a];
         float p_far = -r->o_far[a] * r->inv[a];
@@ -586,7 +586,7 @@ bvh_ray8_setup_avx2(vec3 origin, vec3 inv, double t_min, double t_max,
     v->inv[0] = bvh_lane8(q_f, 0);
     v->inv[1] = bvh_lane8(q_f, 1);
     v->inv[2] = bvh_lane8(q_f, 2);
-    v->rows = bvh_octant_rows[octant & 7];
+    memcpy(v->rows, bvh_octant_rows[octant & 7], sizeof v->rows);
     v->t_min = bvh_float_down(t_min);
     *ray_bound = bvh_float_up(t_max * (1 + BVH_SLACK));
     *shift = 3 * (octant & 7);
