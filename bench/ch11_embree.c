@@ -28,9 +28,14 @@
  *   bvh2|4|8     the BVH, binary, 4 and 8 wide, with leaves of packets;
  *   bvh4-noavx2, bvh8-noavx2  the 4- and 8-wide BVHs with the walk kept
  *                from AVX2 (bvh_allow_avx2(false) when built): the
- *                build's own instructions; timed only in the widths'
- *                group: bvh4, bvh8 and these two alone, on the bunny and
- *                the teapot at K = 1, as MESH-1.0-widths;
+ *                build's own instructions;
+ *   bvh8-avx2    the 8-wide BVH with the walk kept to AVX2
+ *                (bvh_allow_avx512(false)): where the processor has
+ *                AVX-512VL, the walk without its registers and compress;
+ *   fast-avx2    the float path (fast, below) kept to AVX2 likewise;
+ *                these four timed only in the widths' group: bvh4, bvh8,
+ *                fast and these alone, on the bunny and the teapot at
+ *                K = 1, as MESH-1.0-widths;
  *   embree       rtcIntersect1 (Embree's BVH, RTC_BUILD_QUALITY_HIGH, its
  *                spatial-split builder, a device with threads=1; the
  *                scene without RTC_SCENE_FLAG_ROBUST, as Embree's
@@ -102,25 +107,28 @@ typedef struct {
     bool medium; /* Embree: its default build, MEDIUM, not HIGH */
     bool in_float; /* the BVH's leaves decided in float alone */
     bool no_avx2;  /* the walk kept from AVX2 (bvh_allow_avx2(false)) */
+    bool no_avx512; /* the walk kept to AVX2 (bvh_allow_avx512(false)) */
 } method;
 
 static const method METHODS[] = {
-    {"kdtree-ch08", KDTREE_CH08, 0, false, false, false, false},
-    {"kdtree", KDTREE, 0, false, false, false, false},
-    {"bvh4-double", BVH_DOUBLE, 4, false, false, false, false},
-    {"bvh4-double-mesh", BVH_DOUBLE_MESH, 4, false, false, false, false},
-    {"bvh2", BVH, 2, false, false, false, false},
-    {"bvh4", BVH, 4, false, false, false, false},
-    {"bvh8", BVH, 8, false, false, false, false},
-    {"bvh4-noavx2", BVH, 4, false, false, false, true},
-    {"bvh8-noavx2", BVH, 8, false, false, false, true},
-    {"fast", BVH, 0, false, false, true, false},
-    {"embree", EMBREE, 0, false, false, false, false},
-    {"embree-medium", EMBREE, 0, false, true, false, false},
-    {"kdtree-any", KDTREE, 0, true, false, false, false},
-    {"bvh-any", BVH, 0, true, false, false, false},
-    {"fast-any", BVH, 0, true, false, true, false},
-    {"embree-any", EMBREE, 0, true, false, false, false},
+    {"kdtree-ch08", KDTREE_CH08, 0, false, false, false, false, false},
+    {"kdtree", KDTREE, 0, false, false, false, false, false},
+    {"bvh4-double", BVH_DOUBLE, 4, false, false, false, false, false},
+    {"bvh4-double-mesh", BVH_DOUBLE_MESH, 4, false, false, false, false, false},
+    {"bvh2", BVH, 2, false, false, false, false, false},
+    {"bvh4", BVH, 4, false, false, false, false, false},
+    {"bvh8", BVH, 8, false, false, false, false, false},
+    {"bvh4-noavx2", BVH, 4, false, false, false, true, false},
+    {"bvh8-noavx2", BVH, 8, false, false, false, true, false},
+    {"bvh8-avx2", BVH, 8, false, false, false, false, true},
+    {"fast", BVH, 0, false, false, true, false, false},
+    {"fast-avx2", BVH, 0, false, false, true, false, true},
+    {"embree", EMBREE, 0, false, false, false, false, false},
+    {"embree-medium", EMBREE, 0, false, true, false, false, false},
+    {"kdtree-any", KDTREE, 0, true, false, false, false, false},
+    {"bvh-any", BVH, 0, true, false, false, false, false},
+    {"fast-any", BVH, 0, true, false, true, false, false},
+    {"embree-any", EMBREE, 0, true, false, false, false, false},
 };
 enum { N_METHODS = sizeof METHODS / sizeof METHODS[0] };
 
@@ -134,7 +142,7 @@ static int width_of(const method *how)
 static bool is_default(const method *how)
 {
     return how->kind == BVH && !how->any && !how->in_float && !how->no_avx2 &&
-           width_of(how) == bvh_default_params().width;
+           !how->no_avx512 && width_of(how) == bvh_default_params().width;
 }
 
 /* A mesh and everything built over it: its kd-tree (in m), a copy of it
@@ -144,6 +152,8 @@ typedef struct {
     mesh m;
     mesh bvh_of_width[9]; /* [2], [4], [8] */
     mesh bvh_no_avx2_of_width[9]; /* [4], [8]: walked with the build's own lanes */
+    mesh bvh_avx2_only;   /* 8 wide, walked with AVX2 at most */
+    mesh bvh_avx2_float;  /* the same, decided in float */
     mesh bvh_float;       /* the default width's, decided in float */
     mesh bvh_double;      /* 4 wide, leaves of doubles: see double_leaves */
     triangle_corners *corners; /* bvh_double's, lane by lane */
@@ -327,8 +337,10 @@ static double embree_ray(const trace_ctx *c, long k, struct RTCIntersectContext 
 static double our_ray(const trace_ctx *c, long k, render_stats *stats, int *triangle)
 {
     const mesh *m = c->how->kind != BVH ? &c->s->m
-                    : c->how->in_float  ? &c->s->bvh_float
+                    : c->how->in_float  ? (c->how->no_avx512 ? &c->s->bvh_avx2_float
+                                                             : &c->s->bvh_float)
                     : c->how->no_avx2   ? &c->s->bvh_no_avx2_of_width[width_of(c->how)]
+                    : c->how->no_avx512 ? &c->s->bvh_avx2_only
                                         : &c->s->bvh_of_width[width_of(c->how)];
     if (triangle != NULL)
         *triangle = -1;
@@ -432,21 +444,23 @@ static bool is_chosen(const method *how)
 }
 
 /* The methods of the widths' own group: the exact BVH 4 and 8 wide, with
- * AVX2 and kept from it, timed apart from the rest (a close comparison). */
+ * the widest instructions and kept from them, and the float path with and
+ * without AVX-512VL, timed apart from the rest (a close comparison). */
 static bool in_widths(const method *how)
 {
-    return how->kind == BVH && !how->any && !how->in_float && how->width >= 4;
+    return how->kind == BVH && !how->any && (how->in_float || how->width >= 4);
 }
 
 static bool is_used(const subject *s, const method *how, bool widths)
 {
     if (!is_chosen(how))
         return false;
-    if (widths || how->no_avx2)
+    if (widths || how->no_avx2 || how->no_avx512)
         return widths && in_widths(how);
     return !s->few_methods || how->kind == EMBREE ||
            (how->kind == KDTREE && !how->any) ||
-           (how->kind == BVH && !how->no_avx2 && width_of(how) == bvh_default_params().width);
+           (how->kind == BVH && !how->no_avx2 && !how->no_avx512 &&
+            width_of(how) == bvh_default_params().width);
 }
 
 /* Where method j's answers are not the exact ones (the kd-tree's, kd): a
@@ -690,6 +704,16 @@ static void prepare(subject *s, RTCDevice device)
         if (!built)
             exit(1);
     }
+    s->bvh_avx2_only = s->m;
+    s->bvh_avx2_only.tree = (kdtree){0}, s->bvh_avx2_only.leaf_corners = NULL;
+    bvh_params bp8 = {.width = 8};
+    bvh_allow_avx512(false); /* AVX2 at most, where the processor has more */
+    bool built = mesh_build_bvh(&s->bvh_avx2_only, &bp8);
+    bvh_allow_avx512(true);
+    if (!built)
+        exit(1);
+    s->bvh_avx2_float = s->bvh_avx2_only; /* shares its tree */
+    s->bvh_avx2_float.bvh_in_float = true;
     s->bvh_float = s->bvh_of_width[bvh_default_params().width]; /* shared */
     s->bvh_float.bvh_in_float = true;
     double_leaves(s);
@@ -706,6 +730,7 @@ static void release(subject *s)
     mesh_free_tree(&s->bvh_double);
     for (int w = 4; w <= 8; w *= 2)
         mesh_free_tree(&s->bvh_no_avx2_of_width[w]);
+    mesh_free_tree(&s->bvh_avx2_only);
     free(s->corners), free(s->lane_items);
     rtcReleaseScene(s->scene), rtcReleaseScene(s->scene_medium);
     mesh_free(&s->m);
