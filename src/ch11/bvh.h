@@ -600,6 +600,21 @@ bvh_ray8_setup_avx2(vec3 origin, vec3 inv, double t_min, double t_max,
  * each from bit 0, and their count in bits 24-27 (bvh.c fills it). */
 extern uint32_t bvh_set_lanes[256];
 
+#if BVH_HAS_AVX2_PATH
+/* The lane at each place of n's order for the octant (shift), farthest
+ * first, in *order; the places whose lanes are in mask, place k in bit k.
+ * To be called only where bvh_walks_with_avx2() says yes. */
+BVH_AVX2_TARGET static inline unsigned
+bvh_places_hit(const bvh_node8 *n, unsigned mask, unsigned shift,
+               bvh_i8 *order)
+{
+    memcpy(order, n->order, sizeof *order);
+    *order = *order >> (int)shift & 7;
+    bvh_i8 kept = ((bvh_i8){0} + (int)mask) >> *order << 31; /* sign: hit */
+    return (unsigned)__builtin_ia32_movmskps256((bvh_f8)kept);
+}
+#endif
+
 /* bvh_push8 in AVX2's lanes, with no loop: to be called only where
  * bvh_walks_with_avx2() says yes. */
 BVH_AVX2_TARGET static inline int
@@ -610,12 +625,9 @@ bvh_push8_avx2(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
     const bvh_i8 thirds = {0, 3, 6, 9, 12, 15, 18, 21};
     bvh_i8 order, child;
     bvh_f8 t;
-    memcpy(&order, n->order, sizeof order);
     memcpy(&child, n->child, sizeof child);
     memcpy(&t, t_near, sizeof t);
-    order = order >> (int)shift & 7; /* the lane at each place */
-    bvh_i8 kept = ((bvh_i8){0} + (int)mask) >> order << 31; /* sign: hit */
-    uint32_t set = bvh_set_lanes[__builtin_ia32_movmskps256((bvh_f8)kept)];
+    uint32_t set = bvh_set_lanes[bvh_places_hit(n, mask, shift, &order)];
     bvh_i8 places = ((bvh_i8){0} + (int)set) >> thirds & 7;
     bvh_i8 lanes = __builtin_ia32_permvarsi256(order, places);
     bvh_i8 kids = __builtin_ia32_permvarsi256(child, lanes);
@@ -644,13 +656,10 @@ bvh_push8_avx512(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
 #if BVH_HAS_AVX2_PATH
     bvh_i8 order, child;
     bvh_f8 t;
-    memcpy(&order, n->order, sizeof order);
     memcpy(&child, n->child, sizeof child);
     memcpy(&t, t_near, sizeof t);
-    order = order >> (int)shift & 7; /* the lane at each place */
-    bvh_i8 kept = ((bvh_i8){0} + (int)mask) >> order << 31; /* sign: hit */
-    unsigned char places = (unsigned char)__builtin_ia32_movmskps256(
-        (bvh_f8)kept);
+    unsigned char places =
+        (unsigned char)bvh_places_hit(n, mask, shift, &order);
     bvh_i8 kids = __builtin_ia32_permvarsi256(child, order);
     bvh_f8 entries = __builtin_ia32_permvarsf256(t, order);
     kids = __builtin_ia32_compresssi256_mask(kids, (bvh_i8){0}, places);
