@@ -74,6 +74,7 @@ check() {
         hooks = col[2]; gsub(/\([^)]*\)/, "", hooks)
         row_file[nrow] = col[3]; row_left[nrow] = trim(col[4])
         row_filled[nrow] = col[5]
+        gsub(/\([^)]*\)/, "", row_filled[nrow]) # what a chapter adds: words
         nh = split(hooks, hs, ",")
         row_count[nrow] = 0
         for (k = 1; k <= nh; k++) {
