@@ -680,38 +680,34 @@ static void double_leaves(subject *s)
     }
 }
 
+/* The walks a tree may take: every one, AVX2 at most, the build's own. */
+typedef enum { WALK_WIDEST, WALK_AVX2, WALK_PLAIN } walk_limit;
+
+/* *copy: m with a BVH of width w of its own, its walk chosen (when the
+ * tree is built) within limit; exits when it cannot be built. */
+static void bvh_copy(const mesh *m, mesh *copy, int w, walk_limit limit)
+{
+    *copy = *m;
+    copy->tree = (kdtree){0}, copy->leaf_corners = NULL;
+    bvh_params bp = {.width = w}; /* zeros: the mesh's defaults */
+    bvh_allow_avx2(limit != WALK_PLAIN);
+    bvh_allow_avx512(limit == WALK_WIDEST);
+    bool built = mesh_build_bvh(copy, &bp);
+    bvh_allow_avx2(true), bvh_allow_avx512(true);
+    if (!built)
+        exit(1);
+}
+
 static void prepare(subject *s, RTCDevice device)
 {
     kdtree_params kp = kdtree_default_params();
     if (!mesh_build_tree(&s->m, &kp))
         exit(1);
-    for (int w = 2; w <= 8; w *= 2) {
-        mesh *copy = &s->bvh_of_width[w];
-        *copy = s->m;
-        copy->tree = (kdtree){0}, copy->leaf_corners = NULL;
-        bvh_params bp = {.width = w}; /* zeros: the mesh's defaults */
-        if (!mesh_build_bvh(copy, &bp))
-            exit(1);
-    }
-    for (int w = 4; w <= 8; w *= 2) {
-        mesh *copy = &s->bvh_no_avx2_of_width[w];
-        *copy = s->m;
-        copy->tree = (kdtree){0}, copy->leaf_corners = NULL;
-        bvh_params bp = {.width = w};
-        bvh_allow_avx2(false); /* the walk is chosen when the tree is built */
-        bool built = mesh_build_bvh(copy, &bp);
-        bvh_allow_avx2(true);
-        if (!built)
-            exit(1);
-    }
-    s->bvh_avx2_only = s->m;
-    s->bvh_avx2_only.tree = (kdtree){0}, s->bvh_avx2_only.leaf_corners = NULL;
-    bvh_params bp8 = {.width = 8};
-    bvh_allow_avx512(false); /* AVX2 at most, where the processor has more */
-    bool built = mesh_build_bvh(&s->bvh_avx2_only, &bp8);
-    bvh_allow_avx512(true);
-    if (!built)
-        exit(1);
+    for (int w = 2; w <= 8; w *= 2)
+        bvh_copy(&s->m, &s->bvh_of_width[w], w, WALK_WIDEST);
+    for (int w = 4; w <= 8; w *= 2)
+        bvh_copy(&s->m, &s->bvh_no_avx2_of_width[w], w, WALK_PLAIN);
+    bvh_copy(&s->m, &s->bvh_avx2_only, 8, WALK_AVX2);
     s->bvh_avx2_float = s->bvh_avx2_only; /* shares its tree */
     s->bvh_avx2_float.bvh_in_float = true;
     s->bvh_float = s->bvh_of_width[bvh_default_params().width]; /* shared */
