@@ -740,11 +740,15 @@ check-handout: $(BC)/.forms
 # The PDF is headless Chromium's print with the stylesheet's print rules
 # (tools/editions/pdf.sh, which installs Chromium as root), the EPUB pandoc's,
 # MathML kept, its links and SVG figures made valid EPUB (tools/editions/epub.sh).
-# make test checks the book's: every chapter starts a page of the PDF (where
+# make check-editions checks the book's: every chapter starts a page of the PDF (where
 # Chromium and pdftotext are installed), the EPUB is a whole zip whose
 # navigation lists every chapter, and epubcheck finds no error in it
 # (where epubcheck is installed: make installs it).
-.PHONY: pdf epub check-pdf check-epub
+# They are checked apart from make test, by make check-editions, which CI
+# runs beside it: printing the PDF and making and checking the EPUB take
+# a tenth of make test's processor time, and a chapter rarely breaks them.
+.PHONY: pdf epub check-pdf check-epub check-editions
+check-editions: check-epub check-pdf
 pdf: build/book.pdf build/handout/book.pdf build/handout.tar.gz
 epub: build/book.epub build/handout/book.epub build/handout.tar.gz
 
@@ -1150,7 +1154,7 @@ PROGRAM_TESTS := test-tangle $(foreach n,$(NUMS),test-ch$(n)) \
                  check-lines check-commands
 BOOK_TESTS := benches check-src check-charts check-book check-map check-stray \
               check-allocations check-test-width check-quotes check-workbook \
-              check-handout check-handout-page check-epub check-pdf check-page check-build-speed \
+              check-handout check-handout-page check-page check-build-speed \
               check-brackets check-weave-errors check-reuse
 ifeq ($(HANDOUT),)
 test: deps $(PROGRAM_TESTS) $(if $(SAN),,$(BOOK_TESTS))

@@ -6,6 +6,8 @@
 #
 #   make               a fresh clone, everything built
 #   make test          after that make, every check
+#   make check-editions  after that, the PDF and the EPUB made and checked
+#                      (CI runs it beside make test; it has no target)
 #   make test-ch04     a fresh clone of its own, one chapter's suites
 #   make grade-ch02    after a graded workbook, exercise 2.1's chunk edited
 #   make grade-ch08    the same, exercise 8.1's chunk edited
@@ -74,6 +76,7 @@ while [ "$k" -lt "$runs" ]; do
   d=$(clone build) || exit 1
   timed "make" "$d" make
   timed "make test" "$d" make test
+  timed "make check-editions, after make test" "$d" make check-editions
   d=$(clone chapter) || exit 1
   timed "make test-ch04, fresh clone" "$d" make test-ch04
   # A solved workbook, graded once; then one chunk edited and graded again.
@@ -119,6 +122,7 @@ load=$(cut -d ' ' -f 1 /proc/loadavg 2>/dev/null || echo "?")
       target["make grade-ch08, one chunk edited"] = "5"
       target["make grade-ch13, one chunk edited"] = "10"
       target[".ci/run, fresh clone"] = "420"
+      target["make check-editions, after make test"] = "none"
       for (i = 1; i <= n; i++) {
         s = order[i]; m = split(substr(step[s], 2), v, " ")
         failed = 0
