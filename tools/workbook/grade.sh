@@ -383,12 +383,15 @@ run_threads_sanitized() {
     rm -rf "$work/tsan"
     mkdir -p "$work/tsan"
     # one test a core at a time (several wait on clocks or on each other's
-    # threads); each writes its own files, read in order below
+    # threads); each writes its own files, read in order below. A test
+    # stops at its first report (halt_on_error): once a race is seen, every
+    # access after it is checked against the reports made, which can take
+    # seconds of a core; one report lays the race on its exercise
     TSAN_DIR=$work/tsan TSAN_RUNNER=$WB_BUILD/tsan/test/ch$target \
     TSAN_PROGRAM=$WB_BUILD/bin/ch$target \
     TSAN_MULTIPLIER=$(awk -v m="$multiplier" 'BEGIN { print 4 * m }') \
     xargs -P "$cores" -n 1 sh -c '
-        TSAN_OPTIONS="exitcode=66 report_signal_unsafe=0 log_path=$TSAN_DIR/$0" \
+        TSAN_OPTIONS="exitcode=66 halt_on_error=1 report_signal_unsafe=0 log_path=$TSAN_DIR/$0" \
         RUNNER_ONLY=$0 CK_FORK=yes CK_VERBOSITY=verbose \
         CK_DEFAULT_TIMEOUT=10 CK_TIMEOUT_MULTIPLIER=$TSAN_MULTIPLIER \
         CHAPTER_BIN=$TSAN_PROGRAM \
