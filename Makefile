@@ -740,13 +740,12 @@ check-handout: $(BC)/.forms
 # The PDF is headless Chromium's print with the stylesheet's print rules
 # (tools/editions/pdf.sh, which installs Chromium as root), the EPUB pandoc's,
 # MathML kept, its links and SVG figures made valid EPUB (tools/editions/epub.sh).
-# make check-editions checks the book's: every chapter starts a page of the PDF (where
-# Chromium and pdftotext are installed), the EPUB is a whole zip whose
-# navigation lists every chapter, and epubcheck finds no error in it
-# (where epubcheck is installed: make installs it).
-# They are checked apart from make test, by make check-editions, which CI
-# runs beside it: printing the PDF and making and checking the EPUB take
-# a tenth of make test's processor time, and a chapter rarely breaks them.
+# make check-editions checks the book's: every chapter starts a page of the
+# PDF (where Chromium and pdftotext are installed), the EPUB is a whole zip
+# whose navigation lists every chapter, and epubcheck finds no error in it
+# (where epubcheck is installed: make installs it). It is not in make test,
+# whose processor time printing and checking them would grow by a tenth;
+# CI runs it beside make test.
 .PHONY: pdf epub check-pdf check-epub check-editions
 check-editions: check-epub check-pdf
 pdf: build/book.pdf build/handout/book.pdf build/handout.tar.gz
