@@ -50,7 +50,10 @@
 #      which its own test sees;
 #   fragment_waits: the report alone, on a made-up grade: in a handout, a
 #      test that a fragment not started names (its stub stands in) waits
-#      for it, and fails the exercise it was laid on without it.
+#      for it, and fails the exercise it was laid on without it; a test
+#      that only the fragment names, laid on a started exercise, waits too,
+#      and that exercise is done; so does a test that fails with none of
+#      the reader's exercises started (the grader's stubs_fail).
 # Prints what went wrong in each failed check and exits 1.
 set -u
 MAKE=${MAKE:-make}
@@ -357,6 +360,38 @@ check_fragment_waits() {
         9.1:*"waiting for 9.1 (not started): test_b"*) ;;
         :*"failing: test_b: 3 rays differ"*) ;;
         *) fail "9.2 with stubbed='$stubbed' should $([ -n "$stubbed" ] && echo wait for 9.1 || echo fail on test_b)" ;;
+        esac
+    done
+    # a test that only the fragment names, laid on 9.2 (whose build
+    # without the book's code had the stub too): it waits, and 9.2 is done
+    printf 'tests/x.c:1:P:c:test_c:0: Passed\ntests/x.c:2:P:c:test_b:0: Passed\ntests/x.c:3:F:c:test_a:0: 2 rays differ\n' > "$t/log"
+    printf '9.2\ttest_a:0\n' > "$t/laid"
+    for stubbed in "9.1" ""; do
+        awk -v built=yes -v bad_files="$t/empty" -v laid="$t/laid" \
+            -v chapter=9 -v stubbed="$stubbed" \
+            -f tools/workbook/grade_report.awk "$t/list" "$t/state" "$t/log" \
+            > "$t/out" 2>&1
+        case "$stubbed:$(grep '^  9.2 ' "$t/out"):$(grep -c '^Waiting for' "$t/out")" in
+        9.1:*" done:1") ;;
+        :*"failing: test_a: 2 rays differ"*":0") ;;
+        *) fail "9.2 with test_a laid on it and stubbed='$stubbed' should $([ -n "$stubbed" ] && echo be done, test_a waiting for 9.1 || echo fail on test_a)" ;;
+        esac
+    done
+    # a test that no exercise names, failing with none of the reader's
+    # (the grader's stubs_fail): it waits for the fragments not started
+    printf 'tests/x.c:1:P:c:test_c:0: Passed\ntests/x.c:2:P:c:test_b:0: Passed\ntests/x.c:3:F:c:test_d:0: 5 rays differ\n' > "$t/log"
+    : > "$t/laid"
+    printf 'test_d:0\n' > "$t/stubs-fail"
+    for listed in "$t/stubs-fail" "$t/empty"; do
+        awk -v built=yes -v bad_files="$t/empty" -v laid="$t/laid" \
+            -v chapter=9 -v stubbed=9.1 -v stubs_fail="$listed" \
+            -v fragments_waiting="9.1 " \
+            -f tools/workbook/grade_report.awk "$t/list" "$t/state" "$t/log" \
+            > "$t/out" 2>&1
+        case "$listed:$(grep '^  9.2 ' "$t/out"):$(grep -c '^Waiting for' "$t/out"):$(grep -c '^Failing, and laid on no one' "$t/out")" in
+        *stubs-fail:*" done:1:0") ;;
+        *empty:*" done:0:1") ;;
+        *) fail "test_d, failing with no exercise of the reader's, should $([ "$listed" = "$t/empty" ] && echo be laid on no one || echo wait for 9.1)" ;;
         esac
     done
 }

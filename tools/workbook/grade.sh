@@ -81,8 +81,9 @@ warned=$work/warned.tsv      # ID MESSAGE: the compiler's warning
 races=$work/races.tsv        # ID MESSAGE: ThreadSanitizer's report
 laid=$work/laid.tsv          # ID TEST: fails with ID alone started
 cleared=$work/cleared.tsv    # ID TEST: passes with ID alone started
+stubs_fail=$work/stubs-fail  # TEST: fails with none of the reader's started
 for f in "$state" "$bad_files" "$lost" "$warned" "$races" "$laid" \
-         "$cleared"; do
+         "$cleared" "$stubs_fail"; do
     : > "$f"
 done
 
@@ -561,6 +562,14 @@ too_many_failing() {
 lay_failures() {
     failing=$(failed_in "$work/tests.log" | tr '\n' ' ')
     [ -n "$failing" ] || return 0
+    # what fails with none of the reader's exercises, the stubs of the
+    # parts of functions not started standing in, is theirs: laid on no
+    # one, it waits for them
+    if [ -n "$(echo $fragments_waiting)" ]; then
+        probe "-" "$failing" "$@" > "$stubs_fail"
+        failing=$(minus "$failing" "$(tr '\n' ' ' < "$stubs_fail")")
+        [ -n "$(echo $failing)" ] || return 0
+    fi
     ids=$(built_exercises | tr '\n' ' ')
     [ -n "$ids" ] || return 0
     set -- $ids "--" "$@"
@@ -632,6 +641,21 @@ awk -v upto="$target" -v only="${GRADE_TESTS:-}" '
             left_out[++k] = name
     }
     END { for (i = 1; i <= k; i++) print left_out[i] }' tests/ch[0-9][0-9]_*.c > "$later"
+# In a handout, an exercise that is a part of a function's body has no
+# function to call the book's code through: its stub stands in until it is
+# started, and the tests that name it wait for it.
+stubbed=$(book_code forward "$@" | xargs -r awk '
+    /^```\{\.c chunk="/ { name = $0; sub(/^```\{\.c chunk="/, "", name)
+                         sub(/".*/, "", name); body = ""; next }
+    /^```[ \t]*$/ { if (name != "" && body == "return 0; /* your code here */\n")
+                      print name
+                  name = ""; next }
+    name != "" { body = body $0 "\n" }' |
+    awk -F '\t' 'NR == FNR { fragment[$0] = 1; next }
+                 $4 == "chunk" && ($5 in fragment) { printf "%s ", $1 }' - "$list")
+# Of them, those not started: their stubs stand in in every build.
+fragments_waiting=$(awk -F '\t' -v ids=" $stubbed" '
+    $2 != "started" && index(ids, " " $1 " ") { printf "%s ", $1 }' "$state")
 started=$(awk -F '\t' '$2 == "started"' "$state" | wc -l)
 built=no
 if [ "$started" -gt 0 ]; then
@@ -646,23 +670,12 @@ if [ "$started" -gt 0 ]; then
         fi
     fi
 fi
-# In a handout, an exercise that is a part of a function's body has no
-# function to call the book's code through: its stub stands in until it is
-# started, and the tests that name it wait for it.
-stubbed=$(book_code forward "$@" | xargs -r awk '
-    /^```\{\.c chunk="/ { name = $0; sub(/^```\{\.c chunk="/, "", name)
-                         sub(/".*/, "", name); body = ""; next }
-    /^```[ \t]*$/ { if (name != "" && body == "return 0; /* your code here */\n")
-                      print name
-                  name = ""; next }
-    name != "" { body = body $0 "\n" }' |
-    awk -F '\t' 'NR == FNR { fragment[$0] = 1; next }
-                 $4 == "chunk" && ($5 in fragment) { printf "%s ", $1 }' - "$list")
 awk -v built="$built" -v bad_files="$bad_files" -v later="$later" \
     -v laid="$laid" -v cleared="$cleared" -v lost="$lost" \
     -v warned="$warned" -v races="$races" -v index_file="$work/tests.tsv" \
     -v multiplier="$multiplier" -v load="${load:-?}" -v cores="$cores" \
     -v only="${GRADE_EX:-}" -v junit="$WB_BUILD/junit.xml" \
     -v chapter="$target" -v stubs="$([ "${GRADE_BOOK_CODE:-}" = no ] && echo yes)" \
-    -v stubbed="$stubbed" \
+    -v stubbed="$stubbed" -v stubs_fail="$stubs_fail" \
+    -v fragments_waiting="$fragments_waiting" \
     -f "$tools_dir/grade_report.awk" "$list" "$state" "$work/tests.log"

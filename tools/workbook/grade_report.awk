@@ -4,7 +4,7 @@
 #       -v cleared=FILE -v lost=FILE -v warned=FILE -v races=FILE \
 #       -v index_file=FILE -v multiplier=M -v load=L -v cores=C \
 #       -v only=ID -v junit=FILE -v chapter=NN -v stubs=yes \
-#       -v stubbed="ID ..."] \
+#       -v stubbed="ID ..." -v stubs_fail=FILE -v fragments_waiting="ID ..."] \
 #       -f tools/workbook/grade_report.awk EXERCISES.tsv STATE.tsv TESTS.log
 #
 # EXERCISES.tsv is tools/workbook/exercises.awk's listing, STATE.tsv tools/workbook/grade.sh's
@@ -44,7 +44,9 @@
 # stubbed lists the exercises whose stubs stand in though the book's code
 # is linked (in a handout, a part of a function's body, which has no
 # function to call the book's code through): a test that one of them
-# names, not started, waits for it in the same way.
+# names, not started, waits for it in the same way, and so does a test
+# listed in the file stubs_fail (TEST:K a line: it fails with none of the
+# reader's exercises, the stubs of fragments_waiting standing in).
 
 # A test's name without the iteration an exercise may give it (TEST:K).
 function bare_name(t) {
@@ -95,6 +97,11 @@ function failing_keys(t, keys,    i, n) {
     return n
 }
 
+# Does failing test k wait for the stub of an exercise not started?
+function waits_for_stub(k) {
+    return bare[k] in named_by_waiting || k in named_by_waiting
+}
+
 function verdict(id,    names, n, i, t, graded, keys, m, j, k) {
     if (id in lost_line)
         return "failing: " lost_line[id]
@@ -113,7 +120,7 @@ function verdict(id,    names, n, i, t, graded, keys, m, j, k) {
         for (j = 1; j <= m; j++) {
             k = keys[j]
             # a stub's test fails whoever is laid on it: it waits first
-            if (bare[k] in named_by_waiting || k in named_by_waiting)
+            if (waits_for_stub(k))
                 return "waiting for " named_by_waiting[k in named_by_waiting ? k : bare[k]] \
                        " (not started): " shown[k]
             if ((id SUBSEP k) in laid_on)
@@ -126,7 +133,8 @@ function verdict(id,    names, n, i, t, graded, keys, m, j, k) {
     }
     for (j = 1; j <= ran_count; j++) {
         k = ran[j]
-        if ((id SUBSEP k) in laid_on && result[k] != "P")
+        # laid on it with a stub standing in: the stub's failure, not its
+        if ((id SUBSEP k) in laid_on && result[k] != "P" && !waits_for_stub(k))
             return describe(k) " (" located(bare[k]) "; it fails with your " \
                    id " alone in place of the book's code)"
     }
@@ -152,6 +160,13 @@ function read_pairs(file, into,    line, f) {
 }
 
 BEGIN {
+    # the tests that fail with none of the reader's exercises started,
+    # the stubs of fragments_waiting standing in: they wait for those
+    waited = fragments_waiting
+    gsub(/^ +| +$/, "", waited)
+    gsub(/ +/, ", ", waited)
+    while (stubs_fail != "" && (getline line < stubs_fail) > 0)
+        named_by_waiting[line] = waited
     read_pairs(laid, laid_on)
     read_pairs(cleared, clear)
     for (p in laid_on) {
@@ -272,11 +287,11 @@ END {
     elsewhere = waits = 0
     for (i = 1; built == "yes" && i <= ran_count; i++) {
         k = ran[i]
-        if (result[k] == "P" || (k in laid_any) || (k in claimed))
+        if (result[k] == "P" || (k in claimed))
             continue
-        if (stubs == "yes" || bare[k] in named_by_waiting || k in named_by_waiting)
+        if (stubs == "yes" || waits_for_stub(k))
             waiting[++waits] = k
-        else
+        else if (!(k in laid_any))
             other[++elsewhere] = k
     }
     if (waits > 0)
