@@ -132,7 +132,7 @@ static int trace(const char *tree, double K)
     load_float_mesh("meshes/bunny.obj", &m);
     bool bvh = strncmp(tree, "bvh", 3) == 0;
     kdtree_params kp = kdtree_default_params();
-    bvh_params bp = bvh_default_params();
+    bvh_params bp = {0}; /* zeros: the mesh's defaults, as the renderer's */
     if (!(bvh ? mesh_build_bvh(&m, &bp) : mesh_build_tree(&m, &kp)))
         return 1;
     m.bvh_in_float = strcmp(tree, "bvh-float") == 0; /* the float path */
