@@ -27,6 +27,9 @@
  *   rays,KIND,0,COUNT,rays
  *   ratio,METHOD@KIND,0,R,instructions_over_embree
  *   vector,WIDTH_NAME,0,0,bvh_vector_width  (the node test's instructions)
+ *   visits,bvh@KIND,0,N,nodes_per_ray       (and triangles_per_ray: what
+ *   the exact walk visits, a ray of each kind, from the program's own
+ *   counters; bvh@hit-answer-known: a hit ray bounded by its own t)
  * Without Valgrind (or its callgrind.h when built), or without Embree:
  * instructions,absent,0,0,absent and, for Embree alone, no Embree rows. */
 #include <stdio.h>
@@ -58,8 +61,10 @@ static void print_vector(bool avx2, bool avx512)
                   : "the build's own instructions");
 }
 
-#ifdef HAVE_CALLGRIND
+/* The kinds of ray: index 0 all of them, then 1 to 3. */
 static const char *const KINDS[] = {"all", "miss-box", "enter-miss", "hit"};
+
+#ifdef HAVE_CALLGRIND
 static const char *const METHODS[] = {"loop", "bvh", "fast", "embree"};
 enum { N_KINDS = 4, N_METHODS = 4 };
 
@@ -272,6 +277,55 @@ static bool count_all(void)
 }
 #endif
 
+/* What the exact walk visits, a ray of each kind (1 miss-box, 2
+ * enter-miss, 3 hit): the nodes whose children it tests and the
+ * triangles of the leaves it tests, from the program's own counters; and
+ * for the rays that hit, the nodes it would test with its answer known
+ * before it set out (the bound just past its own t). Counted natively:
+ * the counters are the same under callgrind and without it. */
+static void print_visits(void)
+{
+    mesh m;
+    load_float_mesh("meshes/bunny.obj", &m);
+    bvh_params bp = {0}; /* zeros: the mesh's defaults, as the renderer's */
+    if (!mesh_build_bvh(&m, &bp))
+        exit(1);
+    long n = (long)SIDE * SIDE, rays[4] = {0};
+    render_stats by_kind[4] = {{0}}, known = {0};
+    float_ray *all = make_rays(&m, 1.0, SIDE);
+    for (long j = 0; j < n; j++) {
+        mesh_ray mr = mesh_ray_of(ray_of(&all[j]));
+        double near = 0, far = INFINITY;
+        triangle_hit th;
+        render_stats one = {0};
+        int k = !box_clip(&m.bounds, mr.r.origin, mr.inv_dir, &near, &far)
+                    ? 1
+                : mesh_nearest(&m, &mr, 0, INFINITY, &th, &one) >= 0 ? 3
+                                                                     : 2;
+        if (k == 3) /* again, bounded by its own answer */
+            mesh_nearest(&m, &mr, 0, nextafter(th.t, INFINITY), &th,
+                         &known);
+        rays[k]++, by_kind[k].bvh_nodes += one.bvh_nodes;
+        by_kind[k].triangle_tests += one.triangle_tests;
+    }
+    bench_timing none = {0};
+    for (int k = 1; k < 4; k++) {
+        char param[64];
+        double count = rays[k] > 0 ? (double)rays[k] : 1;
+        snprintf(param, sizeof param, "bvh@%s", KINDS[k]);
+        bench_row("visits", param, &none, "%.2f",
+                  (double)by_kind[k].bvh_nodes / count, "nodes_per_ray");
+        bench_row("visits", param, &none, "%.2f",
+                  (double)by_kind[k].triangle_tests / count,
+                  "triangles_per_ray");
+    }
+    bench_row("visits", "bvh@hit-answer-known", &none, "%.2f",
+              (double)known.bvh_nodes / (rays[3] > 0 ? (double)rays[3] : 1),
+              "nodes_per_ray");
+    free(all);
+    mesh_free(&m);
+}
+
 int main(int argc, char **argv)
 {
 #ifdef HAVE_CALLGRIND
@@ -285,6 +339,7 @@ int main(int argc, char **argv)
     }
     bench_print_machine();
     bench_csv_header();
+    print_visits();
 #ifdef HAVE_CALLGRIND
     if (count_all())
         return 0;
