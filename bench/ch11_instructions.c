@@ -64,6 +64,18 @@ static void print_vector(bool avx2, bool avx512)
 /* The kinds of ray: index 0 all of them, then 1 to 3. */
 static const char *const KINDS[] = {"all", "miss-box", "enter-miss", "hit"};
 
+/* The kind of ray f through m's exact BVH (an index of KINDS, not 0);
+ * the walk's counters added to *stats, a hit's answer in *th. */
+static int kind_through(const mesh *m, const float_ray *f,
+                        render_stats *stats, triangle_hit *th)
+{
+    mesh_ray mr = mesh_ray_of(ray_of(f));
+    double near = 0, far = INFINITY;
+    if (!box_clip(&m->bounds, mr.r.origin, mr.inv_dir, &near, &far))
+        return 1;
+    return mesh_nearest(m, &mr, 0, INFINITY, th, stats) >= 0 ? 3 : 2;
+}
+
 #ifdef HAVE_CALLGRIND
 static const char *const METHODS[] = {"loop", "bvh", "fast", "embree"};
 enum { N_KINDS = 4, N_METHODS = 4 };
@@ -78,8 +90,9 @@ typedef struct {
 
 /* Ray f by method (an index of METHODS): 1 for a hit, else 0. The
  * program's counters in *stats, kept from one ray to the next as the
- * renderer keeps them. */
-static int one_ray(const subject *s, int method, const float_ray *f,
+ * renderer keeps them. Never inlined: its code, and so the counts, stay
+ * the same when the rest of this file changes. */
+static __attribute__((noinline)) int one_ray(const subject *s, int method, const float_ray *f,
                    render_stats *stats)
 {
     if (method == 0)
@@ -104,16 +117,12 @@ static int one_ray(const subject *s, int method, const float_ray *f,
     return mesh_nearest(m, &mr, 0, INFINITY, &th, stats) >= 0;
 }
 
-/* The kind of ray r (an index of KINDS, not 0). */
+/* The kind of ray f (an index of KINDS, not 0). */
 static int kind_of(const subject *s, const float_ray *f)
 {
-    ray r = ray_of(f);
-    mesh_ray mr = mesh_ray_of(r);
-    double near = 0, far = INFINITY;
     render_stats stats = {0};
-    if (!box_clip(&s->m.bounds, r.origin, mr.inv_dir, &near, &far))
-        return 1;
-    return one_ray(s, 1, f, &stats) ? 3 : 2;
+    triangle_hit th;
+    return kind_through(&s->m, f, &stats, &th);
 }
 
 /* The rays of kind k (0: all) moved to the front of rays; how many. */
@@ -294,14 +303,10 @@ static void print_visits(void)
     render_stats by_kind[4] = {{0}}, known = {0};
     float_ray *all = make_rays(&m, 1.0, SIDE);
     for (long j = 0; j < n; j++) {
-        mesh_ray mr = mesh_ray_of(ray_of(&all[j]));
-        double near = 0, far = INFINITY;
         triangle_hit th;
         render_stats one = {0};
-        int k = !box_clip(&m.bounds, mr.r.origin, mr.inv_dir, &near, &far)
-                    ? 1
-                : mesh_nearest(&m, &mr, 0, INFINITY, &th, &one) >= 0 ? 3
-                                                                     : 2;
+        int k = kind_through(&m, &all[j], &one, &th);
+        mesh_ray mr = mesh_ray_of(ray_of(&all[j]));
         if (k == 3) /* again, bounded by its own answer */
             mesh_nearest(&m, &mr, 0, nextafter(th.t, INFINITY), &th,
                          &known);
