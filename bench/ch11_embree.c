@@ -261,9 +261,12 @@ BVH_INLINE double double_leaves_walk(const subject *s, const mesh_ray *mr, bool 
             unsigned hit = avx2 ? bvh_node8_lanes_avx2(n, &v, bound, t_near)
                                 : bvh_node8_test(n, &r, bound, t_near);
             if (hit != 0) {
-                top = avx2 ? bvh_push8_avx2(stack, entry, top, n, hit, t_near, shift)
-                           : bvh_push8(stack, entry, top, n, hit, t_near, shift);
-                now = stack[--top];
+                if (avx2)
+                    top = bvh_push8_avx2(stack, entry, top, n, hit, t_near, shift, &now) - 1;
+                else {
+                    top = bvh_push8(stack, entry, top, n, hit, t_near, shift);
+                    now = stack[--top];
+                }
                 continue;
             }
         } else {

@@ -278,7 +278,7 @@ END_TEST
  * its entry; the nearest ends on top. */
 /* The AVX2 and AVX-512VL pushes of n's children in mask, for octant o,
  * where the processor has them: the same top and the same stack as the
- * plain push's (stack, entry, top). */
+ * plain push's (stack, entry, top), and the child on top as nearest. */
 static void expect_vector_pushes_alike(const bvh_node8 *n, unsigned mask,
                                        unsigned o, const uint32_t *stack,
                                        const float *entry, int top)
@@ -289,10 +289,16 @@ static void expect_vector_pushes_alike(const bvh_node8 *n, unsigned mask,
             continue;
         uint32_t s[16];
         float e[16];
-        int got = isa == 0
-                      ? bvh_push8_avx2(s, e, 0, n, mask, t_near, 3 * o)
-                      : bvh_push8_avx512(s, e, 0, n, mask, t_near, 3 * o);
+        uint32_t nearest;
+        int got = isa == 0 ? bvh_push8_avx2(s, e, 0, n, mask, t_near, 3 * o,
+                                            &nearest)
+                           : bvh_push8_avx512(s, e, 0, n, mask, t_near, 3 * o,
+                                              &nearest);
         const char *name = isa == 0 ? "AVX2" : "AVX-512";
+        uint32_t on_top = top > 0 ? stack[top - 1] : nearest; /* or none */
+        ck_assert_msg(nearest == on_top,
+                      "%s push of mask %#x: nearest %#x, not the top %#x",
+                      name, mask, nearest, on_top);
         ck_assert_msg(got == top, "%s push of mask %#x: top %d, not %d",
                       name, mask, got, top);
         ck_assert_msg(memcmp(s, stack, (size_t)top * sizeof *s) == 0 &&

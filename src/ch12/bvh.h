@@ -625,13 +625,21 @@ bvh_places_hit(const bvh_node8 *n, unsigned mask, unsigned shift,
     bvh_i8 kept = ((bvh_i8){0} + (int)mask) >> *order << 31; /* sign: hit */
     return (unsigned)__builtin_ia32_movmskps256((bvh_f8)kept);
 }
+
+/* Lane k of v, moved to lane 0 by a permutation: never through memory. */
+BVH_AVX2_TARGET static inline int32_t bvh_lane_of(bvh_i8 v, int k)
+{
+    return __builtin_ia32_permvarsi256(v, (bvh_i8){0} + k)[0];
+}
 #endif
 
-/* bvh_push8 in AVX2's lanes, with no loop: to be called only where
+/* bvh_push8 in AVX2's lanes, with no loop, and the child on top (the
+ * nearest) in *nearest, from the register: to be called only where
  * bvh_walks_with_avx2() says yes. */
 BVH_AVX2_TARGET static inline int
 bvh_push8_avx2(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
-               unsigned mask, const float t_near[8], unsigned shift)
+               unsigned mask, const float t_near[8], unsigned shift,
+               uint32_t *nearest)
 {
 #if BVH_HAS_AVX2_PATH
     const bvh_i8 thirds = {0, 3, 6, 9, 12, 15, 18, 21};
@@ -646,9 +654,13 @@ bvh_push8_avx2(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
     bvh_f8 entries = __builtin_ia32_permvarsf256(t, lanes);
     memcpy(stack + top, &kids, sizeof kids);
     memcpy(entry + top, &entries, sizeof entries);
-    return top + (int)(set >> 24);
+    int count = (int)(set >> 24);
+    *nearest = (uint32_t)bvh_lane_of(kids, count - 1);
+    return top + count;
 #else
-    return bvh_push8(stack, entry, top, n, mask, t_near, shift);
+    top = bvh_push8(stack, entry, top, n, mask, t_near, shift);
+    *nearest = stack[top - 1];
+    return top;
 #endif
 }
 
@@ -659,11 +671,12 @@ bvh_push8_avx2(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
 #define BVH_AVX512_TARGET
 #endif
 
-/* bvh_push8 with AVX-512VL's compress: to be called only where
+/* bvh_push8_avx2 with AVX-512VL's compress: to be called only where
  * bvh_walks_with_avx512() says yes. */
 BVH_AVX512_TARGET static inline int
 bvh_push8_avx512(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
-                 unsigned mask, const float t_near[8], unsigned shift)
+                 unsigned mask, const float t_near[8], unsigned shift,
+                 uint32_t *nearest)
 {
 #if BVH_HAS_AVX2_PATH
     bvh_i8 order, child;
@@ -678,9 +691,12 @@ bvh_push8_avx512(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
     entries = __builtin_ia32_compresssf256_mask(entries, (bvh_f8){0}, places);
     memcpy(stack + top, &kids, sizeof kids);
     memcpy(entry + top, &entries, sizeof entries);
-    return top + __builtin_popcount(places);
+    int count = __builtin_popcount(places);
+    *nearest = (uint32_t)bvh_lane_of(kids, count - 1);
+    return top + count;
 #else
-    return bvh_push8(stack, entry, top, n, mask, t_near, shift);
+    return bvh_push8_avx2(stack, entry, top, n, mask, t_near, shift,
+                          nearest);
 #endif
 }
 

@@ -822,14 +822,14 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
                 goto done; /* none, and nothing left */
             else if (hit != 0 && (hit & (hit - 1)) == 0) /* one: descend */
                 now = n->child[__builtin_ctz(hit)];
-            else if (hit != 0) { /* more: push them, take the nearest */
-                top = isa == BVH_AVX512
-                          ? bvh_push8_avx512(stack, entry, top, n, hit,
-                                             t_near, shift)
-                      : avx2 ? bvh_push8_avx2(stack, entry, top, n, hit,
-                                              t_near, shift)
-                             : bvh_push8(stack, entry, top, n, hit, t_near,
-                                         shift);
+            else if (hit != 0 && isa == BVH_AVX512) /* more: push, */
+                top = bvh_push8_avx512(stack, entry, top, n, hit, t_near,
+                                       shift, &now) - 1; /* take the nearest */
+            else if (hit != 0 && avx2)
+                top = bvh_push8_avx2(stack, entry, top, n, hit, t_near,
+                                     shift, &now) - 1;
+            else if (hit != 0) {
+                top = bvh_push8(stack, entry, top, n, hit, t_near, shift);
                 now = stack[--top];
             }
         }
