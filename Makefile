@@ -474,9 +474,13 @@ chart-ch13_page-plain: build/book.html $(foreach n,$(NUMS),$(BIN)/ch$(n)) | deps
 	@echo "wrote figures/ch13-page.svg"
 
 ifeq ($(LTO_FLAGS)$(SAN),)
-# The charts measure the program built with link-time optimization.
+# The charts measure the program built with link-time optimization. Two
+# charts named at once (make chart-a chart-b) take turns on a lock (flock,
+# util-linux): side by side they would time each other and build the same
+# objects at once.
 chart-%: | deps
-	+@$(MAKE) --no-print-directory LTO=1 $@
+	+@mkdir -p build && flock build/.charts.lock \
+	  $(MAKE) --no-print-directory LTO=1 $@
 charts charts-check: | deps
 	+@$(MAKE) --no-print-directory LTO=1 $@
 else
