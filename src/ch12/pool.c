@@ -35,14 +35,6 @@ int pool_threads(int threads)
     return n < 1 ? 1 : n < POOL_MAX_THREADS ? (int)n : POOL_MAX_THREADS;
 }
 
-int pool_started(void)
-{
-    pthread_mutex_lock(&pool.lock);
-    int n = pool.started;
-    pthread_mutex_unlock(&pool.lock);
-    return n;
-}
-
 /* <<a helper's life>> ch12 */
 /* Calls job(context, k) for each k that no other thread has taken, until
  * none is left. */
@@ -139,4 +131,12 @@ int pool_for(int count, int threads, void (*job)(void *, int),
     wait_for_helpers();
     atomic_store(&busy, false);
     return 1 + helpers;
+}
+
+int pool_started(void)
+{
+    pthread_mutex_lock(&pool.lock);
+    int n = pool.started;
+    pthread_mutex_unlock(&pool.lock);
+    return n;
 }
