@@ -732,6 +732,14 @@ build/handoutpage.tar.gz: $(HANDOUT_FROM) $(BC)/.forms | deps
 	@tar -czf $@ -C build handoutpage
 	@rm -rf build/handoutpage
 
+# An untouched handout's programs pass the book's suites: the tarball
+# unpacked in an empty folder and make test-ch$(LAST) run there, the book's
+# compiled code standing in for every exercise (tools/checks/
+# check_handout_programs.sh; in CI, not in make test: about a minute).
+.PHONY: check-handout-programs
+check-handout-programs: build/handout.tar.gz
+	@sh tools/checks/check_handout_programs.sh build/handout.tar.gz $(LAST)
+
 check-handout: $(BC)/.forms
 	+@sh tools/workbook/handout.sh build/handoutcheck --no-book > /dev/null
 	@sh tools/checks/check_handout.sh build/handoutcheck

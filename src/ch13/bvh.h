@@ -339,19 +339,20 @@ typedef float bvh_f8_row
 #define min8 bvh_min8
 #define mask8 bvh_mask8
 
+/* <<the slab test of a node>> ch11 */
 /* Which of n's children the ray r meets in [r->t_min, bound]: a bit
  * each, and in t_near where it enters. */
 static inline unsigned bvh_node8_lanes(const bvh_node8 *n, const bvh_ray8 *r,
                                        float bound, float t_near[8])
 {
-    /* <<the slab test of a node>> ch11 */
     bvh_f8 t0 = max8(bvh_enter8(n, r, 0), bvh_splat8(r->t_min));
     t0 = max8(bvh_enter8(n, r, 1), t0); /* a NaN keeps t0 */
     t0 = max8(bvh_enter8(n, r, 2), t0);
     bvh_f8 t1 = min8(bvh_leave8(n, r, 0), bvh_splat8(INFINITY));
     t1 = min8(bvh_leave8(n, r, 1), t1);
     t1 = min8(bvh_leave8(n, r, 2), t1);
-    t1 = min8(t1 * BVH_FAR_WIDENING, bvh_splat8(bound)); /* once, not by axis */
+    /* widened once, not axis by axis */
+    t1 = min8(t1 * BVH_FAR_WIDENING, bvh_splat8(bound));
     memcpy(t_near, &t0, sizeof t0);
     return mask8(t0 <= t1);
 }

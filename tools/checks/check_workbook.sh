@@ -14,7 +14,7 @@
 # not by number (a chapter put before another renumbers them). Checks that
 #   untouched: an untouched workbook grades "Progress: 0 of N", N >= 36, at
 #      least 4 exercises a chapter, exit 0; no stub is the book's code;
-#      make workbook overwrites no
+#      no exercise is a part of a function's body; make workbook overwrites no
 #      file; no task holds TeX; make grade EX=N.k exits 0 for a right 1.1,
 #      and not 0 for 1.2, not started (the two exercises' tests run);
 #   stubs: with every stub started, no exercise passes (each stub fails
@@ -245,6 +245,31 @@ check_untouched() {
                 printf "%s ", $1
         }' "$list")
     [ -z "$same" ] || fail "these exercises' stubs are the book's code: $same"
+    # every exercise is whole functions: a part of a body (a return at
+    # column 0, tools/workbook/stub.awk's stub_is_fragment) has no function
+    # through which a handout's compiled book code could stand in for it,
+    # and would leave its chapter's programs and every later one broken
+    # until it is written
+    parts=$(awk -F '\t' -v solved="$top/workbook-solved" '
+        function code(path, id,    line, on, text) {
+            on = 0
+            text = ""
+            while ((getline line < path) > 0) {
+                if (index(line, "ex=\"" id "\"")) { on = 1; continue }
+                if (on && line ~ /^```/) break
+                if (on) text = text line "\n"
+            }
+            close(path)
+            return text
+        }
+        {
+            file = $2
+            sub(/.*\//, "", file)
+            if (code(solved "/" file, $1) ~ /(^|\n)return[ \t;(]/)
+                printf "%s ", $1
+        }' "$list")
+    [ -z "$parts" ] ||
+        fail "these exercises are a part of a function's body, not whole functions: $parts"
     make_grade grade
     [ "$status" = 0 ] || fail "an untouched workbook should grade with status 0"
     grep -qx "Progress: 0 of $n exercises" "$t/out" || fail "expected Progress: 0 of $n"
