@@ -258,11 +258,12 @@ BVH_INLINE double double_leaves_walk(const subject *s, const mesh_ray *mr, bool 
         if (!(now & BVH_LEAF)) {
             const bvh_node8 *n = &m->bvh.nodes8[now];
             float t_near[8];
-            unsigned hit = avx2 ? bvh_node8_lanes_avx2(n, &v, bound, t_near)
+            int32_t met[8];
+            unsigned hit = avx2 ? bvh_node8_lanes_avx2(n, &v, bound, t_near, met)
                                 : bvh_node8_test(n, &r, bound, t_near);
             if (hit != 0) {
                 if (avx2)
-                    top = bvh_push8_avx2(stack, entry, top, n, hit, t_near, shift, &now) - 1;
+                    top = bvh_push8_avx2(stack, entry, top, n, met, t_near, shift, &now) - 1;
                 else {
                     top = bvh_push8(stack, entry, top, n, hit, t_near, shift);
                     now = stack[--top];

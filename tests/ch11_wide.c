@@ -212,6 +212,12 @@ START_TEST(test_vector_and_scalar_node_tests_agree)
             bvh_ray8 v = bvh_ray8_of(&rows);
             bvh_ray8_fused(&v, &rows);
             unsigned fused = bvh_node8_test_avx2(&n8, &rows, t_max, a8);
+            float m_near[8];
+            int32_t met[8]; /* the same lanes, as a push reads them */
+            ck_assert_uint_eq(bvh_node8_lanes_avx2(&n8, &v, t_max, m_near, met),
+                              fused);
+            for (int c = 0; c < 8; c++)
+                ck_assert_int_eq(met[c], (fused >> c & 1) ? -1 : 0);
             unsigned alone = 0;
             for (int c = 0; c < 8; c++)
                 if (fused_lane(&n8, c, &v, t_max, &f8[c]))
@@ -290,9 +296,12 @@ static void expect_vector_pushes_alike(const bvh_node8 *n, unsigned mask,
         uint32_t s[16];
         float e[16];
         uint32_t nearest;
-        int got = isa == 0 ? bvh_push8_avx2(s, e, 0, n, mask, t_near, 3 * o,
+        int32_t met[8]; /* the lanes of mask, as the node test gives them */
+        for (int c = 0; c < 8; c++)
+            met[c] = mask >> c & 1 ? -1 : 0;
+        int got = isa == 0 ? bvh_push8_avx2(s, e, 0, n, met, t_near, 3 * o,
                                             &nearest)
-                           : bvh_push8_avx512(s, e, 0, n, mask, t_near, 3 * o,
+                           : bvh_push8_avx512(s, e, 0, n, met, t_near, 3 * o,
                                               &nearest);
         const char *name = isa == 0 ? "AVX2" : "AVX-512";
         uint32_t on_top = top > 0 ? stack[top - 1] : nearest; /* or none */

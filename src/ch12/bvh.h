@@ -400,12 +400,13 @@ static inline unsigned bvh_node8_test(const bvh_node8 *n, const bvh_ray *r,
                                (r)->inv[a], (r)->zero_far[a])
 
 /* Which of n's children the ray r meets, as bvh_node8_lanes, in AVX2's
- * eight lanes with FMA, whatever the build's flags: to be called only
- * where bvh_walks_with_avx2() says yes. r's zero_near and zero_far must
- * be made (bvh_ray8_fused). */
+ * eight lanes with FMA, whatever the build's flags; the same again in
+ * met, -1 in a lane met and 0 in the others, for a push to permute. To
+ * be called only where bvh_walks_with_avx2() says yes. r's zero_near and
+ * zero_far must be made (bvh_ray8_fused). */
 BVH_AVX2_TARGET static inline unsigned
 bvh_node8_lanes_avx2(const bvh_node8 *n, const bvh_ray8 *r, float bound,
-                     float t_near[8])
+                     float t_near[8], int32_t met[8])
 {
 #if BVH_HAS_AVX2_PATH
     /* <<the fused slab test of a node>> ch11 */
@@ -416,10 +417,15 @@ bvh_node8_lanes_avx2(const bvh_node8 *n, const bvh_ray8 *r, float bound,
     t1 = min8(bvh_leave_fused(n, r, 1), t1);
     t1 = min8(bvh_leave_fused(n, r, 2), t1);
     t1 = t1 * BVH_FAR_WIDENING; /* the bound widened too: a hair more kept */
+    bvh_i8 hit = t0 <= t1;
     memcpy(t_near, &t0, sizeof t0);
-    return mask8(t0 <= t1);
+    memcpy(met, &hit, sizeof hit);
+    return mask8(hit);
 #else
-    return bvh_node8_lanes(n, r, bound, t_near);
+    unsigned mask = bvh_node8_lanes(n, r, bound, t_near);
+    for (int c = 0; c < 8; c++)
+        met[c] = -(int32_t)(mask >> c & 1);
+    return mask;
 #endif
 }
 
@@ -459,7 +465,8 @@ bvh_node8_test_avx2(const bvh_node8 *n, const bvh_ray *r, float bound,
 {
     bvh_ray8 v = bvh_ray8_of(r);
     bvh_ray8_fused(&v, r);
-    return bvh_node8_lanes_avx2(n, &v, bound, t_near);
+    int32_t met[8];
+    return bvh_node8_lanes_avx2(n, &v, bound, t_near, met);
 }
 
 #undef max8
@@ -615,15 +622,17 @@ extern uint32_t bvh_set_lanes[256];
 
 #if BVH_HAS_AVX2_PATH
 /* The lane at each place of n's order for the octant (shift), farthest
- * first, in *order; the places whose lanes are in mask, place k in bit k.
- * To be called only where bvh_walks_with_avx2() says yes. */
+ * first, in *order; the places whose lanes are met (-1 in met), place k
+ * in bit k. To be called only where bvh_walks_with_avx2() says yes. */
 BVH_AVX2_TARGET static inline unsigned
-bvh_places_hit(const bvh_node8 *n, unsigned mask, unsigned shift,
+bvh_places_hit(const bvh_node8 *n, const int32_t met[8], unsigned shift,
                bvh_i8 *order)
 {
+    bvh_i8 lanes;
+    memcpy(&lanes, met, sizeof lanes);
     memcpy(order, n->order, sizeof *order);
     *order = *order >> (int)shift & 7;
-    bvh_i8 kept = ((bvh_i8){0} + (int)mask) >> *order << 31; /* sign: hit */
+    bvh_i8 kept = __builtin_ia32_permvarsi256(lanes, *order); /* sign: hit */
     return (unsigned)__builtin_ia32_movmskps256((bvh_f8)kept);
 }
 
@@ -634,12 +643,21 @@ BVH_AVX2_TARGET static inline int32_t bvh_lane_of(bvh_i8 v, int k)
 }
 #endif
 
-/* bvh_push8 in AVX2's lanes, with no loop, and the child on top (the
- * nearest) in *nearest, from the register: to be called only where
- * bvh_walks_with_avx2() says yes. */
+/* The mask of the lanes met (-1 in met): lane c in bit c. */
+static inline unsigned bvh_mask_of(const int32_t met[8])
+{
+    unsigned mask = 0;
+    for (int c = 0; c < 8; c++)
+        mask |= (unsigned)(met[c] < 0) << c;
+    return mask;
+}
+
+/* bvh_push8 of the lanes met (-1 in met) in AVX2's lanes, with no loop,
+ * and the child on top (the nearest) in *nearest, from a register: to be
+ * called only where bvh_walks_with_avx2() says yes. */
 BVH_AVX2_TARGET static inline int
 bvh_push8_avx2(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
-               unsigned mask, const float t_near[8], unsigned shift,
+               const int32_t met[8], const float t_near[8], unsigned shift,
                uint32_t *nearest)
 {
 #if BVH_HAS_AVX2_PATH
@@ -648,18 +666,21 @@ bvh_push8_avx2(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
     bvh_f8 t;
     memcpy(&child, n->child, sizeof child);
     memcpy(&t, t_near, sizeof t);
-    uint32_t set = bvh_set_lanes[bvh_places_hit(n, mask, shift, &order)];
+    unsigned hit = bvh_places_hit(n, met, shift, &order);
+    bvh_i8 in_order = __builtin_ia32_permvarsi256(child, order);
+    /* the highest place kept (place 0 if none: no clz of 0) */
+    int last = 31 - __builtin_clz(hit | 1);
+    *nearest = (uint32_t)bvh_lane_of(in_order, last);
+    uint32_t set = bvh_set_lanes[hit];
     bvh_i8 places = ((bvh_i8){0} + (int)set) >> thirds & 7;
     bvh_i8 lanes = __builtin_ia32_permvarsi256(order, places);
     bvh_i8 kids = __builtin_ia32_permvarsi256(child, lanes);
     bvh_f8 entries = __builtin_ia32_permvarsf256(t, lanes);
     memcpy(stack + top, &kids, sizeof kids);
     memcpy(entry + top, &entries, sizeof entries);
-    int count = (int)(set >> 24);
-    *nearest = (uint32_t)bvh_lane_of(kids, count - 1);
-    return top + count;
+    return top + (int)(set >> 24);
 #else
-    top = bvh_push8(stack, entry, top, n, mask, t_near, shift);
+    top = bvh_push8(stack, entry, top, n, bvh_mask_of(met), t_near, shift);
     *nearest = stack[top - 1];
     return top;
 #endif
@@ -676,7 +697,7 @@ bvh_push8_avx2(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
  * bvh_walks_with_avx512() says yes. */
 BVH_AVX512_TARGET static inline int
 bvh_push8_avx512(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
-                 unsigned mask, const float t_near[8], unsigned shift,
+                 const int32_t met[8], const float t_near[8], unsigned shift,
                  uint32_t *nearest)
 {
 #if BVH_HAS_AVX2_PATH
@@ -685,18 +706,18 @@ bvh_push8_avx512(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
     memcpy(&child, n->child, sizeof child);
     memcpy(&t, t_near, sizeof t);
     unsigned char places =
-        (unsigned char)bvh_places_hit(n, mask, shift, &order);
+        (unsigned char)bvh_places_hit(n, met, shift, &order);
     bvh_i8 kids = __builtin_ia32_permvarsi256(child, order);
     bvh_f8 entries = __builtin_ia32_permvarsf256(t, order);
+    int last = 31 - __builtin_clz(places | 1u); /* as bvh_push8_avx2's */
+    *nearest = (uint32_t)bvh_lane_of(kids, last);
     kids = __builtin_ia32_compresssi256_mask(kids, (bvh_i8){0}, places);
     entries = __builtin_ia32_compresssf256_mask(entries, (bvh_f8){0}, places);
     memcpy(stack + top, &kids, sizeof kids);
     memcpy(entry + top, &entries, sizeof entries);
-    int count = __builtin_popcount(places);
-    *nearest = (uint32_t)bvh_lane_of(kids, count - 1);
-    return top + count;
+    return top + __builtin_popcount(places);
 #else
-    return bvh_push8_avx2(stack, entry, top, n, mask, t_near, shift,
+    return bvh_push8_avx2(stack, entry, top, n, met, t_near, shift,
                           nearest);
 #endif
 }

@@ -815,7 +815,9 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
         while (!(now & BVH_LEAF)) { /* the nodes, down to a leaf */
             const bvh_node8 *n = &tree[now];
             float t_near[8];
-            unsigned hit = avx2 ? bvh_node8_lanes_avx2(n, &v, bound, t_near)
+            int32_t met[8]; /* AVX2's lanes met, for its pushes */
+            unsigned hit = avx2 ? bvh_node8_lanes_avx2(n, &v, bound, t_near,
+                                                       met)
                                 : bvh_node8_test(n, &r, bound, t_near);
             nodes++;
             if (hit == 0 && !bvh_pop(stack, entry, &top, bound, &now))
@@ -823,10 +825,10 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
             else if (hit != 0 && (hit & (hit - 1)) == 0) /* one: descend */
                 now = n->child[__builtin_ctz(hit)];
             else if (hit != 0 && isa == BVH_AVX512) /* more: push, */
-                top = bvh_push8_avx512(stack, entry, top, n, hit, t_near,
+                top = bvh_push8_avx512(stack, entry, top, n, met, t_near,
                                        shift, &now) - 1; /* take the nearest */
             else if (hit != 0 && avx2)
-                top = bvh_push8_avx2(stack, entry, top, n, hit, t_near,
+                top = bvh_push8_avx2(stack, entry, top, n, met, t_near,
                                      shift, &now) - 1;
             else if (hit != 0) {
                 top = bvh_push8(stack, entry, top, n, hit, t_near, shift);
