@@ -153,14 +153,14 @@ static bool fused_lane(const bvh_node8 *n, int c, const bvh_ray8 *v,
         float f0 = ((const float *)(node + v->rows[2 * a]))[c];
         float f1 = ((const float *)(node + v->rows[2 * a + 1]))[c];
         float e = fmaf(f0, v->inv[a][0], v->zero_near[a][0]);
-        float x = fmaf(f1, v->inv[a][0], v->zero_far[a][0]);
+        float x = fmaf(f1, v->inv_far[a][0], v->zero_far[a][0]);
         if (e > lo)
             lo = e;
         if (x < hi)
             hi = x;
     }
     *enter = lo;
-    return lo <= hi * BVH_FAR_WIDENING;
+    return lo <= hi; /* the exits widened by inv_far */
 }
 
 /* Does the ray r meet lane c's box in [0, t_max], in double with 1 / d
@@ -246,6 +246,50 @@ END_TEST
 
 /* Each octant's order is the eight lanes, the used ones farthest first
  * along its diagonal. */
+/* A point of lane c's box just inside one of its corners: inside each
+ * slab by 2^-30 of the slab's width. */
+static vec3 just_inside_a_corner(const bvh_node8 *n, int c, int corner)
+{
+    double p[3];
+    for (int a = 0; a < 3; a++) {
+        double lo = n->face[2 * a][c], hi = n->face[2 * a + 1][c];
+        double in = (hi - lo) * 0x1p-30;
+        p[a] = corner >> a & 1 ? hi - in : lo + in;
+    }
+    return (vec3){p[0], p[1], p[2]};
+}
+
+/* A ray aimed just inside a box's corner meets it clearly in double,
+ * while its entry and exit differ by less than float's rounding: the
+ * exits' widening alone keeps such a box. */
+START_TEST(test_the_fused_test_keeps_a_box_met_just_inside_a_corner)
+{
+    if (!bvh_walks_with_avx2())
+        return; /* no fused test to check */
+    bvh_node8 n8;
+    int tried = 0;
+    for (int k = 0; k < 20000; k++) {
+        random_node(&n8, 8);
+        int c = k % 8;
+        vec3 o = {random_coordinate(), random_coordinate(),
+                  random_coordinate()};
+        ray r = {o, vec3_sub(just_inside_a_corner(&n8, c, k / 8 % 8), o)};
+        double t0;
+        bvh_ray br;
+        if (!clearly_meets(&n8, c, r, INFINITY, &t0) ||
+            !bvh_ray_of(r.origin, ray_inverse_dir(r), 0, INFINITY, &br))
+            continue;
+        bvh_walk_rows(&br);
+        float t_near[8];
+        unsigned m = bvh_node8_test_avx2(&n8, &br, INFINITY, t_near);
+        ck_assert_msg(m >> c & 1, "ray %d misses lane %d at corner %d", k, c,
+                      k / 8 % 8);
+        tried++;
+    }
+    ck_assert_int_gt(tried, 15000); /* most rays met their box clearly */
+}
+END_TEST
+
 START_TEST(test_the_octant_orders_list_the_lanes_farthest_first)
 {
     box *b = ch09_random_boxes(&rng, 2000, (vec3){3, -2, 1}, 10, 0.5);
@@ -449,6 +493,8 @@ Suite *ch11_wide_suite(void)
     tcase_add_checked_fixture(nodes, reseed, NULL);
     tcase_set_timeout(nodes, 120);
     tcase_add_test(nodes, test_vector_and_scalar_node_tests_agree);
+    tcase_add_test(nodes,
+                   test_the_fused_test_keeps_a_box_met_just_inside_a_corner);
     tcase_add_test(nodes, test_the_octant_orders_list_the_lanes_farthest_first);
     tcase_add_test(nodes,
                    test_a_push_keeps_the_children_hit_in_the_octant_s_order);

@@ -298,6 +298,7 @@ BVH_INLINE unsigned bvh_mask8(bvh_i8 m)
 typedef struct {
     bvh_f8 o_near[3], o_far[3], inv[3];
     bvh_f8 zero_near[3], zero_far[3]; /* AVX2's: -o / d, down and up */
+    bvh_f8 inv_far[3]; /* AVX2's: 1 / d widened, for the exits */
     int near[3], far[3];
     int32_t rows[6]; /* AVX2's: near[a], far[a] as byte offsets */
     float t_min;
@@ -397,7 +398,7 @@ static inline unsigned bvh_node8_test(const bvh_node8 *n, const bvh_ray *r,
                                (r)->zero_near[a])
 #define bvh_leave_fused(n, r, a)                                             \
     __builtin_ia32_vfmaddps256(bvh_row8(n, (r)->rows[2 * (a) + 1]),          \
-                               (r)->inv[a], (r)->zero_far[a])
+                               (r)->inv_far[a], (r)->zero_far[a])
 
 /* Which of n's children the ray r meets, as bvh_node8_lanes, in AVX2's
  * eight lanes with FMA, whatever the build's flags; the same again in
@@ -415,8 +416,7 @@ bvh_node8_lanes_avx2(const bvh_node8 *n, const bvh_ray8 *r, float bound,
     t0 = max8(bvh_enter_fused(n, r, 2), t0);
     bvh_f8 t1 = min8(bvh_leave_fused(n, r, 0), bvh_splat8(bound));
     t1 = min8(bvh_leave_fused(n, r, 1), t1);
-    t1 = min8(bvh_leave_fused(n, r, 2), t1);
-    t1 = t1 * BVH_FAR_WIDENING; /* the bound widened too: a hair more kept */
+    t1 = min8(bvh_leave_fused(n, r, 2), t1); /* widened by inv_far */
     bvh_i8 hit = t0 <= t1;
     memcpy(t_near, &t0, sizeof t0);
     memcpy(met, &hit, sizeof hit);
@@ -441,9 +441,10 @@ static inline float bvh_zero_margin(float p)
  * faces, axis by axis (bvh.c fills it). */
 extern int32_t bvh_octant_rows[8][6];
 
-/* The fused test's numbers of r (its rows a node8's: bvh_walk_rows): its
- * crossings of the planes through zero, -o / d, from its float origins
- * and 1 / d, rounded down (zero_near) and up (zero_far); its rows. */
+/* The fused test's numbers of r (its rows a node8's: bvh_walk_rows): the
+ * exits' 1 / d, widened; its crossings of the planes through zero,
+ * -o / d, from its float origins and the 1 / d of the entries (rounded
+ * down: zero_near) or of the exits (rounded up: zero_far); its rows. */
 BVH_INLINE void bvh_ray8_fused(bvh_ray8 *v, const bvh_ray *r)
 {
     unsigned octant = 0;
@@ -451,8 +452,10 @@ BVH_INLINE void bvh_ray8_fused(bvh_ray8 *v, const bvh_ray *r)
         octant |= (unsigned)(r->near[a] != 2 * a) << a;
     memcpy(v->rows, bvh_octant_rows[octant], sizeof v->rows);
     for (int a = 0; a < 3; a++) {
+        float inv_far = r->inv[a] * BVH_FAR_WIDENING;
         float p_near = -r->o_near[a] * r->inv[a];
-        float p_far = -r->o_far[a] * r->inv[a];
+        float p_far = -r->o_far[a] * inv_far;
+        v->inv_far[a] = bvh_splat8(inv_far);
         v->zero_near[a] = bvh_splat8(p_near - bvh_zero_margin(p_near));
         v->zero_far[a] = bvh_splat8(p_far + bvh_zero_margin(p_far));
     }
@@ -565,15 +568,22 @@ typedef int64_t bvh_l4 __attribute__((vector_size(32)));
 
 typedef int32_t bvh_i4 __attribute__((vector_size(16)));
 
-/* -o / d lane by lane, o and 1 / d floats, rounded down (*down) and up
- * (*up): the product to nearest, moved outward by bvh_zero_margin. */
-BVH_AVX2_TARGET static inline void bvh_zeros4(bvh_f4 o, bvh_f4 inv,
-                                              bvh_f4 *down, bvh_f4 *up)
+/* bvh_zero_margin lane by lane. */
+BVH_AVX2_TARGET static inline bvh_f4 bvh_zero_margins4(bvh_f4 p)
 {
-    bvh_f4 p = -o * inv;
     bvh_f4 size = (bvh_f4)((bvh_i4)p & 0x7fffffff); /* |p| */
-    bvh_f4 margin = size * 0x1p-22f + 0x1p-149f;
-    *down = p - margin, *up = p + margin;
+    return size * 0x1p-22f + 0x1p-149f;
+}
+
+/* -o / d lane by lane, o and 1 / d floats, rounded down (*down, from
+ * inv) and up (*up, from inv_far): each product to nearest, moved outward
+ * by bvh_zero_margin. */
+BVH_AVX2_TARGET static inline void bvh_zeros4(bvh_f4 o, bvh_f4 inv,
+                                              bvh_f4 inv_far, bvh_f4 *down,
+                                              bvh_f4 *up)
+{
+    bvh_f4 p = -o * inv, q = -o * inv_far;
+    *down = p - bvh_zero_margins4(p), *up = q + bvh_zero_margins4(q);
 }
 
 /* bvh_ray8_setup in AVX's lanes, the three axes at once (the fourth lane
@@ -595,8 +605,9 @@ bvh_ray8_setup_avx2(vec3 origin, vec3 inv, double t_min, double t_max,
         return bvh_ray8_setup(origin, inv, t_min, t_max, v, ray_bound, shift);
     bvh_f4 q_f = __builtin_convertvector(q, bvh_f4);
     unsigned octant = (unsigned)__builtin_ia32_movmskpd256(q); /* signs */
+    bvh_f4 q_far = q_f * BVH_FAR_WIDENING; /* the exits' 1 / d */
     bvh_f4 zero_near, zero_far;
-    bvh_zeros4(o_f, q_f, &zero_near, &zero_far);
+    bvh_zeros4(o_f, q_f, q_far, &zero_near, &zero_far);
     v->zero_near[0] = bvh_lane8(zero_near, 0);
     v->zero_near[1] = bvh_lane8(zero_near, 1);
     v->zero_near[2] = bvh_lane8(zero_near, 2);
@@ -606,6 +617,9 @@ bvh_ray8_setup_avx2(vec3 origin, vec3 inv, double t_min, double t_max,
     v->inv[0] = bvh_lane8(q_f, 0);
     v->inv[1] = bvh_lane8(q_f, 1);
     v->inv[2] = bvh_lane8(q_f, 2);
+    v->inv_far[0] = bvh_lane8(q_far, 0);
+    v->inv_far[1] = bvh_lane8(q_far, 1);
+    v->inv_far[2] = bvh_lane8(q_far, 2);
     memcpy(v->rows, bvh_octant_rows[octant & 7], sizeof v->rows);
     v->t_min = bvh_float_down(t_min);
     *ray_bound = bvh_float_up(t_max * (1 + BVH_SLACK));
