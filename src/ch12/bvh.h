@@ -657,15 +657,6 @@ BVH_AVX2_TARGET static inline int32_t bvh_lane_of(bvh_i8 v, int k)
 }
 #endif
 
-/* The mask of the lanes met (-1 in met): lane c in bit c. */
-static inline unsigned bvh_mask_of(const int32_t met[8])
-{
-    unsigned mask = 0;
-    for (int c = 0; c < 8; c++)
-        mask |= (unsigned)(met[c] < 0) << c;
-    return mask;
-}
-
 /* bvh_push8 of the lanes met (-1 in met) in AVX2's lanes, with no loop,
  * and the child on top (the nearest) in *nearest, from a register: to be
  * called only where bvh_walks_with_avx2() says yes. */
@@ -694,7 +685,9 @@ bvh_push8_avx2(uint32_t *stack, float *entry, int top, const bvh_node8 *n,
     memcpy(entry + top, &entries, sizeof entries);
     return top + (int)(set >> 24);
 #else
-    top = bvh_push8(stack, entry, top, n, bvh_mask_of(met), t_near, shift);
+    bvh_i8 lanes;
+    memcpy(&lanes, met, sizeof lanes);
+    top = bvh_push8(stack, entry, top, n, bvh_mask8(lanes), t_near, shift);
     *nearest = stack[top - 1];
     return top;
 #endif
