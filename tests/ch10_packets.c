@@ -9,6 +9,7 @@
  * keep too much, never too little. */
 #include <check.h>
 #include "shard.h"
+#include <float.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -519,6 +520,40 @@ START_TEST(test_packets_keep_the_tie_rule_in_and_across_packets)
 }
 END_TEST
 
+/* float_up_by_bits(x) against nextafterf, the library's step: the float
+ * at or above x, bit for bit, for x of either sign and any size, floats
+ * and the doubles between them, zeros, infinities, the ends of float's
+ * range and a NaN. */
+static void check_float_up(double x)
+{
+    float f = (float)x, want = (double)f < x ? nextafterf(f, INFINITY) : f;
+    float got = float_up_by_bits(x);
+    ck_assert_msg(memcmp(&got, &want, sizeof got) == 0,
+                  "x = %a: %a, not %a", x, (double)got, (double)want);
+    ck_assert_msg(isnan(x) || (double)got >= x, "x = %a: %a", x, (double)got);
+}
+
+START_TEST(test_float_up_by_bits_is_nextafterf_s_step)
+{
+    const double edges[] = {0.0, -0.0, INFINITY, -INFINITY, NAN, DBL_MAX,
+                            -DBL_MAX, FLT_MAX, -FLT_MAX,
+                            FLT_MAX * (1 + 0x1p-40), -FLT_MAX * (1 + 0x1p-40),
+                            0x1p-149, -0x1p-149, 0x1p-160, -0x1p-160,
+                            0x1.8p-150, -0x1.8p-150, 1, -1, 1 + 0x1p-40,
+                            -1 - 0x1p-40, 1 - 0x1p-40, -1 + 0x1p-40};
+    for (size_t k = 0; k < sizeof edges / sizeof edges[0]; k++)
+        check_float_up(edges[k]);
+    rng_state g = {17};
+    for (int k = 0; k < 200000; k++) {
+        int e = (int)(rng_next(&g) % 300) - 160; /* float's range and past */
+        double x = ldexp(rng_uniform(&g, 1, 2), e);
+        x = rng_next(&g) & 1 ? -x : x;
+        check_float_up(x);
+        check_float_up((float)x); /* a float itself */
+    }
+}
+END_TEST
+
 START_TEST(test_empty_lanes_are_never_kept)
 {
     /* Three triangles: the other lanes of the packet are empty, their
@@ -874,6 +909,7 @@ Suite *ch10_packets_suite(void)
     tcase_add_test(packets, test_packets_leak_no_edge_aimed_ray);
     tcase_add_test(packets,
                    test_packets_keep_the_tie_rule_in_and_across_packets);
+    tcase_add_test(packets, test_float_up_by_bits_is_nextafterf_s_step);
     tcase_add_test(packets, test_empty_lanes_are_never_kept);
     tcase_add_test(packets, test_an_empty_lane_lets_the_edges_stop_the_filter);
     tcase_add_test(packets, test_packets_hold_the_mesh_s_triangles_in_float);

@@ -70,15 +70,15 @@ packet_ray packet_ray_of(const watertight_ray *w);
 /* <<the tests of packets>> ch10 */
 /* x rounded to the float at or above it, as chapter 9's bvh_float_up,
  * with no call: read as an integer, a float's bits count its magnitude,
- * so that one more (one less below zero) is nextafterf's step up. */
+ * so that one more (one less below zero) is nextafterf's step up. No
+ * branch either: whether a hit's t rounds down is a coin's toss, which
+ * a branch would guess wrong half the time. */
 static inline float float_up_by_bits(double x)
 {
     float f = (float)x;
-    if (!((double)f < x)) /* exact, rounded up already, or a NaN */
-        return f;
-    int32_t bits;
+    int32_t bits, below = (double)f < x; /* 0: exact, rounded up, a NaN */
     memcpy(&bits, &f, sizeof bits);
-    bits += f >= 0 ? 1 : -1; /* below zero, up is towards it */
+    bits += f >= 0 ? below : -below; /* below zero, up is towards it */
     memcpy(&f, &bits, sizeof f);
     return f;
 }
