@@ -70,6 +70,30 @@ START_TEST(test_packet_leaves_find_rays_along_edges_and_faces)
 }
 END_TEST
 
+/* The teapot, most of whose corners are not floats, and the same teapot
+ * rounded to float: only the second is decided on its packets' corners,
+ * and its BVH gives brute force's and the kd-tree's answers, bit for bit,
+ * at the binary width and at the default. */
+START_TEST(test_a_mesh_of_floats_is_decided_on_its_packets_corners)
+{
+    mesh m = ch09_load("meshes/teapot-8.obj");
+    mesh b = ch09_with_bvh(&m, &BINARY);
+    ck_assert(!b.bvh_corners_in_float);
+    mesh_free_tree(&b);
+    for (int k = 0; k < m.vertex_count; k++) {
+        vec3 v = m.vertices[k];
+        m.vertices[k] = (vec3){(float)v.x, (float)v.y, (float)v.z};
+    }
+    mesh_compute_bounds(&m);
+    b = ch09_with_bvh(&m, &BINARY);
+    ck_assert(b.bvh_corners_in_float);
+    mesh_free_tree(&b);
+    ch09_expect_agreement(&m, 400, "teapot in float", &BINARY);
+    ch09_expect_agreement(&m, 400, "teapot in float", &(bvh_params){0});
+    mesh_free(&m);
+}
+END_TEST
+
 /* ------------------------------------------------------------ packets */
 
 /* The leaf of node k of t (count 0: none): its first packet and its
@@ -206,6 +230,8 @@ Suite *ch10_bvh_packets_suite(void)
     tcase_add_test(agree,
                    test_packet_leaves_agree_on_coincident_planes_and_fans);
     tcase_add_test(agree, test_packet_leaves_find_rays_along_edges_and_faces);
+    tcase_add_test(agree,
+                   test_a_mesh_of_floats_is_decided_on_its_packets_corners);
     suite_add_tcase(s, agree);
     TCase *packets = tcase_create("packets");
     tcase_set_timeout(packets, 120);

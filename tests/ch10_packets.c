@@ -299,7 +299,7 @@ static bool packets_any(const little_mesh *m, const packet_ray *pr,
 
 typedef struct {
     long long lanes, kept_hits, lost_hits, disagreements, rejected;
-    long long rays, differences, decided;
+    long long rays, differences, decided, hits;
 } packet_tally;
 
 /* For every lane: the vector and the lane-by-lane filters agree, and a
@@ -450,6 +450,66 @@ START_TEST(test_packets_find_what_the_double_leaf_test_finds)
     free(m.packets);
     ck_assert_int_eq(tally.differences, 0);
     ck_assert_int_gt(tally.decided, 0);
+}
+END_TEST
+
+/* The packets' nearest and any hit, decided on their own lanes' corners
+ * (vertices NULL), against chapter 8's leaf test, bit for bit: for a
+ * mesh whose corners are floats. */
+static void check_search_in_lanes(packet_tally *tally, const little_mesh *m,
+                                  ray r, double t_max, int best)
+{
+    watertight_ray w = watertight_ray_of(r);
+    packet_ray pr = packet_ray_of(&w);
+    triangle_hit mine = {0}, theirs = {0};
+    int i = triangle_packets_nearest_in_mesh(&pr, m->packets, m->packet_count,
+                                             NULL, m->triangles, 0, t_max,
+                                             best, &mine, &tally->decided);
+    int k = triangle_nearest_of_leaf(&w, m->leaf, m->items, m->count, 0,
+                                     t_max, best, &theirs);
+    bool any = triangle_packets_any_in_mesh(&pr, m->packets, m->packet_count,
+                                            NULL, m->triangles, 0, t_max,
+                                            &tally->decided);
+    tally->rays++, tally->hits += k >= 0;
+    tally->differences += i != (k < 0 ? -1 : m->items[k]);
+    tally->differences += any != triangle_any_corners(&w, m->leaf, m->count,
+                                                      0, t_max);
+    if (k >= 0)
+        tally->differences += memcmp(&mine, &theirs, sizeof mine) != 0;
+}
+
+/* m's corners rounded to float, and packed again. */
+static void round_to_float(little_mesh *m)
+{
+    for (int k = 0; k < m->count; k++)
+        for (int i = 0; i < 3; i++) {
+            vec3 *p = &m->corners[k].p[i];
+            *p = (vec3){(float)p->x, (float)p->y, (float)p->z};
+            m->vertices[3 * k + i] = *p;
+        }
+    pack(m);
+}
+
+START_TEST(test_packets_of_floats_decide_on_their_lanes_corners)
+{
+    rng_state g = {29};
+    little_mesh m = {0};
+    packet_tally tally = {0};
+    for (int n = 0; n < 10000; n++) {
+        random_mesh(&g, &m, n);
+        round_to_float(&m);
+        for (int k = 0; k < 8; k++) {
+            ray r = ray_toward(&g, &m, k, n + k);
+            double size = vec3_length(vec3_sub(m.corners[k].p[1],
+                                                m.corners[k].p[0]));
+            check_search_in_lanes(&tally, &m, r, INFINITY, -1);
+            check_search_in_lanes(&tally, &m, r, 4 * size, m.items[k]);
+        }
+    }
+    free(m.packets);
+    ck_assert_int_eq(tally.differences, 0);
+    ck_assert_msg(tally.hits > tally.rays / 4, "%lld hits of %lld rays",
+                  tally.hits, tally.rays);
 }
 END_TEST
 
@@ -907,6 +967,8 @@ Suite *ch10_packets_suite(void)
                    test_the_float_filter_keeps_every_triangle_double_hits);
     tcase_add_test(packets, test_packets_find_what_the_double_leaf_test_finds);
     tcase_add_test(packets, test_packets_leak_no_edge_aimed_ray);
+    tcase_add_test(packets,
+                   test_packets_of_floats_decide_on_their_lanes_corners);
     tcase_add_test(packets,
                    test_packets_keep_the_tie_rule_in_and_across_packets);
     tcase_add_test(packets, test_float_up_by_bits_is_nextafterf_s_step);

@@ -378,6 +378,7 @@ void mesh_free_tree(mesh *m)
     /* <<free the mesh's other trees>> += ch10 */
     free(m->bvh_packets);
     m->bvh_packets = NULL, m->bvh_packet_count = 0, m->bvh_in_float = false;
+    m->bvh_corners_in_float = false;
 }
 
 long long mesh_tree_bytes(const mesh *m)
@@ -540,6 +541,18 @@ static int pack_leaves(mesh *m, triangle_packet *packets, int from, int to,
     return next;
 }
 
+/* Is every coordinate of m's corners a float, the same number rounded? */
+static bool corners_in_float(const mesh *m)
+{
+    for (int k = 0; k < m->vertex_count; k++)
+        for (int axis = 0; axis < 3; axis++) {
+            double x = vec3_axis(m->vertices[k], axis);
+            if ((double)(float)x != x)
+                return false;
+        }
+    return true;
+}
+
 /* <<making a mesh's packets>> ch10 */
 /* m's BVH's packets, counted first, then filled; false: no memory. */
 static bool make_packets(mesh *m)
@@ -551,6 +564,7 @@ static bool make_packets(mesh *m)
         return false;
     pack_leaves(m, packets, 0, m->bvh.node_count, 0);
     m->bvh_packets = packets, m->bvh_packet_count = count;
+    m->bvh_corners_in_float = corners_in_float(m);
     return true;
 }
 
@@ -605,13 +619,13 @@ bvh_leaf_test(const mesh *m, const packet_ray *r, bvh_leaf leaf,
     if (in_float)
         return triangle_packets_nearest_float(r, p, n, t_min, t_max, best,
                                               out);
+    /* corners that are floats already: read from the packet, at hand */
+    const vec3 *v = m->bvh_corners_in_float ? NULL : m->vertices;
     if (out == NULL)
-        return triangle_packets_any_in_mesh(r, p, n, m->vertices,
-                                            m->triangles, t_min, t_max,
-                                            decided) ? 0 : -1;
-    return triangle_packets_nearest_in_mesh(r, p, n, m->vertices,
-                                            m->triangles, t_min, t_max,
-                                            best, out, decided);
+        return triangle_packets_any_in_mesh(r, p, n, v, m->triangles, t_min,
+                                            t_max, decided) ? 0 : -1;
+    return triangle_packets_nearest_in_mesh(r, p, n, v, m->triangles, t_min,
+                                            t_max, best, out, decided);
 }
 
 /* The walk of m's binary BVH: chapter 9's, its leaves of packets. */

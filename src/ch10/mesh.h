@@ -52,6 +52,7 @@ typedef struct {
     triangle_packet *bvh_packets; /* the BVH's leaves' triangles, leaf by leaf */
     int bvh_packet_count;
     bool bvh_in_float; /* its leaves decided in float alone (bvh-float) */
+    bool bvh_corners_in_float; /* every corner a float: the packets' exact */
 } mesh;
 
 void mesh_free(mesh *m);

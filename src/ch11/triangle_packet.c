@@ -318,15 +318,22 @@ unsigned triangle_packet_candidates(const triangle_packet *p,
     return candidates(p, r, float_interval_of(t_min, t_max), alone);
 }
 
-/* Chapter 4's test, tightened, of triangle i of the mesh (vertices,
- * triangles). */
-static bool hit_in_mesh(const packet_ray *r, const vec3 *vertices,
-                        const mesh_triangle *triangles, int i, double t_min,
+/* Chapter 4's test, tightened, of lane k of packet q: its triangle's
+ * corners read from the mesh (vertices, triangles), or from the lane
+ * itself when vertices is NULL (every corner a float, held exactly). */
+static bool hit_in_lane(const packet_ray *r, const triangle_packet *q,
+                        int k, const vec3 *vertices,
+                        const mesh_triangle *triangles, double t_min,
                         double t_max, triangle_hit *out)
 {
-    const int *v = triangles[i].v;
-    return triangle_hit_tightened(r->exact, &vertices[v[0]], &vertices[v[1]],
-                                  &vertices[v[2]], t_min, t_max, out);
+    vec3 c[3];
+    for (int i = 0; i < 3; i++) /* the lane: no load from afar */
+        c[i] = vertices == NULL
+                   ? (vec3){q->corner[i][0][k], q->corner[i][1][k],
+                            q->corner[i][2][k]}
+                   : vertices[triangles[q->triangle[k]].v[i]];
+    return triangle_hit_tightened(r->exact, &c[0], &c[1], &c[2], t_min,
+                                  t_max, out);
 }
 
 /* <<deciding the kept lanes>> ch10 */
@@ -344,10 +351,11 @@ int triangle_packets_nearest_in_mesh(const packet_ray *r,
         for (unsigned bits = candidates(&packets[p], r, in, LANE_BY_LANE);
              bits != 0;
              bits &= bits - 1) {
-            int i = packets[p].triangle[__builtin_ctz(bits)];
+            int k = __builtin_ctz(bits), i = packets[p].triangle[k];
             triangle_hit th;
             ++*decided;
-            if (hit_in_mesh(r, vertices, triangles, i, t_min, t_upto, &th) &&
+            if (hit_in_lane(r, &packets[p], k, vertices, triangles, t_min,
+                            t_upto, &th) &&
                 (th.t < t_max || i < best)) { /* a tie: the lower index */
                 *out = th, t_max = th.t, best = i, nearest = i;
                 t_upto = double_after(t_max);
@@ -370,9 +378,9 @@ bool triangle_packets_any_in_mesh(const packet_ray *r,
         for (unsigned bits = candidates(&packets[p], r, in, LANE_BY_LANE);
              bits != 0;
              bits &= bits - 1) {
-            int i = packets[p].triangle[__builtin_ctz(bits)];
             ++*decided;
-            if (hit_in_mesh(r, vertices, triangles, i, t_min, t_max, &unused))
+            if (hit_in_lane(r, &packets[p], __builtin_ctz(bits), vertices,
+                            triangles, t_min, t_max, &unused))
                 return true;
         }
     return false;

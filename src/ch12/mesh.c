@@ -383,6 +383,7 @@ void mesh_free_tree(mesh *m)
     /* <<free the mesh's other trees>> += ch10 */
     free(m->bvh_packets);
     m->bvh_packets = NULL, m->bvh_packet_count = 0, m->bvh_in_float = false;
+    m->bvh_corners_in_float = false;
     /* <<free the mesh's other trees>> += ch11 */
     m->bvh_walk = 0;
 }
@@ -554,6 +555,18 @@ static int pack_leaves(mesh *m, triangle_packet *packets, int from, int to,
     return next;
 }
 
+/* Is every coordinate of m's corners a float, the same number rounded? */
+static bool corners_in_float(const mesh *m)
+{
+    for (int k = 0; k < m->vertex_count; k++)
+        for (int axis = 0; axis < 3; axis++) {
+            double x = vec3_axis(m->vertices[k], axis);
+            if ((double)(float)x != x)
+                return false;
+        }
+    return true;
+}
+
 /* <<making a mesh's packets>> ch12 */
 /* The work around a mesh's build, in pieces for the pool: pieces of its
  * triangles for their boxes, then of the tree's nodes for their
@@ -621,6 +634,7 @@ static bool make_packets(mesh *m)
     pool_for(w.pieces, m->bvh.build_threads, pack_piece, &w);
     m->bvh_packets = w.packets;
     m->bvh_packet_count = w.first[w.pieces];
+    m->bvh_corners_in_float = corners_in_float(m);
     return true;
 }
 
@@ -677,13 +691,13 @@ bvh_leaf_test(const mesh *m, const packet_ray *r, bvh_leaf leaf,
     if (in_float)
         return triangle_packets_nearest_float(r, p, n, t_min, t_max, best,
                                               out);
+    /* corners that are floats already: read from the packet, at hand */
+    const vec3 *v = m->bvh_corners_in_float ? NULL : m->vertices;
     if (out == NULL)
-        return triangle_packets_any_in_mesh(r, p, n, m->vertices,
-                                            m->triangles, t_min, t_max,
-                                            decided) ? 0 : -1;
-    return triangle_packets_nearest_in_mesh(r, p, n, m->vertices,
-                                            m->triangles, t_min, t_max,
-                                            best, out, decided);
+        return triangle_packets_any_in_mesh(r, p, n, v, m->triangles, t_min,
+                                            t_max, decided) ? 0 : -1;
+    return triangle_packets_nearest_in_mesh(r, p, n, v, m->triangles, t_min,
+                                            t_max, best, out, decided);
 }
 
 /* The walk of m's binary BVH: chapter 9's, its leaves of packets. */

@@ -52,6 +52,7 @@ typedef struct {
     triangle_packet *bvh_packets; /* the BVH's leaves' triangles, leaf by leaf */
     int bvh_packet_count;
     bool bvh_in_float; /* its leaves decided in float alone (bvh-float) */
+    bool bvh_corners_in_float; /* every corner a float: the packets' exact */
     /* <<mesh members>> += ch11 */
     unsigned char bvh_walk; /* its walk: 0 binary, 2 plain, 4 AVX2, 6 AVX-512 */
     /* <<mesh members>> += ch12 */

@@ -100,7 +100,9 @@ bool triangle_packet_stops_at_edges(const triangle_packet *p,
  * on the mesh's corners, by the tie rule of triangle_nearest_of_leaf: a
  * hit at t_max itself wins when its index is below best (-1: nothing
  * found yet, t_max excluded). Returns its index in the mesh and fills
- * *out; or -1. Adds the double tests to *decided (not NULL). */
+ * *out; or -1. Adds the double tests to *decided (not NULL). vertices
+ * NULL: every corner of the mesh is a float, which the packets hold
+ * exactly, and the test reads them there. */
 int triangle_packets_nearest_in_mesh(const packet_ray *r,
                                      const triangle_packet *packets,
                                      int count, const vec3 *vertices,
