@@ -249,6 +249,7 @@ typedef struct {
     triangle_corners leaf[MAX_TRIANGLES]; /* corners in the items' order */
     int items[MAX_TRIANGLES], count, packet_count;
     triangle_packet *packets;
+    bool in_lanes; /* every corner a float: decided on the packets' */
 } little_mesh;
 
 /* Triangle c as the mesh's triangle number count. */
@@ -279,22 +280,24 @@ static void pack(little_mesh *m)
     ck_assert_int_eq(m->packet_count, n);
 }
 
-/* The packets' nearest and any hit, decided on the mesh's corners. */
+/* The packets' nearest and any hit, decided on the mesh's corners, or
+ * (in_lanes) on the packets' own. */
 static int packets_nearest(const little_mesh *m, const packet_ray *pr,
                            double t_max, int best, triangle_hit *th,
                            long long *decided)
 {
+    const vec3 *v = m->in_lanes ? NULL : m->vertices;
     return triangle_packets_nearest_in_mesh(pr, m->packets, m->packet_count,
-                                            m->vertices, m->triangles, 0,
-                                            t_max, best, th, decided);
+                                            v, m->triangles, 0, t_max, best,
+                                            th, decided);
 }
 
 static bool packets_any(const little_mesh *m, const packet_ray *pr,
                         double t_max, long long *decided)
 {
-    return triangle_packets_any_in_mesh(pr, m->packets, m->packet_count,
-                                        m->vertices, m->triangles, 0, t_max,
-                                        decided);
+    const vec3 *v = m->in_lanes ? NULL : m->vertices;
+    return triangle_packets_any_in_mesh(pr, m->packets, m->packet_count, v,
+                                        m->triangles, 0, t_max, decided);
 }
 
 typedef struct {
@@ -347,7 +350,7 @@ static void check_search(packet_tally *tally, const little_mesh *m, ray r,
     int k = triangle_nearest_of_leaf(&w, c, m->items, m->count, 0, t_max,
                                      best, &theirs);
     bool any = triangle_any_corners(&w, c, m->count, 0, t_max);
-    tally->rays++;
+    tally->rays++, tally->hits += k >= 0;
     tally->differences += i != (k < 0 ? -1 : m->items[k]);
     tally->differences += any != packets_any(m, &pr, t_max, &tally->decided);
     if (k >= 0)
@@ -366,7 +369,7 @@ static void random_mesh(rng_state *g, little_mesh *m, int kind)
     int unused[8];
     random_leaf(g, vec3_scale(rng_unit_vector(g, 0.1), sc[1]), sc[0], c,
                 unused);
-    m->count = 0;
+    m->count = 0, m->in_lanes = false;
     for (int k = 0; k < 8; k++)
         add_triangle(m, c[k]);
     if (kind % 5 == 0) /* a line, and a point */
@@ -393,6 +396,41 @@ static ray ray_toward(rng_state *g, const little_mesh *m, int k, int kind)
         from = vec3_scale(vec3_sub(c->p[1], c->p[0]), 4);
     vec3 origin = vec3_add(target, from);
     return (ray){origin, vec3_normalize(vec3_sub(target, origin))};
+}
+
+/* m's corners rounded to float, and packed again. */
+static void round_to_float(little_mesh *m)
+{
+    for (int k = 0; k < m->count; k++)
+        for (int i = 0; i < 3; i++) {
+            vec3 *p = &m->corners[k].p[i];
+            *p = (vec3){(float)p->x, (float)p->y, (float)p->z};
+            m->vertices[3 * k + i] = *p;
+        }
+    pack(m);
+    m->in_lanes = true;
+}
+
+/* leaves random leaves from g (in_float: their corners rounded to float,
+ * decided on the packets' own), each searched by rays at eight of its
+ * triangles, with and without a bound and a best: into *tally. */
+static void search_random_leaves(packet_tally *tally, rng_state g,
+                                 int leaves, bool in_float)
+{
+    little_mesh m = {0};
+    for (int n = 0; n < leaves; n++) {
+        random_mesh(&g, &m, n);
+        if (in_float)
+            round_to_float(&m);
+        for (int k = 0; k < 8; k++) {
+            ray r = ray_toward(&g, &m, k, n + k);
+            double size = vec3_length(vec3_sub(m.corners[k].p[1],
+                                                m.corners[k].p[0]));
+            check_search(tally, &m, r, INFINITY, -1);
+            check_search(tally, &m, r, 4 * size, m.items[k]);
+        }
+    }
+    free(m.packets);
 }
 
 START_TEST(test_the_float_filter_keeps_every_triangle_double_hits)
@@ -434,79 +472,17 @@ END_TEST
 
 START_TEST(test_packets_find_what_the_double_leaf_test_finds)
 {
-    rng_state g = {23};
-    little_mesh m = {0};
     packet_tally tally = {0};
-    for (int n = 0; n < 20000; n++) {
-        random_mesh(&g, &m, n);
-        for (int k = 0; k < 8; k++) {
-            ray r = ray_toward(&g, &m, k, n + k);
-            double size = vec3_length(vec3_sub(m.corners[k].p[1],
-                                                m.corners[k].p[0]));
-            check_search(&tally, &m, r, INFINITY, -1);
-            check_search(&tally, &m, r, 4 * size, m.items[k]);
-        }
-    }
-    free(m.packets);
+    search_random_leaves(&tally, (rng_state){23}, 20000, false);
     ck_assert_int_eq(tally.differences, 0);
     ck_assert_int_gt(tally.decided, 0);
 }
 END_TEST
 
-/* The packets' nearest and any hit, decided on their own lanes' corners
- * (vertices NULL), against chapter 8's leaf test, bit for bit: for a
- * mesh whose corners are floats. */
-static void check_search_in_lanes(packet_tally *tally, const little_mesh *m,
-                                  ray r, double t_max, int best)
-{
-    watertight_ray w = watertight_ray_of(r);
-    packet_ray pr = packet_ray_of(&w);
-    triangle_hit mine = {0}, theirs = {0};
-    int i = triangle_packets_nearest_in_mesh(&pr, m->packets, m->packet_count,
-                                             NULL, m->triangles, 0, t_max,
-                                             best, &mine, &tally->decided);
-    int k = triangle_nearest_of_leaf(&w, m->leaf, m->items, m->count, 0,
-                                     t_max, best, &theirs);
-    bool any = triangle_packets_any_in_mesh(&pr, m->packets, m->packet_count,
-                                            NULL, m->triangles, 0, t_max,
-                                            &tally->decided);
-    tally->rays++, tally->hits += k >= 0;
-    tally->differences += i != (k < 0 ? -1 : m->items[k]);
-    tally->differences += any != triangle_any_corners(&w, m->leaf, m->count,
-                                                      0, t_max);
-    if (k >= 0)
-        tally->differences += memcmp(&mine, &theirs, sizeof mine) != 0;
-}
-
-/* m's corners rounded to float, and packed again. */
-static void round_to_float(little_mesh *m)
-{
-    for (int k = 0; k < m->count; k++)
-        for (int i = 0; i < 3; i++) {
-            vec3 *p = &m->corners[k].p[i];
-            *p = (vec3){(float)p->x, (float)p->y, (float)p->z};
-            m->vertices[3 * k + i] = *p;
-        }
-    pack(m);
-}
-
 START_TEST(test_packets_of_floats_decide_on_their_lanes_corners)
 {
-    rng_state g = {29};
-    little_mesh m = {0};
     packet_tally tally = {0};
-    for (int n = 0; n < 10000; n++) {
-        random_mesh(&g, &m, n);
-        round_to_float(&m);
-        for (int k = 0; k < 8; k++) {
-            ray r = ray_toward(&g, &m, k, n + k);
-            double size = vec3_length(vec3_sub(m.corners[k].p[1],
-                                                m.corners[k].p[0]));
-            check_search_in_lanes(&tally, &m, r, INFINITY, -1);
-            check_search_in_lanes(&tally, &m, r, 4 * size, m.items[k]);
-        }
-    }
-    free(m.packets);
+    search_random_leaves(&tally, (rng_state){29}, 10000, true);
     ck_assert_int_eq(tally.differences, 0);
     ck_assert_msg(tally.hits > tally.rays / 4, "%lld hits of %lld rays",
                   tally.hits, tally.rays);
