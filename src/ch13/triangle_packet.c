@@ -327,7 +327,7 @@ static bool hit_in_lane(const packet_ray *r, const triangle_packet *q,
                         double t_max, triangle_hit *out)
 {
     vec3 c[3];
-    for (int i = 0; i < 3; i++) /* the lane: no load from afar */
+    for (int i = 0; i < 3; i++) /* NULL: the lane's own, at hand */
         c[i] = vertices == NULL
                    ? (vec3){q->corner[i][0][k], q->corner[i][1][k],
                             q->corner[i][2][k]}
