@@ -645,6 +645,11 @@ bool mesh_build_bvh(mesh *m, const bvh_params *p)
     q.min_items = q.min_items > 0 ? q.min_items : MESH_TREE_MIN_TRIANGLES;
     /* <<a mesh's own bvh parameters>> ch10 */
     q.item_group = q.item_group > 0 ? q.item_group : PACKET_W;
+    /* <<a mesh's own bvh parameters>> += ch11 */
+    /* a wide node tests eight boxes at once: a box at half a packet */
+    int width = q.width > 0 ? q.width : bvh_default_params().width;
+    if (width > 2 && q.traversal_cost == 0) /* 0: the mesh's default */
+        q.traversal_cost = 0.5;
     box *bounds = memory_alloc((size_t)m->triangle_count, sizeof *bounds);
     if (bounds != NULL)
         /* <<the boxes of a mesh's triangles>> ch12 */
