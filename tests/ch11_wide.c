@@ -456,6 +456,34 @@ START_TEST(test_the_wide_bvh_of_a_mesh_stays_within_its_bytes)
 }
 END_TEST
 
+/* A mesh's wide tree prices a node's box at half a packet's test (its
+ * own traversal_cost 0.5 builds the same tree); priced alike, as the
+ * binary tree's build prices them, its leaves are larger and fewer. */
+START_TEST(test_a_mesh_s_wide_tree_prices_a_box_at_half_a_packet)
+{
+    mesh m = ch09_load("meshes/teapot-8.obj");
+    mesh own = ch09_bare(&m), half = ch09_bare(&m), whole = ch09_bare(&m);
+    ck_assert(mesh_build_bvh(&own, &(bvh_params){0}));
+    ck_assert(mesh_build_bvh(&half, &(bvh_params){.traversal_cost = 0.5}));
+    ck_assert(mesh_build_bvh(&whole, &(bvh_params){.traversal_cost = 1}));
+    ck_assert_int_eq(own.bvh.width, 8);
+    ck_assert_int_eq(own.bvh.node_count, half.bvh.node_count);
+    ck_assert(memcmp(own.bvh.nodes8, half.bvh.nodes8,
+                     (size_t)own.bvh.node_count * sizeof(bvh_node8)) == 0);
+    ck_assert_int_gt(own.bvh.leaf_count, whole.bvh.leaf_count);
+    mesh binary = ch09_bare(&m), binary_whole = ch09_bare(&m);
+    ck_assert(mesh_build_bvh(&binary, &(bvh_params){.width = 2}));
+    ck_assert(mesh_build_bvh(&binary_whole,
+                             &(bvh_params){.width = 2, .traversal_cost = 1}));
+    ck_assert_int_eq(binary.bvh.node_count, binary_whole.bvh.node_count);
+    ck_assert(memcmp(binary.bvh.nodes, binary_whole.bvh.nodes,
+                     (size_t)binary.bvh.node_count * sizeof(bvh_node)) == 0);
+    mesh_free_tree(&own), mesh_free_tree(&half), mesh_free_tree(&whole);
+    mesh_free_tree(&binary), mesh_free_tree(&binary_whole);
+    mesh_free(&m);
+}
+END_TEST
+
 START_TEST(test_running_out_of_memory_in_a_wide_build_leaves_no_tree)
 {
     mesh m = ch09_load("meshes/teapot-8.obj");
@@ -501,6 +529,7 @@ Suite *ch11_wide_suite(void)
     tcase_add_test(nodes, test_wide_nodes_hold_their_leaves_items);
     tcase_add_test(nodes, test_every_wide_leaf_s_packets_hold_its_triangles);
     tcase_add_test(nodes, test_the_wide_bvh_of_a_mesh_stays_within_its_bytes);
+    tcase_add_test(nodes, test_a_mesh_s_wide_tree_prices_a_box_at_half_a_packet);
     tcase_add_test(nodes,
                    test_running_out_of_memory_in_a_wide_build_leaves_no_tree);
     suite_add_tcase(s, nodes);
