@@ -529,7 +529,8 @@ Suite *ch11_wide_suite(void)
     tcase_add_test(nodes, test_wide_nodes_hold_their_leaves_items);
     tcase_add_test(nodes, test_every_wide_leaf_s_packets_hold_its_triangles);
     tcase_add_test(nodes, test_the_wide_bvh_of_a_mesh_stays_within_its_bytes);
-    tcase_add_test(nodes, test_a_mesh_s_wide_tree_prices_a_box_at_half_a_packet);
+    tcase_add_test(nodes,
+                   test_a_mesh_s_wide_tree_prices_a_box_at_half_a_packet);
     tcase_add_test(nodes,
                    test_running_out_of_memory_in_a_wide_build_leaves_no_tree);
     suite_add_tcase(s, nodes);
