@@ -225,7 +225,7 @@ int mesh_nearest(const mesh *m, const mesh_ray *mr, double t_min,
                  double t_max, triangle_hit *out, render_stats *stats)
 {
     /* <<a search that tests the mesh's box itself>> ch11 */
-    if (m->bvh.node_count > 0 && m->bvh_walk != 0)
+    if (m->bvh_walk != 0) /* set only for a tree built */
         return mesh_search_bvh(m, mr, t_min, t_max, out, stats);
     stats->box_tests++;
     double near = t_min, far = t_max;
@@ -456,7 +456,7 @@ bool mesh_occluded(const mesh *m, const mesh_ray *mr, double t_min,
                    double t_max, render_stats *stats)
 {
     /* <<a shadow ray's search that tests the box itself>> ch11 */
-    if (m->bvh.node_count > 0 && m->bvh_walk != 0)
+    if (m->bvh_walk != 0)
         return mesh_search_bvh(m, mr, t_min, t_max, NULL, stats) >= 0;
     double near = t_min, far = t_max;
     stats->box_tests++;
@@ -803,6 +803,23 @@ BVH_INLINE bool bvh_pop(const uint32_t *stack, const float *entry, int *top,
     return true;
 }
 
+/* Two children of n met (lanes a < b of its mask): the nearer, by where
+ * the ray enters it (a on a tie), is the next node; the other is pushed.
+ * Selects, not branches: which is nearer is a coin's toss. */
+BVH_INLINE uint32_t bvh_take_two(uint32_t *stack, float *entry, int *top,
+                                 const bvh_node8 *n, unsigned hit,
+                                 const float t_near[8])
+{
+    int a = __builtin_ctz(hit), b = __builtin_ctz(hit & (hit - 1));
+    float t_a = t_near[a], t_b = t_near[b];
+    uint32_t child_a = n->child[a], child_b = n->child[b];
+    bool a_first = t_a <= t_b;
+    stack[*top] = a_first ? child_b : child_a;
+    entry[*top] = a_first ? t_b : t_a;
+    ++*top;
+    return a_first ? child_a : child_b;
+}
+
 /* The walk of m's wide BVH for mr, its nodes tested with AVX2 unless isa
  * is BVH_PLAIN (the caller's instructions must allow isa), its leaves
  * decided in float when in_float; both constants where it is inlined. */
@@ -838,11 +855,14 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
             unsigned hit = avx2 ? bvh_node8_lanes_avx2(n, &v, bound, t_near,
                                                        met)
                                 : bvh_node8_test(n, &r, bound, t_near);
+            unsigned rest = hit & (hit - 1); /* hit less its lowest lane */
             nodes++;
             if (hit == 0 && !bvh_pop(stack, entry, &top, bound, &now))
                 goto done; /* none, and nothing left */
-            else if (hit != 0 && (hit & (hit - 1)) == 0) /* one: descend */
+            else if (hit != 0 && rest == 0) /* one: descend */
                 now = n->child[__builtin_ctz(hit)];
+            else if (hit != 0 && (rest & (rest - 1)) == 0) /* two */
+                now = bvh_take_two(stack, entry, &top, n, hit, t_near);
             else if (hit != 0 && isa == BVH_AVX512) /* more: push, */
                 top = bvh_push8_avx512(stack, entry, top, n, met, t_near,
                                        shift, &now) - 1; /* take the nearest */
