@@ -804,8 +804,7 @@ BVH_INLINE bool bvh_pop(const uint32_t *stack, const float *entry, int *top,
 }
 
 /* Two children of n met (lanes a < b of its mask): the nearer, by where
- * the ray enters it (a on a tie), is the next node; the other is pushed.
- * Selects, not branches: which is nearer is a coin's toss. */
+ * the ray enters it (a on a tie), is the next node; the other is pushed. */
 BVH_INLINE uint32_t bvh_take_two(uint32_t *stack, float *entry, int *top,
                                  const bvh_node8 *n, unsigned hit,
                                  const float t_near[8])
