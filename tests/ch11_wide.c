@@ -419,6 +419,43 @@ START_TEST(test_wide_nodes_hold_their_leaves_items)
 }
 END_TEST
 
+/* A node's children that are nodes fill its first lanes, numbered one
+ * after another from child[0]'s, as many as bvh_child_nodes says; every
+ * node but the root is the child of one lane, below its parent. */
+START_TEST(test_a_node_s_children_that_are_nodes_come_first_in_a_row)
+{
+    box *b = ch09_random_boxes(&rng, 3000, (vec3){-4, 2, 7}, 10, 0.5);
+    for (int width = 4; width <= 8; width *= 2) {
+        bvh t;
+        ck_assert(bvh_build(&t, 3000, b, &(bvh_params){.width = width}));
+        int *parents = calloc((size_t)t.node_count, sizeof *parents);
+        ck_assert(parents != NULL);
+        for (int k = 0; k < t.node_count; k++) {
+            const bvh_node8 *n = &t.nodes8[k];
+            int nodes = bvh_child_nodes(n);
+            ck_assert_int_le(nodes, width);
+            for (int c = 0; c < 8; c++) {
+                uint32_t word = n->child[c];
+                ck_assert_msg((c < nodes) == !(word & BVH_LEAF),
+                              "node %d, lane %d: a node past the count, "
+                              "or a leaf before it", k, c);
+                if (c >= nodes)
+                    continue;
+                ck_assert_uint_eq(word, n->child[0] + (uint32_t)c);
+                ck_assert((int)word > k && (int)word < t.node_count);
+                parents[word]++;
+            }
+        }
+        ck_assert_int_eq(parents[0], 0);
+        for (int k = 1; k < t.node_count; k++)
+            ck_assert_int_eq(parents[k], 1);
+        free(parents);
+        bvh_free(&t);
+    }
+    free(b);
+}
+END_TEST
+
 /* The leaf of reference c of wide node k of t (count 0: none): its first
  * packet and its triangles. */
 static uint32_t leaf_of(const bvh *t, int k, int c, uint32_t *count)
@@ -527,6 +564,8 @@ Suite *ch11_wide_suite(void)
     tcase_add_test(nodes,
                    test_a_push_keeps_the_children_hit_in_the_octant_s_order);
     tcase_add_test(nodes, test_wide_nodes_hold_their_leaves_items);
+    tcase_add_test(nodes,
+                   test_a_node_s_children_that_are_nodes_come_first_in_a_row);
     tcase_add_test(nodes, test_every_wide_leaf_s_packets_hold_its_triangles);
     tcase_add_test(nodes, test_the_wide_bvh_of_a_mesh_stays_within_its_bytes);
     tcase_add_test(nodes,

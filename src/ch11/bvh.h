@@ -84,9 +84,12 @@ _Static_assert(sizeof(bvh_node) == 32, "a node is 32 bytes");
  * children, a lane each; an unused lane has an empty box (lo +inf, hi
  * -inf) and an empty leaf. child[c] is a node's index, or (BVH_LEAF set)
  * a leaf: its item count in bits 27-30, its first item (or packet)
- * below. order[k] holds,
+ * below. The children that are nodes take the first lanes, numbered one
+ * after another: lane c's is child[0] + c. order[k] holds,
  * in bits 3 o to 3 o + 2, the lane at place k of octant o's order
- * (bit a of o: the ray goes down axis a), farthest first. */
+ * (bit a of o: the ray goes down axis a), farthest first; the top byte
+ * of order[0], which the orders leave free, counts the children that
+ * are nodes. */
 typedef struct {
     float face[6][8];
     uint32_t child[8], order[8];
@@ -97,6 +100,13 @@ _Static_assert(sizeof(bvh_node8) == 256, "four cache lines");
 #define BVH_LEAF 0x80000000u
 #define BVH_COUNT_SHIFT 27
 #define BVH_FIRST_MASK ((1u << BVH_COUNT_SHIFT) - 1)
+#define BVH_NODES_SHIFT 24 /* in order[0]: how many children are nodes */
+
+/* How many of n's children are nodes: lanes 0 to this less one. */
+static inline int bvh_child_nodes(const bvh_node8 *n)
+{
+    return (int)(n->order[0] >> BVH_NODES_SHIFT);
+}
 
 /* A leaf's word: count items (1 to 15; 0: an unused lane) from first. */
 static inline uint32_t bvh_leaf_word(uint32_t first, uint32_t count)

@@ -586,14 +586,34 @@ static void order_children(bvh_node8 *n)
     }
 }
 
+/* Moves the children of kids[0..n) that are nodes (count 0) before the
+ * leaves, each kind in its order; returns how many are nodes. */
+static int nodes_first(const bvh_node *nodes, int kids[8], int n)
+{
+    int sorted[8], m = 0;
+    for (int c = 0; c < n; c++)
+        if (nodes[kids[c]].count == 0)
+            sorted[m++] = kids[c];
+    int interior = m;
+    for (int c = 0; c < n; c++)
+        if (nodes[kids[c]].count != 0)
+            sorted[m++] = kids[c];
+    memcpy(kids, sorted, (size_t)n * sizeof *kids);
+    return interior;
+}
+
 /* Fills wide node w with the children of binary node k, and the wide
- * nodes below it from t->node_count on. */
+ * nodes below it from t->node_count on: its children that are nodes
+ * first, in numbers that follow one another, then theirs. */
 static void collapse(bvh *t, const bvh_node *nodes, int k, int w)
 {
     int kids[8], n = 1;
     kids[0] = k; /* a root that is a leaf: one child */
     if (nodes[k].count == 0)
         n = open_children(nodes, k, t->width, kids);
+    int interior = nodes_first(nodes, kids, n);
+    uint32_t first = (uint32_t)t->node_count; /* lane 0's number */
+    t->node_count += interior;
     bvh_node8 *node = &t->nodes8[w];
     for (int c = 0; c < 8; c++) {
         for (int a = 0; a < 3; a++) /* no box yet: lo +inf, hi -inf */
@@ -607,13 +627,13 @@ static void collapse(bvh *t, const bvh_node *nodes, int k, int w)
             node->face[2 * a][c] = kid->box[a],
             node->face[2 * a + 1][c] = kid->box[a + 3];
         assert(kid->count < 16);
-        node->child[c] = bvh_leaf_word(kid->index, kid->count);
-        if (kid->count == 0) {
-            node->child[c] = (uint32_t)t->node_count++;
-            collapse(t, nodes, kids[c], (int)node->child[c]);
-        }
+        node->child[c] = c < interior ? first + (uint32_t)c
+                                      : bvh_leaf_word(kid->index, kid->count);
     }
     order_children(node);
+    node->order[0] |= (uint32_t)interior << BVH_NODES_SHIFT;
+    for (int c = 0; c < interior; c++)
+        collapse(t, nodes, kids[c], (int)(first + (uint32_t)c));
 }
 
 /* t's wide nodes in an array of their number, which the collapse knows

@@ -803,15 +803,31 @@ BVH_INLINE bool bvh_pop(const uint32_t *stack, const float *entry, int *top,
     return true;
 }
 
+/* The word of n's child in lane c: a node's number by an addition to
+ * child[0]'s, read with the node, so that the next node's address waits
+ * on no load; a leaf's word read. */
+BVH_INLINE uint32_t bvh_child_in_lane(const bvh_node8 *n, int c)
+{
+    if (c < bvh_child_nodes(n))
+        return n->child[0] + (uint32_t)c;
+    return n->child[c];
+}
+
 /* Two children of n met (lanes a < b of its mask): the nearer, by where
- * the ray enters it (a on a tie), is the next node; the other is pushed. */
+ * the ray enters it (a on a tie), is the next node; the other is pushed.
+ * Both nodes (b is, then a is): their numbers by additions, as above. */
 BVH_INLINE uint32_t bvh_take_two(uint32_t *stack, float *entry, int *top,
                                  const bvh_node8 *n, unsigned hit,
                                  const float t_near[8])
 {
     int a = __builtin_ctz(hit), b = __builtin_ctz(hit & (hit - 1));
     float t_a = t_near[a], t_b = t_near[b];
-    uint32_t child_a = n->child[a], child_b = n->child[b];
+    uint32_t child_a, child_b;
+    if (b < bvh_child_nodes(n))
+        child_a = n->child[0] + (uint32_t)a,
+        child_b = n->child[0] + (uint32_t)b;
+    else
+        child_a = n->child[a], child_b = n->child[b];
     bool a_first = t_a <= t_b;
     stack[*top] = a_first ? child_b : child_a;
     entry[*top] = a_first ? t_b : t_a;
@@ -859,7 +875,7 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
             if (hit == 0 && !bvh_pop(stack, entry, &top, bound, &now))
                 goto done; /* none, and nothing left */
             else if (hit != 0 && rest == 0) /* one: descend */
-                now = n->child[__builtin_ctz(hit)];
+                now = bvh_child_in_lane(n, __builtin_ctz(hit));
             else if (hit != 0 && (rest & (rest - 1)) == 0) /* two */
                 now = bvh_take_two(stack, entry, &top, n, hit, t_near);
             else if (hit != 0 && isa == BVH_AVX512) /* more: push, */
