@@ -6,6 +6,7 @@
  * pushes; wide nodes and their leaves' packets that hold their items;
  * the wide BVH's bytes. */
 #include <check.h>
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
 #include <stdio.h>
@@ -419,6 +420,185 @@ START_TEST(test_wide_nodes_hold_their_leaves_items)
 }
 END_TEST
 
+/* bvh_bound_after(t) lies at or above t (1 + BVH_SLACK), computed
+ * exactly in double (a float's 24 bits times 21), and is the least float
+ * there or the float after it: never below, never two floats more; a
+ * NaN (no bound) only where no float lies above or the step crosses 0. */
+static void expect_bound_after(float t)
+{
+    double exact = (double)t * (1 + BVH_SLACK);
+    float b = bvh_bound_after(t), least = bvh_float_up(exact);
+    if (least == INFINITY) /* no float above: no bound */
+        ck_assert_msg(isnan(b), "t %a: %a", (double)t, (double)b);
+    else
+        ck_assert_msg(b == least || b == nextafterf(least, INFINITY),
+                      "t %a: %a, least %a", (double)t, (double)b,
+                      (double)least);
+}
+
+START_TEST(test_the_float_path_s_bound_after_a_hit_lies_just_above_it)
+{
+    const float edges[] = {0.0f, 0x1p-149f, 0x1p-126f, 1.0f, 0x1.fffffep-1f,
+                           3.0f, FLT_MAX, -1.0f, -0x1p-149f};
+    for (size_t i = 0; i < sizeof edges / sizeof edges[0]; i++)
+        expect_bound_after(edges[i]);
+    for (int k = 0; k < 100000; k++) /* from tiny to huge, either sign */
+        expect_bound_after((float)ldexp(rng_uniform(&rng, -0.25, 0.75),
+                                        (int)rng_uniform(&rng, -125, 125)));
+    ck_assert(isnan(bvh_bound_after(INFINITY))); /* no float above */
+    ck_assert(isnan(bvh_bound_after(-0.0f)));     /* nor a step over 0 */
+    ck_assert(isnan(bvh_bound_after(NAN)));
+}
+END_TEST
+
+/* The surface area of the box around the used lanes of wide node n. */
+static double wide_node_area(const bvh_node8 *n)
+{
+    float f[6] = {INFINITY, INFINITY, INFINITY, -INFINITY, -INFINITY,
+                  -INFINITY};
+    for (int c = 0; c < 8; c++)
+        for (int a = 0; a < 3; a++) {
+            f[a] = fminf(f[a], n->face[2 * a][c]);
+            f[a + 3] = fmaxf(f[a + 3], n->face[2 * a + 1][c]);
+        }
+    double x = f[3] - f[0], y = f[4] - f[1], z = f[5] - f[2];
+    return x * y + y * z + z * x;
+}
+
+/* The sum of the areas of a wide tree's nodes but the root's (every
+ * collapse has the root): what the collapse makes least. */
+static double wide_tree_area(const bvh *t)
+{
+    double sum = 0;
+    for (int k = 1; k < t->node_count; k++)
+        sum += wide_node_area(&t->nodes8[k]);
+    return sum;
+}
+
+static double binary_node_area(const bvh_node *n)
+{
+    double x = n->box[3] - n->box[0], y = n->box[4] - n->box[1],
+           z = n->box[5] - n->box[2];
+    return x * y + y * z + z * x;
+}
+
+/* The same sum for the greedy collapse of binary tree b (nodes[k]'s
+ * children k + 1 and index) width wide: each wide node's interior child
+ * with the largest box opened first, while there is room. */
+static double greedy_tree_area(const bvh *b, int k, int width)
+{
+    const bvh_node *nodes = b->nodes;
+    int kids[8] = {k + 1, (int)nodes[k].index}, n = 2;
+    for (;;) {
+        int widest = -1;
+        for (int j = 0; j < n; j++)
+            if (nodes[kids[j]].count == 0 &&
+                (widest < 0 || binary_node_area(&nodes[kids[j]]) >
+                                   binary_node_area(&nodes[kids[widest]])))
+                widest = j;
+        if (widest < 0 || n == width)
+            break;
+        int open = kids[widest];
+        kids[widest] = open + 1, kids[n++] = (int)nodes[open].index;
+    }
+    double sum = 0;
+    for (int j = 0; j < n; j++)
+        if (nodes[kids[j]].count == 0)
+            sum += binary_node_area(&nodes[kids[j]]) +
+                   greedy_tree_area(b, kids[j], width);
+    return sum;
+}
+
+/* The priced collapse's wide nodes cost no more than the greedy one's,
+ * by the sum of their areas, and less on thousands of boxes. */
+START_TEST(test_the_collapse_costs_no_more_than_opening_the_largest_box)
+{
+    box *b = ch09_random_boxes(&rng, 3000, (vec3){5, -2, 1}, 10, 0.5);
+    bvh binary;
+    ck_assert(bvh_build(&binary, 3000, b, &(bvh_params){.width = 2}));
+    for (int width = 4; width <= 8; width *= 2) {
+        bvh t;
+        ck_assert(bvh_build(&t, 3000, b, &(bvh_params){.width = width}));
+        double priced = wide_tree_area(&t);
+        double greedy = greedy_tree_area(&binary, 0, width);
+        ck_assert_msg(priced < greedy, "width %d: %g, greedy %g", width,
+                      priced, greedy);
+        bvh_free(&t);
+    }
+    bvh_free(&binary);
+    free(b);
+}
+END_TEST
+
+/* A set of nodes below a binary node, each leaf under exactly one of
+ * them (a frontier): its size, and the areas of the wide nodes that its
+ * interior members become, each at its least. */
+typedef struct {
+    int size;
+    double cost;
+} frontier;
+
+enum { MOST_FRONTIERS = 8192 };
+
+/* Every frontier of k's subtree of at most width members, listed one by
+ * one into out: k itself first, then each of its children's with each
+ * of the other's. How many. */
+static int frontiers(const bvh_node *nodes, int k, int width, frontier *out)
+{
+    out[0] = (frontier){1, 0}; /* a leaf: itself alone */
+    if (nodes[k].count != 0)
+        return 1;
+    frontier *l = malloc(2 * MOST_FRONTIERS * sizeof *l);
+    ck_assert(l != NULL);
+    frontier *r = l + MOST_FRONTIERS;
+    int nl = frontiers(nodes, k + 1, width, l);
+    int nr = frontiers(nodes, (int)nodes[k].index, width, r);
+    int n = 1;
+    double least = INFINITY; /* of the frontiers below k */
+    for (int i = 0; i < nl; i++)
+        for (int j = 0; j < nr; j++)
+            if (l[i].size + r[j].size <= width) {
+                ck_assert_int_lt(n, MOST_FRONTIERS);
+                out[n++] = (frontier){l[i].size + r[j].size,
+                                      l[i].cost + r[j].cost};
+                least = fmin(least, l[i].cost + r[j].cost);
+            }
+    free(l);
+    out[0].cost = binary_node_area(&nodes[k]) + least; /* a wide node */
+    return n;
+}
+
+/* On small trees, the priced collapse's sum is the least of all. */
+START_TEST(test_the_collapse_costs_the_least_of_every_collapse)
+{
+    frontier *f = malloc(MOST_FRONTIERS * sizeof *f);
+    ck_assert(f != NULL);
+    for (int trial = 0; trial < 20; trial++) {
+        int count = 6 + trial / 2; /* up to 15 leaves: few frontiers */
+        box *b = ch09_random_boxes(&rng, count, (vec3){1, 2, 3}, 4, 1);
+        bvh_params p = {.width = 2, .max_leaf_items = 1};
+        bvh binary;
+        ck_assert(bvh_build(&binary, count, b, &p));
+        for (p.width = 4; p.width <= 8; p.width *= 2) {
+            bvh t;
+            ck_assert(bvh_build(&t, count, b, &p));
+            int n = frontiers(binary.nodes, 0, p.width, f);
+            double least = INFINITY; /* not the root alone: below it */
+            for (int i = 1; i < n; i++)
+                least = fmin(least, f[i].cost);
+            double priced = wide_tree_area(&t);
+            ck_assert_msg(fabs(priced - least) <= 1e-5 * least,
+                          "%d boxes, width %d: %.9g, least %.9g", count,
+                          p.width, priced, least);
+            bvh_free(&t);
+        }
+        bvh_free(&binary);
+        free(b);
+    }
+    free(f);
+}
+END_TEST
+
 /* A node's children that are nodes fill its first lanes, numbered one
  * after another from child[0]'s, as many as bvh_child_nodes says; every
  * node but the root is the child of one lane, below its parent. */
@@ -564,6 +744,11 @@ Suite *ch11_wide_suite(void)
     tcase_add_test(nodes,
                    test_a_push_keeps_the_children_hit_in_the_octant_s_order);
     tcase_add_test(nodes, test_wide_nodes_hold_their_leaves_items);
+    tcase_add_test(
+        nodes, test_the_float_path_s_bound_after_a_hit_lies_just_above_it);
+    tcase_add_test(
+        nodes, test_the_collapse_costs_no_more_than_opening_the_largest_box);
+    tcase_add_test(nodes, test_the_collapse_costs_the_least_of_every_collapse);
     tcase_add_test(nodes,
                    test_a_node_s_children_that_are_nodes_come_first_in_a_row);
     tcase_add_test(nodes, test_every_wide_leaf_s_packets_hold_its_triangles);

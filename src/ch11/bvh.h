@@ -478,6 +478,21 @@ bvh_node8_test_avx2(const bvh_node8 *n, const bvh_ray *r, float bound,
  * writes eight lanes above the top before it knows how many it keeps. */
 #define BVH_STACK8 (7 * BVH_MAX_DEPTH + 9)
 
+/* The bound of the boxes after a hit at t, a float (the float path's):
+ * t (1 + BVH_SLACK) rounded to the nearest float, then the next float
+ * up, which lies above the exact product (bvh_float_up's bound, or one
+ * float more), in float alone; a NaN, which bounds nothing, where that
+ * step would leave the floats (infinity) or cross zero (-0). */
+static inline float bvh_bound_after(float t)
+{
+    float p = t * (float)(1 + BVH_SLACK);
+    int32_t bits; /* read as an integer, a float's bits count its size */
+    memcpy(&bits, &p, sizeof bits);
+    bits += bits >= 0 ? 1 : -1; /* below zero, up is towards it */
+    memcpy(&p, &bits, sizeof p);
+    return p;
+}
+
 /* r's faces as rows of a node8 (face 2 a or 2 a + 1 of axis a), in
  * place; the shift of its octant's orders (3 o). */
 static inline unsigned bvh_walk_rows(bvh_ray *r)

@@ -813,15 +813,32 @@ BVH_INLINE uint32_t bvh_child_in_lane(const bvh_node8 *n, int c)
     return n->child[c];
 }
 
+/* Lane k of the entries of a node test, taken from the vector that
+ * t_near copies by a permutation, not read back from t_near: a load of
+ * what was just stored waits for the store. Only where AVX2 is. */
+BVH_AVX2_TARGET static inline float bvh_entry_avx2(const float t_near[8],
+                                                   int k)
+{
+#if BVH_HAS_AVX2_PATH
+    bvh_f8 t;
+    memcpy(&t, t_near, sizeof t); /* the vector, still in its register */
+    return __builtin_ia32_permvarsf256(t, (bvh_i8){0} + k)[0];
+#else
+    return t_near[k];
+#endif
+}
+
 /* Two children of n met (lanes a < b of its mask): the nearer, by where
  * the ray enters it (a on a tie), is the next node; the other is pushed.
- * Both nodes (b is, then a is): their numbers by additions, as above. */
+ * Both nodes (b is, then a is): their numbers by additions, as above.
+ * avx2: the entries taken by bvh_entry_avx2. */
 BVH_INLINE uint32_t bvh_take_two(uint32_t *stack, float *entry, int *top,
                                  const bvh_node8 *n, unsigned hit,
-                                 const float t_near[8])
+                                 const float t_near[8], bool avx2)
 {
     int a = __builtin_ctz(hit), b = __builtin_ctz(hit & (hit - 1));
-    float t_a = t_near[a], t_b = t_near[b];
+    float t_a = avx2 ? bvh_entry_avx2(t_near, a) : t_near[a];
+    float t_b = avx2 ? bvh_entry_avx2(t_near, b) : t_near[b];
     uint32_t child_a, child_b;
     if (b < bvh_child_nodes(n))
         child_a = n->child[0] + (uint32_t)a,
@@ -877,7 +894,8 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
             else if (hit != 0 && rest == 0) /* one: descend */
                 now = bvh_child_in_lane(n, __builtin_ctz(hit));
             else if (hit != 0 && (rest & (rest - 1)) == 0) /* two */
-                now = bvh_take_two(stack, entry, &top, n, hit, t_near);
+                now = bvh_take_two(stack, entry, &top, n, hit, t_near,
+                                   avx2);
             else if (hit != 0 && isa == BVH_AVX512) /* more: push, */
                 top = bvh_push8_avx512(stack, entry, top, n, met, t_near,
                                        shift, &now) - 1; /* take the nearest */
@@ -902,8 +920,9 @@ BVH_INLINE int search_bvh8(const mesh *m, const mesh_ray *mr, double t_min,
             break; /* any hit blocks a shadow ray */
         }
         if (k >= 0) {
-            found = k, t_max = out->t;
-            float b = float_up_by_bits(t_max * (1 + BVH_SLACK));
+            found = k, t_max = out->t; /* a float, on the float path */
+            float b = in_float ? bvh_bound_after((float)t_max)
+                               : float_up_by_bits(t_max * (1 + BVH_SLACK));
             bound = b < ray_bound ? b : ray_bound;
         }
         if (!bvh_pop(stack, entry, &top, bound, &now))

@@ -529,26 +529,77 @@ static double float_box_area(const float b[6])
     return x * y + y * z + z * x;
 }
 
-/* <<opening a node's children>> ch11 */
-/* The children of binary node k, opened until there are width of them or
- * leaves only: the interior child with the largest box first. */
-static int open_children(const bvh_node *nodes, int k, int width,
-                         int kids[8])
+/* <<the costs of a collapse>> ch11 */
+/* What binary node k's subtree adds to the sum of the wide nodes' areas
+ * when its place may take up to i lanes: cost[i - 1], i = 1 to the width
+ * (the surface area heuristic's price of the node tests a ray makes). */
+typedef struct {
+    float cost[8];
+} bvh_slots;
+
+/* The cheapest share of j >= 2 lanes between interior binary node k's
+ * two children, m to the first and j - m to the second: its cost, and
+ * in *first the smallest m that costs it. */
+static float cheapest_share(const bvh_node *nodes, const bvh_slots *s,
+                            int k, int j, int *first)
 {
-    int n = 2;
-    kids[0] = k + 1, kids[1] = (int)nodes[k].index;
-    while (n < width) {
-        int widest = -1;
-        double most = -1;
-        for (int j = 0; j < n; j++)
-            if (nodes[kids[j]].count == 0 &&
-                float_box_area(nodes[kids[j]].box) > most)
-                most = float_box_area(nodes[kids[j]].box), widest = j;
-        if (widest < 0)
-            break;
-        int open = kids[widest];
-        kids[widest] = open + 1, kids[n++] = (int)nodes[open].index;
+    const float *l = s[k + 1].cost, *r = s[nodes[k].index].cost;
+    float best = l[0] + r[j - 2];
+    *first = 1;
+    for (int m = 2; m < j; m++)
+        if (l[m - 1] + r[j - m - 1] < best)
+            best = l[m - 1] + r[j - m - 1], *first = m;
+    return best;
+}
+
+/* <<pricing the collapse>> ch11 */
+/* s[k] for each of the count binary nodes, children (numbered after
+ * their parent) before parents, for a tree width wide. */
+static void price_collapse(const bvh_node *nodes, int count, int width,
+                           bvh_slots *s)
+{
+    for (int k = count - 1; k >= 0; k--) {
+        float *c = s[k].cost;
+        int m;
+        if (nodes[k].count != 0) { /* a leaf: nothing */
+            for (int i = 0; i < width; i++)
+                c[i] = 0;
+            continue;
+        }
+        c[0] = (float)float_box_area(nodes[k].box) +
+               cheapest_share(nodes, s, k, width, &m); /* a wide node */
+        for (int i = 2; i <= width; i++) { /* or lanes handed down */
+            float shared = cheapest_share(nodes, s, k, i, &m);
+            c[i - 1] = shared < c[0] ? shared : c[0];
+        }
     }
+}
+
+/* <<opening a node's children>> ch11 */
+/* Binary node k in up to i lanes, as kids[*n] and on: itself, or, when
+ * handing the lanes down to its children costs no more, what they are
+ * in their shares. */
+static void take_lanes(const bvh_node *nodes, const bvh_slots *s, int k,
+                       int i, int kids[8], int *n)
+{
+    int m = 0;
+    if (nodes[k].count == 0 && i >= 2 &&
+        cheapest_share(nodes, s, k, i, &m) <= s[k].cost[0]) {
+        take_lanes(nodes, s, k + 1, m, kids, n);
+        take_lanes(nodes, s, (int)nodes[k].index, i - m, kids, n);
+    } else
+        kids[(*n)++] = k;
+}
+
+/* The children of the wide node made from interior binary node k: its
+ * two children in their cheapest share of width lanes. Their count. */
+static int open_children(const bvh_node *nodes, const bvh_slots *s, int k,
+                         int width, int kids[8])
+{
+    int m, n = 0;
+    cheapest_share(nodes, s, k, width, &m);
+    take_lanes(nodes, s, k + 1, m, kids, &n);
+    take_lanes(nodes, s, (int)nodes[k].index, width - m, kids, &n);
     return n;
 }
 
@@ -605,12 +656,13 @@ static int nodes_first(const bvh_node *nodes, int kids[8], int n)
 /* Fills wide node w with the children of binary node k, and the wide
  * nodes below it from t->node_count on: its children that are nodes
  * first, in numbers that follow one another, then theirs. */
-static void collapse(bvh *t, const bvh_node *nodes, int k, int w)
+static void collapse(bvh *t, const bvh_node *nodes, const bvh_slots *s,
+                     int k, int w)
 {
     int kids[8], n = 1;
     kids[0] = k; /* a root that is a leaf: one child */
     if (nodes[k].count == 0)
-        n = open_children(nodes, k, t->width, kids);
+        n = open_children(nodes, s, k, t->width, kids);
     int interior = nodes_first(nodes, kids, n);
     uint32_t first = (uint32_t)t->node_count; /* lane 0's number */
     t->node_count += interior;
@@ -633,7 +685,7 @@ static void collapse(bvh *t, const bvh_node *nodes, int k, int w)
     order_children(node);
     node->order[0] |= (uint32_t)interior << BVH_NODES_SHIFT;
     for (int c = 0; c < interior; c++)
-        collapse(t, nodes, kids[c], (int)(first + (uint32_t)c));
+        collapse(t, nodes, s, kids[c], (int)(first + (uint32_t)c));
 }
 
 /* t's wide nodes in an array of their number, which the collapse knows
@@ -653,13 +705,15 @@ static void shrink_wide(bvh *t)
 static bool make_wide(bvh *t)
 {
     int most = t->node_count - t->leaf_count + 1; /* wide nodes at most */
+    bvh_slots *s = memory_alloc_zeroed((size_t)t->node_count, sizeof *s);
     t->nodes8 = memory_alloc_aligned(64, (size_t)most, sizeof(bvh_node8));
-    if (t->nodes8 == NULL)
-        return false;
+    if (s == NULL || t->nodes8 == NULL)
+        return free(s), false;
+    price_collapse(t->nodes, t->node_count, t->width, s);
     bvh_node *binary = t->nodes;
     t->nodes = NULL, t->node_count = 1, t->node_capacity = most;
-    collapse(t, binary, 0, 0);
-    free(binary);
+    collapse(t, binary, s, 0, 0);
+    free(binary), free(s);
     shrink_wide(t);
     t->avx2 = bvh_walks_with_avx2();
     t->avx512 = t->avx2 && bvh_walks_with_avx512();
