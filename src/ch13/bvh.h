@@ -494,13 +494,15 @@ bvh_node8_test_avx2(const bvh_node8 *n, const bvh_ray *r, float bound,
  * t (1 + BVH_SLACK) rounded to the nearest float, then the next float
  * up, which lies above the exact product (bvh_float_up's bound, or one
  * float more), in float alone; a NaN, which bounds nothing, where that
- * step would leave the floats (infinity) or cross zero (-0). */
+ * step would leave the floats (infinity) or cross zero (-0). t is a
+ * hit's distance, never a NaN. */
 static inline float bvh_bound_after(float t)
 {
     float p = t * (float)(1 + BVH_SLACK);
-    int32_t bits; /* read as an integer, a float's bits count its size */
+    uint32_t bits; /* read as an integer, a float's bits count its size */
     memcpy(&bits, &p, sizeof bits);
-    bits += bits >= 0 ? 1 : -1; /* below zero, up is towards it */
+    /* below zero (the sign bit set), up is towards zero: one less */
+    bits += bits >> 31 ? UINT32_MAX : 1;
     memcpy(&p, &bits, sizeof p);
     return p;
 }
